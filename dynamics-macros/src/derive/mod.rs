@@ -1,0 +1,156 @@
+//! Stage 4, derive: the model's equations of motion as expression DAGs.
+//!
+//! Frame poses are products of elementary transfer matrices
+//! (`kinematics.rs`); A(q) comes from link Jacobians,
+//! `sum m Jv^T Jv + Jw^T R I R^T Jw` (`inertia.rs`); Qqt1, Qqt2 and the
+//! Christoffel Coriolis matrix from dA/dq_i (`coriolis.rs`); potential,
+//! gravity and Q(0) from `forces.rs`. Everything lives in one hash-consed
+//! [`Graph`], so terms shared between outputs are one node.
+
+mod coriolis;
+mod forces;
+mod inertia;
+mod kinematics;
+mod lower;
+
+use dynamics_symbolic::{Graph, Id, Var};
+
+use crate::model::Model;
+
+/// Numbering of the free variables of the graph.
+#[derive(Clone, Copy)]
+pub struct Vars {
+    /// Number of coordinates.
+    pub n: usize,
+}
+
+impl Vars {
+    /// q_i
+    pub fn q(self, i: usize) -> Var {
+        Var(i as u32)
+    }
+    /// qd_i
+    pub fn qd(self, i: usize) -> Var {
+        Var((self.n + i) as u32)
+    }
+    /// qdd_i
+    pub fn qdd(self, i: usize) -> Var {
+        Var((2 * self.n + i) as u32)
+    }
+    /// Run-time parameter k.
+    pub fn param(self, k: usize) -> Var {
+        Var((3 * self.n + k) as u32)
+    }
+    /// What a variable is: (kind, index); kind 0..=3 = q, qd, qdd, param.
+    pub fn classify(self, v: Var) -> (usize, usize) {
+        let i = v.0 as usize;
+        if i < 3 * self.n {
+            (i / self.n, i % self.n)
+        } else {
+            (3, i - 3 * self.n)
+        }
+    }
+}
+
+/// A pose: rotation rows and translation.
+#[derive(Clone)]
+pub struct Pose {
+    /// Rotation matrix, `r[row][col]`.
+    pub r: [[Id; 3]; 3],
+    /// Translation.
+    pub p: [Id; 3],
+}
+
+/// Every derived output, as roots in `graph`.
+pub struct Derived {
+    /// The expression DAG.
+    pub graph: Graph,
+    /// Variable numbering.
+    pub vars: Vars,
+    /// A(q), full n x n (symmetric: `a[i][j] == a[j][i]`).
+    pub a: Vec<Vec<Id>>,
+    /// Qqt1.
+    pub qqt1: Vec<Id>,
+    /// Qqt2.
+    pub qqt2: Vec<Id>,
+    /// Christoffel Coriolis matrix.
+    pub coriolis: Vec<Vec<Id>>,
+    /// g = dPi_gravity/dq.
+    pub gravity: Vec<Id>,
+    /// Q(0).
+    pub q0: Vec<Id>,
+    /// U = A qdd - Q(0) - Qqt1 - Qqt2.
+    pub tau: Vec<Id>,
+    /// T.
+    pub kinetic: Id,
+    /// Pi (gravity + springs).
+    pub potential: Id,
+    /// World pose of each link.
+    pub frames: Vec<Pose>,
+    /// World position of each named point, in model order.
+    pub points: Vec<[Id; 3]>,
+    /// Jacobian of each named point: `point_jacobians[k][row][col]`.
+    pub point_jacobians: Vec<[Vec<Id>; 3]>,
+}
+
+/// Derives every output of the model.
+pub fn derive(model: &Model) -> Derived {
+    let n = model.joints.iter().filter(|j| j.coord.is_some()).count();
+    let vars = Vars { n };
+    let mut g = Graph::new();
+    let kin = kinematics::frames(model, vars, &mut g);
+    let a = inertia::mass_matrix(model, &kin, vars, &mut g);
+    let dyn_terms = coriolis::terms(&a, vars, &mut g);
+    let f = forces::forces(model, &kin, vars, &mut g);
+
+    let mut tau = Vec::with_capacity(n);
+    for i in 0..n {
+        let mut terms = Vec::with_capacity(n + 3);
+        for (j, aij) in a[i].iter().enumerate() {
+            let qdd = g.var(vars.qdd(j));
+            terms.push(g.mul(*aij, qdd));
+        }
+        let rhs = g.sum(&[f.q0[i], dyn_terms.qqt1[i], dyn_terms.qqt2[i]]);
+        let lhs = g.sum(&terms);
+        tau.push(g.sub(lhs, rhs));
+    }
+    let mut ke_terms = Vec::new();
+    for i in 0..n {
+        let qdi = g.var(vars.qd(i));
+        for j in 0..n {
+            let qdj = g.var(vars.qd(j));
+            let t = g.product(&[a[i][j], qdi, qdj]);
+            ke_terms.push(t);
+        }
+    }
+    let half = g.constant(0.5);
+    let ke_sum = g.sum(&ke_terms);
+    let kinetic = g.mul(half, ke_sum);
+
+    let mut points = Vec::new();
+    let mut point_jacobians = Vec::new();
+    for (l, link) in model.links.iter().enumerate() {
+        for p in &link.points {
+            let pos = kinematics::point_world(&kin[l], &p.at, vars, &mut g);
+            let jac = std::array::from_fn(|r| (0..n).map(|j| g.diff(pos[r], vars.q(j))).collect());
+            points.push(pos);
+            point_jacobians.push(jac);
+        }
+    }
+    Derived {
+        vars,
+        a,
+        qqt1: dyn_terms.qqt1,
+        qqt2: dyn_terms.qqt2,
+        coriolis: dyn_terms.coriolis,
+        gravity: f.gravity,
+        q0: f.q0,
+        tau,
+        kinetic,
+        potential: f.potential,
+        frames: kin.into_iter().map(|k| k.pose).collect(),
+        points,
+        point_jacobians,
+        graph: g,
+    }
+}

@@ -1,0 +1,109 @@
+//! Method bodies: a `let` chain from the symbolic engine, then the outputs
+//! written into fixed-size nalgebra values (zeros are left as they are).
+
+use dynamics_symbolic::{Graph, Id, Var};
+use proc_macro2::TokenStream;
+use quote::{format_ident, quote};
+
+use crate::derive::Vars;
+use crate::model::Model;
+
+/// How free variables are spelled in the emitted code.
+pub struct Spelling<'a> {
+    vars: Vars,
+    model: &'a Model,
+}
+
+impl<'a> Spelling<'a> {
+    /// For this model.
+    pub fn new(vars: Vars, model: &'a Model) -> Self {
+        Self { vars, model }
+    }
+
+    fn var(&self, v: Var) -> TokenStream {
+        let (kind, i) = self.vars.classify(v);
+        match kind {
+            0 => quote!(q[#i]),
+            1 => quote!(qd[#i]),
+            2 => quote!(qdd[#i]),
+            _ => {
+                let field = format_ident!("{}", self.model.params[i].name.to_string());
+                quote!(self.params.#field)
+            }
+        }
+    }
+}
+
+/// The `let` chain for `roots` and the tokens of each root's value.
+pub fn chain(g: &Graph, roots: &[Id], sp: &Spelling) -> (TokenStream, Vec<TokenStream>) {
+    let e = dynamics_symbolic::emit(g, roots, &|v| sp.var(v));
+    (e.lets, e.roots)
+}
+
+/// Body returning an `SVector<f64, n>`.
+pub fn vector(g: &Graph, roots: &[Id], sp: &Spelling) -> TokenStream {
+    let n = roots.len();
+    let (lets, vals) = chain(g, roots, sp);
+    let sets = assign_vector(g, roots, &vals, quote!(out));
+    quote! {
+        #lets
+        let mut out = ::dynamics_runtime::nalgebra::SVector::<f64, #n>::zeros();
+        #sets
+        out
+    }
+}
+
+/// `target[i] = value;` for every non-zero root.
+pub fn assign_vector(
+    g: &Graph,
+    roots: &[Id],
+    vals: &[TokenStream],
+    target: TokenStream,
+) -> TokenStream {
+    let sets = roots
+        .iter()
+        .zip(vals)
+        .enumerate()
+        .filter_map(|(i, (id, v))| {
+            (g.as_constant(*id) != Some(0.0)).then(|| quote!(#target[#i] = #v;))
+        });
+    quote!(#(#sets)*)
+}
+
+/// `target[(i, j)] = value;` for every non-zero root of a row-major matrix.
+pub fn assign_matrix(
+    g: &Graph,
+    roots: &[Id],
+    vals: &[TokenStream],
+    cols: usize,
+    target: TokenStream,
+) -> TokenStream {
+    let sets = roots
+        .iter()
+        .zip(vals)
+        .enumerate()
+        .filter_map(|(k, (id, v))| {
+            let (i, j) = (k / cols, k % cols);
+            (g.as_constant(*id) != Some(0.0)).then(|| quote!(#target[(#i, #j)] = #v;))
+        });
+    quote!(#(#sets)*)
+}
+
+/// Body returning an `SMatrix<f64, rows, cols>` from row-major roots.
+pub fn matrix(g: &Graph, roots: &[Id], rows: usize, cols: usize, sp: &Spelling) -> TokenStream {
+    let (lets, vals) = chain(g, roots, sp);
+    let sets = assign_matrix(g, roots, &vals, cols, quote!(out));
+    quote! {
+        #lets
+        let mut out = ::dynamics_runtime::nalgebra::SMatrix::<f64, #rows, #cols>::zeros();
+        #sets
+        out
+    }
+}
+
+/// Body returning a scalar.
+pub fn scalar(g: &Graph, root: Id, sp: &Spelling) -> TokenStream {
+    let (lets, vals) = chain(g, &[root], sp);
+    let v = &vals[0];
+    quote! { #lets #v }
+}

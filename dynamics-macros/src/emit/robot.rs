@@ -1,0 +1,204 @@
+//! The robot struct and its `Robot<N>` implementation.
+
+use proc_macro2::{Literal, TokenStream};
+use quote::{format_ident, quote};
+
+use super::body::{self, Spelling};
+use crate::derive::Derived;
+use crate::model::{JointKind, Model};
+
+/// The robot struct, its inherent items and the trait impl.
+pub fn emit(model: &Model, d: &Derived) -> TokenStream {
+    let g = &d.graph;
+    let n = d.vars.n;
+    let sp = Spelling::new(d.vars, model);
+    let vis = &model.vis;
+    let name = &model.name;
+    let attrs = &model.attrs;
+    let params = format_ident!("{}Params", name);
+    let name_str = name.to_string();
+
+    let coords = model.coords();
+    let joint_names = coords.iter().map(|&j| model.joints[j].name.to_string());
+    let joint_kinds = coords.iter().map(|&j| match model.joints[j].kind {
+        JointKind::Prismatic => quote!(::dynamics_runtime::JointKind::Prismatic),
+        _ => quote!(::dynamics_runtime::JointKind::Revolute),
+    });
+    let frame_names = model.links.iter().map(|l| l.name.to_string());
+    let point_names = model
+        .links
+        .iter()
+        .flat_map(|l| l.points.iter().map(|p| p.name.to_string()));
+    let gravity = model.gravity.map(Literal::f64_suffixed);
+
+    let upper: Vec<_> = (0..n).flat_map(|i| (0..n).map(move |j| (i, j))).collect();
+    let a_roots: Vec<_> = upper.iter().map(|&(i, j)| d.a[i][j]).collect();
+    let mass_matrix = body::matrix(g, &a_roots, n, n, &sp);
+    let qqt1 = body::vector(g, &d.qqt1, &sp);
+    let qqt2 = body::vector(g, &d.qqt2, &sp);
+    let qqt_sum: Vec<_> = (0..n).map(|i| (d.qqt1[i], d.qqt2[i])).collect();
+    let qqt = {
+        // Qqt1 + Qqt2 share dA/dq: emit them in one chain and add.
+        let mut roots = d.qqt1.clone();
+        roots.extend(&d.qqt2);
+        let (lets, vals) = body::chain(g, &roots, &sp);
+        let sets = qqt_sum.iter().enumerate().map(|(i, _)| {
+            let (a, b) = (&vals[i], &vals[n + i]);
+            quote!(out[#i] = #a + #b;)
+        });
+        quote! {
+            #lets
+            let mut out = ::dynamics_runtime::nalgebra::SVector::<f64, #n>::zeros();
+            #(#sets)*
+            out
+        }
+    };
+    let c_roots: Vec<_> = upper.iter().map(|&(i, j)| d.coriolis[i][j]).collect();
+    let coriolis = body::matrix(g, &c_roots, n, n, &sp);
+    let gravity_body = body::vector(g, &d.gravity, &sp);
+    let q0 = body::vector(g, &d.q0, &sp);
+    let tau = body::vector(g, &d.tau, &sp);
+    let kinetic = body::scalar(g, d.kinetic, &sp);
+    let potential = body::scalar(g, d.potential, &sp);
+
+    let terms = {
+        let mut roots = a_roots.clone();
+        roots.extend(&d.qqt1);
+        roots.extend(&d.qqt2);
+        roots.extend(&d.q0);
+        let (lets, vals) = body::chain(g, &roots, &sp);
+        let nn = n * n;
+        let a_set = body::assign_matrix(g, &a_roots, &vals[..nn], n, quote!(a));
+        let q1_set = body::assign_vector(g, &d.qqt1, &vals[nn..nn + n], quote!(qqt1));
+        let q2_set = body::assign_vector(g, &d.qqt2, &vals[nn + n..nn + 2 * n], quote!(qqt2));
+        let q0_set = body::assign_vector(g, &d.q0, &vals[nn + 2 * n..], quote!(q0));
+        quote! {
+            #lets
+            let mut a = ::dynamics_runtime::nalgebra::SMatrix::<f64, #n, #n>::zeros();
+            let mut qqt1 = ::dynamics_runtime::nalgebra::SVector::<f64, #n>::zeros();
+            let mut qqt2 = ::dynamics_runtime::nalgebra::SVector::<f64, #n>::zeros();
+            let mut q0 = ::dynamics_runtime::nalgebra::SVector::<f64, #n>::zeros();
+            #a_set #q1_set #q2_set #q0_set
+            ::dynamics_runtime::MotionTerms { a, qqt1, qqt2, q0 }
+        }
+    };
+
+    let frame_arms = d.frames.iter().enumerate().map(|(k, pose)| {
+        let r = &pose.r;
+        let roots = vec![
+            r[0][0], r[0][1], r[0][2], pose.p[0], r[1][0], r[1][1], r[1][2], pose.p[1], r[2][0],
+            r[2][1], r[2][2], pose.p[2],
+        ];
+        let (lets, vals) = body::chain(g, &roots, &sp);
+        let z = Literal::f64_suffixed(0.0);
+        let o = Literal::f64_suffixed(1.0);
+        quote! {
+            #k => {
+                #lets
+                ::core::option::Option::Some(::dynamics_runtime::nalgebra::Matrix4::new(
+                    #(#vals,)* #z, #z, #z, #o
+                ))
+            }
+        }
+    });
+    let point_arms = d.points.iter().enumerate().map(|(k, p)| {
+        let (lets, vals) = body::chain(g, p, &sp);
+        quote! {
+            #k => {
+                #lets
+                ::core::option::Option::Some(::dynamics_runtime::nalgebra::Vector3::new(#(#vals),*))
+            }
+        }
+    });
+    let jac_arms = d.point_jacobians.iter().enumerate().map(|(k, jac)| {
+        let roots: Vec<_> = jac.iter().flat_map(|row| row.iter().copied()).collect();
+        let b = body::matrix(g, &roots, 3, n, &sp);
+        quote! { #k => { ::core::option::Option::Some({ #b }) } }
+    });
+
+    let doc_n = format!(" Number of joint coordinates of [`{name}`].");
+    quote! {
+        #(#attrs)*
+        #[derive(Debug, Clone, Copy, Default, PartialEq)]
+        #vis struct #name {
+            /// Run-time parameters.
+            pub params: #params,
+        }
+
+        impl #name {
+            #[doc = #doc_n]
+            pub const DOF: usize = #n;
+            /// A robot with the given run-time parameters.
+            pub fn new(params: #params) -> Self {
+                Self { params }
+            }
+        }
+
+        #[allow(unused_variables, clippy::all, clippy::pedantic)]
+        impl ::dynamics_runtime::Robot<#n> for #name {
+            type Params = #params;
+            const NAME: &'static str = #name_str;
+            const JOINT_NAMES: [&'static str; #n] = [#(#joint_names),*];
+            const JOINT_KINDS: [::dynamics_runtime::JointKind; #n] = [#(#joint_kinds),*];
+            const FRAME_NAMES: &'static [&'static str] = &[#(#frame_names),*];
+            const POINT_NAMES: &'static [&'static str] = &[#(#point_names),*];
+            const GRAVITY: [f64; 3] = [#(#gravity),*];
+
+            fn params(&self) -> &#params { &self.params }
+            fn params_mut(&mut self) -> &mut #params { &mut self.params }
+
+            #[inline]
+            fn mass_matrix(&self, q: &::dynamics_runtime::nalgebra::SVector<f64, #n>)
+                -> ::dynamics_runtime::nalgebra::SMatrix<f64, #n, #n> { #mass_matrix }
+            #[inline]
+            fn qqt1(&self, q: &::dynamics_runtime::nalgebra::SVector<f64, #n>,
+                qd: &::dynamics_runtime::nalgebra::SVector<f64, #n>)
+                -> ::dynamics_runtime::nalgebra::SVector<f64, #n> { #qqt1 }
+            #[inline]
+            fn qqt2(&self, q: &::dynamics_runtime::nalgebra::SVector<f64, #n>,
+                qd: &::dynamics_runtime::nalgebra::SVector<f64, #n>)
+                -> ::dynamics_runtime::nalgebra::SVector<f64, #n> { #qqt2 }
+            #[inline]
+            fn qqt(&self, q: &::dynamics_runtime::nalgebra::SVector<f64, #n>,
+                qd: &::dynamics_runtime::nalgebra::SVector<f64, #n>)
+                -> ::dynamics_runtime::nalgebra::SVector<f64, #n> { #qqt }
+            #[inline]
+            fn coriolis_matrix(&self, q: &::dynamics_runtime::nalgebra::SVector<f64, #n>,
+                qd: &::dynamics_runtime::nalgebra::SVector<f64, #n>)
+                -> ::dynamics_runtime::nalgebra::SMatrix<f64, #n, #n> { #coriolis }
+            #[inline]
+            fn gravity(&self, q: &::dynamics_runtime::nalgebra::SVector<f64, #n>)
+                -> ::dynamics_runtime::nalgebra::SVector<f64, #n> { #gravity_body }
+            #[inline]
+            fn generalized_forces(&self, q: &::dynamics_runtime::nalgebra::SVector<f64, #n>,
+                qd: &::dynamics_runtime::nalgebra::SVector<f64, #n>)
+                -> ::dynamics_runtime::nalgebra::SVector<f64, #n> { #q0 }
+            #[inline]
+            fn inverse_dynamics(&self, q: &::dynamics_runtime::nalgebra::SVector<f64, #n>,
+                qd: &::dynamics_runtime::nalgebra::SVector<f64, #n>,
+                qdd: &::dynamics_runtime::nalgebra::SVector<f64, #n>)
+                -> ::dynamics_runtime::nalgebra::SVector<f64, #n> { #tau }
+            #[inline]
+            fn motion_terms(&self, q: &::dynamics_runtime::nalgebra::SVector<f64, #n>,
+                qd: &::dynamics_runtime::nalgebra::SVector<f64, #n>)
+                -> ::dynamics_runtime::MotionTerms<#n> { #terms }
+            #[inline]
+            fn kinetic_energy(&self, q: &::dynamics_runtime::nalgebra::SVector<f64, #n>,
+                qd: &::dynamics_runtime::nalgebra::SVector<f64, #n>) -> f64 { #kinetic }
+            #[inline]
+            fn potential_energy(&self, q: &::dynamics_runtime::nalgebra::SVector<f64, #n>) -> f64 { #potential }
+            fn frame_pose(&self, index: usize, q: &::dynamics_runtime::nalgebra::SVector<f64, #n>)
+                -> ::core::option::Option<::dynamics_runtime::nalgebra::Matrix4<f64>> {
+                match index { #(#frame_arms)* _ => ::core::option::Option::None }
+            }
+            fn point_position(&self, index: usize, q: &::dynamics_runtime::nalgebra::SVector<f64, #n>)
+                -> ::core::option::Option<::dynamics_runtime::nalgebra::Vector3<f64>> {
+                match index { #(#point_arms)* _ => ::core::option::Option::None }
+            }
+            fn point_jacobian(&self, index: usize, q: &::dynamics_runtime::nalgebra::SVector<f64, #n>)
+                -> ::core::option::Option<::dynamics_runtime::nalgebra::SMatrix<f64, 3, #n>> {
+                match index { #(#jac_arms)* _ => ::core::option::Option::None }
+            }
+        }
+    }
+}

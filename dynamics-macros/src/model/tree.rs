@@ -1,0 +1,139 @@
+//! Checks that span several items: every link but one hangs on exactly one
+//! joint, the links form one tree without cycles; then depth-first order.
+
+use std::collections::HashMap;
+
+use super::{Joint, Link};
+use crate::ctxt::Ctxt;
+use crate::parse::ast::{JointDecl, LinkDecl};
+
+/// Checks the tree and returns links and joints in depth-first order, with
+/// parent indices and coordinates assigned. `None` when anything failed
+/// (here or earlier).
+pub fn order(
+    links: Vec<Link>,
+    joints: Vec<Joint>,
+    joint_decls: &[JointDecl],
+    link_decls: &[LinkDecl],
+    cx: &mut Ctxt,
+) -> Option<(Vec<Link>, Vec<Joint>)> {
+    if link_decls.is_empty() {
+        return None;
+    }
+    // Structure from the declarations alone, so that a joint that failed for
+    // another reason does not show up as a missing edge here.
+    let index: HashMap<String, usize> = link_decls
+        .iter()
+        .enumerate()
+        .rev()
+        .map(|(i, l)| (l.name.to_string(), i))
+        .collect();
+    let mut parent_of: Vec<Option<(usize, usize)>> = vec![None; link_decls.len()];
+    for (j, decl) in joint_decls.iter().enumerate() {
+        let (Some(&p), Some(&c)) = (
+            index.get(&decl.parent.to_string()),
+            index.get(&decl.child.to_string()),
+        ) else {
+            continue;
+        };
+        if p == c {
+            cx.error_spanned_by(&decl.child, "a joint cannot connect a link to itself");
+            continue;
+        }
+        match parent_of[c] {
+            Some((_, other)) => cx.error_spanned_by(
+                &decl.child,
+                format!(
+                    "link `{}` already hangs on joint `{}`; closed loops are not supported",
+                    decl.child, joint_decls[other].name
+                ),
+            ),
+            None => parent_of[c] = Some((p, j)),
+        }
+    }
+    let roots: Vec<usize> = (0..link_decls.len())
+        .filter(|&l| parent_of[l].is_none())
+        .collect();
+    if roots.len() > 1 {
+        for &r in &roots[1..] {
+            cx.error_spanned_by(
+                &link_decls[r].name,
+                format!(
+                    "two roots: link `{}` hangs on no joint, and neither does `{}`; attach it with a joint",
+                    link_decls[r].name, link_decls[roots[0]].name
+                ),
+            );
+        }
+    }
+    // Children lists in declaration order of the joints.
+    let mut children: Vec<Vec<(usize, usize)>> = vec![Vec::new(); link_decls.len()];
+    for (c, pj) in parent_of.iter().enumerate() {
+        if let Some((p, j)) = pj {
+            children[*p].push((*j, c));
+        }
+    }
+    for ch in &mut children {
+        ch.sort();
+    }
+    let mut seen = vec![false; link_decls.len()];
+    let mut link_order = Vec::new();
+    for &r in &roots {
+        let mut stack = vec![r];
+        while let Some(l) = stack.pop() {
+            if seen[l] {
+                continue;
+            }
+            seen[l] = true;
+            link_order.push(l);
+            for &(_, c) in children[l].iter().rev() {
+                stack.push(c);
+            }
+        }
+    }
+    // Whatever is not reachable from a root sits on a cycle (or hangs below one).
+    let mut reported = false;
+    for l in 0..link_decls.len() {
+        if !seen[l] && !reported {
+            if let Some((_, j)) = parent_of[l] {
+                cx.error_spanned_by(
+                    &joint_decls[j].name,
+                    format!(
+                        "joint `{}` closes a cycle: link `{}` is its own ancestor",
+                        joint_decls[j].name, link_decls[l].name
+                    ),
+                );
+                reported = true;
+            }
+        }
+    }
+    if !cx.is_ok() || joints.len() != joint_decls.len() || links.len() != link_decls.len() {
+        return None;
+    }
+
+    let mut new_index = vec![0usize; link_decls.len()];
+    for (new, &old) in link_order.iter().enumerate() {
+        new_index[old] = new;
+    }
+    let mut links_opt: Vec<Option<Link>> = links.into_iter().map(Some).collect();
+    let mut joints_opt: Vec<Option<Joint>> = joints.into_iter().map(Some).collect();
+    let mut out_links = Vec::new();
+    let mut out_joints = Vec::new();
+    let mut coord = 0;
+    for &old in &link_order {
+        let mut link = links_opt[old].take()?;
+        if let Some((p, j)) = parent_of[old] {
+            let mut joint = joints_opt[j].take()?;
+            joint.parent = new_index[p];
+            joint.child = new_index[old];
+            if joint.kind != super::JointKind::Fixed {
+                joint.coord = Some(coord);
+                coord += 1;
+            }
+            link.parent = Some(new_index[p]);
+            link.joint = Some(out_joints.len());
+            out_joints.push(joint);
+        }
+        out_links.push(link);
+    }
+    Some((out_links, out_joints))
+}

@@ -1,0 +1,104 @@
+//! The syntax tree of a `robot!` input, as written.
+
+use syn::{Attribute, Expr, Ident, Visibility};
+
+/// The whole input: items in the order written.
+#[derive(Default)]
+pub struct Input {
+    /// Every item that parsed.
+    pub items: Vec<Item>,
+}
+
+/// One top-level item.
+pub enum Item {
+    /// `#[attr] pub robot Name;`
+    Header(Header),
+    /// `gravity = [gx, gy, gz];`
+    Gravity {
+        /// The `gravity` keyword.
+        kw: Ident,
+        /// The vector expression.
+        value: Expr,
+    },
+    /// `const NAME = expr;`: a compile-time constant, folded into the code.
+    Const(Binding),
+    /// `param NAME = expr;`: a run-time parameter with its default.
+    Param(Binding),
+    /// `link NAME;` or `link NAME { ... }`
+    Link(LinkDecl),
+    /// `joint NAME = KIND(PARENT -> CHILD) { ... }`
+    Joint(JointDecl),
+}
+
+/// `#[attr] pub robot Name;`
+pub struct Header {
+    /// Outer attributes and doc comments, passed on to the generated struct.
+    pub attrs: Vec<Attribute>,
+    /// Visibility of the generated items.
+    pub vis: Visibility,
+    /// The robot's type name.
+    pub name: Ident,
+}
+
+/// `NAME = expr`
+pub struct Binding {
+    /// Doc comments written above it.
+    pub attrs: Vec<Attribute>,
+    /// The name.
+    pub name: Ident,
+    /// The value.
+    pub value: Expr,
+}
+
+/// A link and its inertial data.
+pub struct LinkDecl {
+    /// The link's name.
+    pub name: Ident,
+    /// Its properties, in the order written.
+    pub props: Vec<Prop>,
+}
+
+/// A joint between two links.
+pub struct JointDecl {
+    /// The joint's name.
+    pub name: Ident,
+    /// `revolute`, `prismatic` or `fixed` (checked in the model stage).
+    pub kind: Ident,
+    /// The parent link's name.
+    pub parent: Ident,
+    /// The child link's name.
+    pub child: Ident,
+    /// Its properties, in the order written.
+    pub props: Vec<Prop>,
+}
+
+/// One `key = value;` line inside a link or joint body.
+pub enum Prop {
+    /// `key = expr;`
+    Value {
+        /// The property name.
+        key: Ident,
+        /// Its value.
+        value: Expr,
+    },
+    /// `point NAME = [x, y, z];`
+    Point {
+        /// The `point` keyword.
+        kw: Ident,
+        /// The point's name.
+        name: Ident,
+        /// Its position in the link frame.
+        at: Expr,
+    },
+    /// `point_mass NAME = mass at [x, y, z];`
+    PointMass {
+        /// The `point_mass` keyword.
+        kw: Ident,
+        /// The point mass's name (also a named point).
+        name: Ident,
+        /// Its mass.
+        mass: Expr,
+        /// Its position in the link frame.
+        at: Expr,
+    },
+}

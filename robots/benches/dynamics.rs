@@ -1,0 +1,93 @@
+//! Time per call of the generated dynamics of the seed robots, cycling over
+//! 1000 pseudo-random states as the Pinocchio anchor does
+//! (shared/anchors/pinocchio/bench.cpp). Run: `cargo bench -p robots`.
+
+use std::hint::black_box;
+
+use criterion::{criterion_group, criterion_main, Criterion};
+use dynamics_runtime::Robot;
+use nalgebra::SVector;
+
+const STATES: usize = 1000;
+
+/// Deterministic states in the reference sampling box (q in [-pi, pi],
+/// v and a in [-2, 2]).
+fn states<const N: usize>() -> Vec<[SVector<f64, N>; 3]> {
+    let mut x: u64 = 0x9E37_79B9_7F4A_7C15;
+    let mut next = move |lo: f64, hi: f64| {
+        x ^= x << 13;
+        x ^= x >> 7;
+        x ^= x << 17;
+        lo + (hi - lo) * ((x >> 11) as f64 / (1u64 << 53) as f64)
+    };
+    (0..STATES)
+        .map(|_| {
+            let q = SVector::from_fn(|_, _| next(-3.1, 3.1));
+            let v = SVector::from_fn(|_, _| next(-2.0, 2.0));
+            let a = SVector::from_fn(|_, _| next(-2.0, 2.0));
+            [q, v, a]
+        })
+        .collect()
+}
+
+fn bench_robot<R: Robot<N>, const N: usize>(c: &mut Criterion, name: &str, r: &R) {
+    let s = states::<N>();
+    let mut group = c.benchmark_group(name);
+    let mut k = 0usize;
+    let mut next = || {
+        k = (k + 1) % STATES;
+        &s[k]
+    };
+    group.bench_function("mass_matrix", |b| {
+        b.iter(|| {
+            let [q, _, _] = next();
+            black_box(r.mass_matrix(black_box(q)))
+        })
+    });
+    group.bench_function("qqt1+qqt2", |b| {
+        b.iter(|| {
+            let [q, v, _] = next();
+            black_box(r.qqt(black_box(q), black_box(v)))
+        })
+    });
+    group.bench_function("gravity", |b| {
+        b.iter(|| {
+            let [q, _, _] = next();
+            black_box(r.gravity(black_box(q)))
+        })
+    });
+    group.bench_function("inverse_dynamics", |b| {
+        b.iter(|| {
+            let [q, v, a] = next();
+            black_box(r.inverse_dynamics(black_box(q), black_box(v), black_box(a)))
+        })
+    });
+    group.bench_function("motion_terms (A+Qqt1+Qqt2+Q0)", |b| {
+        b.iter(|| {
+            let [q, v, _] = next();
+            black_box(r.motion_terms(black_box(q), black_box(v)))
+        })
+    });
+    group.bench_function("coriolis_matrix", |b| {
+        b.iter(|| {
+            let [q, v, _] = next();
+            black_box(r.coriolis_matrix(black_box(q), black_box(v)))
+        })
+    });
+    group.bench_function("forward_dynamics", |b| {
+        b.iter(|| {
+            let [q, v, a] = next();
+            black_box(r.forward_dynamics(black_box(q), black_box(v), black_box(a)))
+        })
+    });
+    group.finish();
+}
+
+fn seed_robots(c: &mut Criterion) {
+    bench_robot(c, "arm3r", &robots::Arm3r::default());
+    bench_robot(c, "rrp", &robots::Rrp::rigid());
+    bench_robot(c, "mar", &robots::Mar::default());
+}
+
+criterion_group!(benches, seed_robots);
+criterion_main!(benches);

@@ -1,0 +1,85 @@
+//! `dynamics eval`: every dynamics quantity of a robot at given states,
+//! under the field names of the Pinocchio reference files, so that our models
+//! can be compared with other toolkits.
+
+use dynamics_runtime::{DynamicsError, Robot};
+use nalgebra::SVector;
+use serde::Serialize;
+
+use crate::states::State;
+
+/// Quantities at one state (matrices row-major).
+#[derive(Debug, Clone, Serialize, PartialEq)]
+pub struct Evaluated {
+    /// Position.
+    pub q: Vec<f64>,
+    /// Velocity.
+    pub v: Vec<f64>,
+    /// Acceleration.
+    pub a: Vec<f64>,
+    /// Inverse dynamics U = A a - Q(0) - Qqt1 - Qqt2.
+    pub tau: Vec<f64>,
+    /// Inertia matrix A.
+    #[serde(rename = "M")]
+    pub m: Vec<Vec<f64>>,
+    /// Gravity torques.
+    pub g: Vec<f64>,
+    /// Christoffel Coriolis matrix.
+    #[serde(rename = "C")]
+    pub c: Vec<Vec<f64>>,
+    /// Efforts at zero acceleration: -(Q(0) + Qqt1 + Qqt2) (= C v + g for a rigid robot).
+    pub nle: Vec<f64>,
+    /// Forward dynamics of `tau`.
+    pub ddq: Vec<f64>,
+    /// T.
+    pub kinetic_energy: f64,
+    /// Pi.
+    pub potential_energy: f64,
+}
+
+/// Evaluates `robot` at every state.
+///
+/// ```
+/// use robots::{eval::evaluate, states::State, Arm3r};
+/// let s = State { q: vec![0.0; 3], v: vec![0.0; 3], a: vec![0.0; 3] };
+/// let out = evaluate(&Arm3r::default(), &[s]).unwrap();
+/// assert!((out[0].g[0] - 21.93518418).abs() < 1e-8);
+/// ```
+pub fn evaluate<R: Robot<N>, const N: usize>(
+    robot: &R,
+    states: &[State],
+) -> Result<Vec<Evaluated>, DynamicsError> {
+    states
+        .iter()
+        .map(|s| {
+            let q = SVector::<f64, N>::from_column_slice(&s.q);
+            let v = SVector::<f64, N>::from_column_slice(&s.v);
+            let a = SVector::<f64, N>::from_column_slice(&s.a);
+            let tau = robot.inverse_dynamics(&q, &v, &a);
+            let m = robot.mass_matrix(&q);
+            let c = robot.coriolis_matrix(&q, &v);
+            let rows = |x: &nalgebra::SMatrix<f64, N, N>| -> Vec<Vec<f64>> {
+                (0..N)
+                    .map(|i| (0..N).map(|j| x[(i, j)]).collect())
+                    .collect()
+            };
+            Ok(Evaluated {
+                q: s.q.clone(),
+                v: s.v.clone(),
+                a: s.a.clone(),
+                tau: tau.iter().copied().collect(),
+                m: rows(&m),
+                g: robot.gravity(&q).iter().copied().collect(),
+                c: rows(&c),
+                nle: robot.nonlinear_effects(&q, &v).iter().copied().collect(),
+                ddq: robot
+                    .forward_dynamics(&q, &v, &tau)?
+                    .iter()
+                    .copied()
+                    .collect(),
+                kinetic_energy: robot.kinetic_energy(&q, &v),
+                potential_energy: robot.potential_energy(&q),
+            })
+        })
+        .collect()
+}

@@ -1,0 +1,27 @@
+//! The seed robots written with `robot!`, and the pieces of the `dynamics`
+//! command-line program that tests use too.
+//!
+//! | name | robot | source |
+//! |---|---|---|
+//! | `arm3r` | [`Arm3r`] | seed 001 sec. 3.1.1 / ch. 4, planar 3R loading arm |
+//! | `rrp` | [`Rrp`] | seed 001 sec. 3.1.2, planar arm with plunger, spring and drag |
+//! | `rrp-rigid` | [`Rrp::rigid`] | the same without spring and drag (Pinocchio's model) |
+//! | `mar` | [`Mar`] | seed 000 Table 1, rigid |
+//! | `mar-drives` | [`Mar::with_drives`] | with Table 1's drive stiffness and damping |
+
+pub mod arm3r;
+pub mod compare;
+pub mod eval;
+pub mod mar;
+pub mod registry;
+pub mod rrp;
+pub mod states;
+
+pub use arm3r::{Arm3r, Arm3rParams};
+pub use mar::{Mar, MarParams};
+pub use rrp::{Rrp, RrpParams};
+
+/// The README's example, compiled and run as a doc test.
+#[doc = include_str!("../../README.md")]
+#[cfg(doctest)]
+pub struct ReadmeDoctests;

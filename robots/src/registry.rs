@@ -1,0 +1,114 @@
+//! Robots by name, for the command-line program.
+
+use dynamics_runtime::{DynamicsError, Parameters, Robot};
+use thiserror::Error;
+
+use crate::eval::{evaluate, Evaluated};
+use crate::states::{self, StatesError};
+use crate::{Arm3r, Mar, Rrp};
+
+/// Names the command-line program knows, with a line each.
+pub const ROBOTS: &[(&str, &str)] = &[
+    (
+        "arm3r",
+        "planar 3R loading arm, seed 001 sec. 3.1.1 (3 DOF)",
+    ),
+    (
+        "rrp",
+        "planar RRP arm with plunger spring and drag, seed 001 sec. 3.1.2 (3 DOF)",
+    ),
+    (
+        "rrp-rigid",
+        "the RRP arm without spring and drag, as Pinocchio models it (3 DOF)",
+    ),
+    ("mar", "MAR manipulator, seed 000 Table 1, rigid (3 DOF)"),
+    (
+        "mar-drives",
+        "MAR with Table 1's drive stiffness and damping (3 DOF)",
+    ),
+];
+
+/// A robot chosen by name.
+#[derive(Debug, Clone)]
+pub enum AnyRobot {
+    /// [`Arm3r`]
+    Arm3r(Arm3r),
+    /// [`Rrp`]
+    Rrp(Rrp),
+    /// [`Mar`]
+    Mar(Mar),
+}
+
+/// What the registry can fail with.
+#[derive(Debug, Error)]
+pub enum RegistryError {
+    /// No robot of that name.
+    #[error("unknown robot `{0}`; known robots: {known}", known = ROBOTS.iter().map(|r| r.0).collect::<Vec<_>>().join(", "))]
+    UnknownRobot(String),
+    /// A parameter could not be set.
+    #[error(transparent)]
+    Dynamics(#[from] DynamicsError),
+    /// The states could not be read.
+    #[error(transparent)]
+    States(#[from] StatesError),
+}
+
+macro_rules! each {
+    ($self:expr, $r:ident => $body:expr) => {
+        match $self {
+            AnyRobot::Arm3r($r) => $body,
+            AnyRobot::Rrp($r) => $body,
+            AnyRobot::Mar($r) => $body,
+        }
+    };
+}
+
+impl AnyRobot {
+    /// The robot called `name` (see [`ROBOTS`]).
+    ///
+    /// ```
+    /// let r = robots::registry::AnyRobot::by_name("rrp-rigid").unwrap();
+    /// assert_eq!(r.joint_names(), vec!["q1", "q2", "q3"]);
+    /// assert!(robots::registry::AnyRobot::by_name("r2d2").is_err());
+    /// ```
+    pub fn by_name(name: &str) -> Result<Self, RegistryError> {
+        Ok(match name {
+            "arm3r" => AnyRobot::Arm3r(Arm3r::default()),
+            "rrp" => AnyRobot::Rrp(Rrp::default()),
+            "rrp-rigid" => AnyRobot::Rrp(Rrp::rigid()),
+            "mar" => AnyRobot::Mar(Mar::default()),
+            "mar-drives" => AnyRobot::Mar(Mar::with_drives([0.0; 3])),
+            other => return Err(RegistryError::UnknownRobot(other.to_string())),
+        })
+    }
+
+    /// Joint names in coordinate order.
+    pub fn joint_names(&self) -> Vec<&'static str> {
+        fn names<R: Robot<N>, const N: usize>(_: &R) -> Vec<&'static str> {
+            R::JOINT_NAMES.to_vec()
+        }
+        each!(self, r => names(r))
+    }
+
+    /// Sets a run-time parameter by name.
+    pub fn set_param(&mut self, name: &str, value: f64) -> Result<(), RegistryError> {
+        each!(self, r => r.params.set(name, value)?);
+        Ok(())
+    }
+
+    /// Reads states from JSON text and evaluates every quantity there.
+    pub fn evaluate_json(&self, text: &str, file: &str) -> Result<Vec<Evaluated>, RegistryError> {
+        let n = self.joint_names().len();
+        let states = states::parse(text, file, n)?;
+        Ok(each!(self, r => evaluate(r, &states)?))
+    }
+
+    /// The Pinocchio reference states shipped for this robot's rigid body.
+    pub fn reference(&self) -> (&'static str, &'static str) {
+        match self {
+            AnyRobot::Arm3r(_) => ("arm3r.json", include_str!("../data/pinocchio/arm3r.json")),
+            AnyRobot::Rrp(_) => ("rrp.json", include_str!("../data/pinocchio/rrp.json")),
+            AnyRobot::Mar(_) => ("mar.json", include_str!("../data/pinocchio/mar.json")),
+        }
+    }
+}

@@ -1,0 +1,4 @@
+//! Integration tests, compiled into one binary (faster on two cores).
+
+mod oracle;
+mod properties;

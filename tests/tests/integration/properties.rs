@@ -1,0 +1,150 @@
+//! Invariants that hold for every correct model, checked on random states
+//! with proptest: A symmetric positive definite; dA/dt - 2C skew-symmetric;
+//! Qqt1 + Qqt2 equal to the Christoffel form computed from finite
+//! differences of A alone; g = dPi/dq; point Jacobians = d(position)/dq;
+//! power balance along a path; forward and inverse dynamics inverse to
+//! each other.
+
+use dynamics_runtime::Robot;
+use dynamics_tests::{christoffel_bias, mass_matrix_rate, scale};
+use nalgebra::SVector;
+use proptest::prelude::*;
+
+fn state() -> impl Strategy<Value = ([f64; 3], [f64; 3], [f64; 3])> {
+    let v = || prop::array::uniform3(-2.0f64..2.0);
+    (prop::array::uniform3(-3.1f64..3.1), v(), v())
+}
+
+fn vec3(a: [f64; 3]) -> SVector<f64, 3> {
+    SVector::from(a)
+}
+
+/// Every invariant at one state.
+fn invariants<R: Robot<N>, const N: usize>(
+    r: &R,
+    q: &SVector<f64, N>,
+    qd: &SVector<f64, N>,
+    qdd: &SVector<f64, N>,
+) {
+    let a = r.mass_matrix(q);
+    assert!(
+        (a - a.transpose()).abs().max() <= 1e-14 * scale(&a, 1.0),
+        "A symmetric"
+    );
+    let eig = a.symmetric_eigenvalues();
+    assert!(eig.min() > 0.0, "A positive definite: {eig}");
+
+    let c = r.coriolis_matrix(q, qd);
+    let n = mass_matrix_rate(r, q, qd) - c * 2.0;
+    let tol = 1e-6 * scale(&a, 1.0) * (1.0 + qd.norm());
+    assert!(
+        (n + n.transpose()).abs().max() < tol,
+        "dA/dt - 2C skew: {n}"
+    );
+
+    let qqt = r.qqt1(q, qd) + r.qqt2(q, qd);
+    assert!((r.qqt(q, qd) - qqt).abs().max() < 1e-12 * (1.0 + qqt.abs().max()));
+    assert!(
+        (c * qd + qqt).abs().max() < 1e-10 * (1.0 + qqt.abs().max()),
+        "C qd = -(Qqt1 + Qqt2)"
+    );
+    let fd = christoffel_bias(r, q, qd);
+    assert!(
+        (qqt + fd).abs().max() < tol,
+        "Christoffel form: {qqt} vs {fd}"
+    );
+
+    // Gravity = gradient of the gravity potential (with springs off this is Pi).
+    let h = 1e-6;
+    let grad = SVector::<f64, N>::from_fn(|i, _| {
+        let mut e = SVector::<f64, N>::zeros();
+        e[i] = h;
+        (r.potential_energy(&(q + e)) - r.potential_energy(&(q - e))) / (2.0 * h)
+    });
+    let q0_static = r.generalized_forces(q, &SVector::zeros());
+    assert!(
+        (grad + q0_static).abs().max() < 1e-5 * (1.0 + grad.abs().max()),
+        "Q(0) at rest = -dPi/dq"
+    );
+
+    for p in 0..R::POINT_NAMES.len() {
+        let jac = r.point_jacobian(p, q).expect("point");
+        for i in 0..N {
+            let mut e = SVector::<f64, N>::zeros();
+            e[i] = h;
+            let d = (r.point_position(p, &(q + e)).expect("point")
+                - r.point_position(p, &(q - e)).expect("point"))
+                / (2.0 * h);
+            assert!(
+                (jac.column(i) - d).abs().max() < 1e-6,
+                "point Jacobian column {i}"
+            );
+        }
+    }
+
+    let tau = r.inverse_dynamics(q, qd, qdd);
+    let back = r.forward_dynamics(q, qd, &tau).expect("forward dynamics");
+    assert!(
+        (back - qdd).abs().max() < 1e-8 * (1.0 + qdd.abs().max()),
+        "forward(inverse) = id"
+    );
+    let terms = r.motion_terms(q, qd);
+    assert!(
+        (terms.a - a).abs().max() == 0.0
+            && (terms.q0 - r.generalized_forces(q, qd)).abs().max() < 1e-12
+    );
+}
+
+/// d(T + Pi)/dt = qd . (U + Q_nc) along q(t) = q0 + w sin(t), where
+/// Q_nc = Q(0)(q, qd) - Q(0)(q, 0) is the non-conservative part.
+fn power_balance<R: Robot<N>, const N: usize>(r: &R, q0: &SVector<f64, N>, w: &SVector<f64, N>) {
+    let path = |t: f64| (q0 + w * t.sin(), w * t.cos(), -w * t.sin());
+    let energy = |t: f64| {
+        let (q, qd, _) = path(t);
+        r.total_energy(&q, &qd)
+    };
+    for k in 0..20 {
+        let t = 0.1 + 0.3 * k as f64;
+        let (q, qd, qdd) = path(t);
+        let h = 1e-5;
+        let de = (energy(t + h) - energy(t - h)) / (2.0 * h);
+        let u = r.inverse_dynamics(&q, &qd, &qdd);
+        let qnc = r.generalized_forces(&q, &qd) - r.generalized_forces(&q, &SVector::zeros());
+        let power = qd.dot(&(u + qnc));
+        assert!(
+            (de - power).abs() < 1e-6 * (1.0 + power.abs()),
+            "t = {t}: dE/dt = {de}, power = {power}"
+        );
+    }
+}
+
+proptest! {
+    #![proptest_config(ProptestConfig::with_cases(64))]
+
+    #[test]
+    fn arm3r_invariants((q, qd, qdd) in state()) {
+        invariants(&robots::Arm3r::default(), &vec3(q), &vec3(qd), &vec3(qdd));
+    }
+
+    #[test]
+    fn rrp_invariants((q, qd, qdd) in state()) {
+        // Keep the plunger inside its stroke.
+        let q = [q[0], q[1], q[2] / 6.0];
+        let r = robots::Rrp::rigid();
+        invariants(&r, &vec3(q), &vec3(qd), &vec3(qdd));
+    }
+
+    #[test]
+    fn mar_invariants((q, qd, qdd) in state()) {
+        let q = [q[0], q[1], q[2] / 10.0];
+        invariants(&robots::Mar::default(), &vec3(q), &vec3(qd), &vec3(qdd));
+    }
+
+    #[test]
+    fn power_balance_with_damping_springs_and_drives((q, w, _) in state()) {
+        power_balance(&robots::Arm3r::new(robots::Arm3rParams { b1: 1.0, b2: 1.0, b3: 1.0, m: 2.0 }), &vec3(q), &vec3(w));
+        let q_rrp = vec3([q[0], q[1], q[2] / 10.0]);
+        power_balance(&robots::Rrp::default(), &q_rrp, &vec3([w[0], w[1], w[2] / 10.0]));
+        power_balance(&robots::Mar::with_drives([0.1, -0.2, 0.05]), &vec3([q[0], q[1], q[2] / 10.0]), &vec3([w[0], w[1], w[2] / 10.0]));
+    }
+}

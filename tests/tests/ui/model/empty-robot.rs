@@ -1,0 +1,8 @@
+use dynamics_macros::robot;
+
+robot! {
+    pub robot Arm;
+    gravity = [0.0, -9.81, 0.0];
+}
+
+fn main() {}

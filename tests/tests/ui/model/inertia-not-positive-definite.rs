@@ -1,0 +1,11 @@
+use dynamics_macros::robot;
+
+robot! {
+    pub robot Arm;
+    gravity = [0.0, -9.81, 0.0];
+    link base;
+    link l1 { mass = 1.0; inertia = [1.0, 1.0, 1.0, 2.0, 0.0, 0.0]; }
+    joint j1 = revolute(base -> l1) { transfer = [rot_z(q)]; }
+}
+
+fn main() {}
