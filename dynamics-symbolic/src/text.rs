@@ -25,7 +25,7 @@ impl Graph {
     /// let s = g.sin(x);
     /// let e = g.add(s, s);
     /// let text = g.to_text(&[e], &|v| format!("x{}", v.0));
-    /// assert_eq!(text, "%1 = sin(x0)\n%2 = 2 * %1\nout[0] = %2\n");
+    /// assert_eq!(text, "%1 = sin(x0)\n%3 = 2 * %1\nout[0] = %3\n"); // %2 is the constant 2
     /// ```
     pub fn to_text(&self, roots: &[Id], names: &dyn Fn(Var) -> String) -> String {
         let operand = |id: Id| -> String {
