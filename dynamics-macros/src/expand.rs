@@ -25,11 +25,12 @@ pub fn robot(input: TokenStream) -> TokenStream {
 fn expand(input: TokenStream) -> TokenStream {
     let mut cx = Ctxt::default();
     let ast = parse::parse(input, &mut cx);
+    let complete = cx.is_ok();
     let header = ast.items.iter().find_map(|i| match i {
         Item::Header(h) => Some((h.vis.clone(), h.name.clone())),
         _ => None,
     });
-    let model = model::build(ast, &mut cx);
+    let model = model::build(ast, complete, &mut cx);
     match (cx.check(), model) {
         (Ok(()), Some(model)) => {
             let derived = derive::derive(&model);

@@ -14,7 +14,11 @@ use crate::ctxt::Ctxt;
 use crate::parse::ast::{Header, Input, Item, JointDecl, LinkDecl, Prop};
 
 /// Builds and validates the model; `None` when any error was recorded.
-pub fn build(input: Input, cx: &mut Ctxt) -> Option<Model> {
+///
+/// `complete` is false when the parse stage lost items: checks that need
+/// every item (a missing header or gravity, unknown links, the tree) are then
+/// skipped, so that one syntax error does not cascade into follow-on ones.
+pub fn build(input: Input, complete: bool, cx: &mut Ctxt) -> Option<Model> {
     let mut header: Option<Header> = None;
     let mut gravity: Option<(Ident, Expr)> = None;
     let mut consts: Vec<(String, f64)> = Vec::new();
@@ -78,13 +82,16 @@ pub fn build(input: Input, cx: &mut Ctxt) -> Option<Model> {
     }
 
     let Some(header) = header else {
-        cx.error_at(
-            Span::call_site(),
-            "missing the robot's name: start with `pub robot Name;`",
-        );
+        if complete {
+            cx.error_at(
+                Span::call_site(),
+                "missing the robot's name: start with `pub robot Name;`",
+            );
+        }
         return None;
     };
     let gravity = match &gravity {
+        None if !complete => None,
         None => {
             cx.error_spanned_by(
                 &header.name,
@@ -103,7 +110,7 @@ pub fn build(input: Input, cx: &mut Ctxt) -> Option<Model> {
                 .and_then(|g| Some([g[0].as_number()?, g[1].as_number()?, g[2].as_number()?]))
         }
     };
-    if joints.is_empty() {
+    if joints.is_empty() && complete {
         cx.error_spanned_by(
             &header.name,
             "empty robot: declare links and at least one revolute or prismatic joint",
@@ -137,11 +144,14 @@ pub fn build(input: Input, cx: &mut Ctxt) -> Option<Model> {
             cx.error_spanned_by(&decl.name, format!("duplicate joint name `{key}`"));
             continue;
         }
-        if let Some(j) = joint(decl, &link_index, &scope, cx) {
+        if let Some(j) = joint(decl, &link_index, complete, &scope, cx) {
             built_joints.push(j);
         }
     }
 
+    if !complete {
+        return None;
+    }
     let (links, joints) = tree::order(built_links, built_joints, &joints, &links, cx)?;
     if !cx.is_ok() {
         return None;
@@ -317,6 +327,7 @@ fn inertia_tensor(value: &Expr, scope: &Scope, cx: &mut Ctxt) -> Option<[Scalar;
 fn joint(
     decl: &JointDecl,
     links: &HashMap<String, usize>,
+    complete: bool,
     scope: &Scope,
     cx: &mut Ctxt,
 ) -> Option<Joint> {
@@ -333,11 +344,11 @@ fn joint(
         }
     };
     let parent = links.get(&decl.parent.to_string()).copied();
-    if parent.is_none() {
+    if parent.is_none() && complete {
         cx.error_spanned_by(&decl.parent, format!("unknown link `{}`", decl.parent));
     }
     let child = links.get(&decl.child.to_string()).copied();
-    if child.is_none() {
+    if child.is_none() && complete {
         cx.error_spanned_by(&decl.child, format!("unknown link `{}`", decl.child));
     }
 

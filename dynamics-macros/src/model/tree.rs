@@ -29,11 +29,20 @@ pub fn order(
         .map(|(i, l)| (l.name.to_string(), i))
         .collect();
     let mut parent_of: Vec<Option<(usize, usize)>> = vec![None; link_decls.len()];
+    // Links that are not roots for reasons already reported: a duplicate
+    // declaration, or the child of a joint whose parent is unknown.
+    let mut excused = vec![false; link_decls.len()];
+    for (i, l) in link_decls.iter().enumerate() {
+        excused[i] = index.get(&l.name.to_string()) != Some(&i);
+    }
     for (j, decl) in joint_decls.iter().enumerate() {
         let (Some(&p), Some(&c)) = (
             index.get(&decl.parent.to_string()),
             index.get(&decl.child.to_string()),
         ) else {
+            if let Some(&c) = index.get(&decl.child.to_string()) {
+                excused[c] = true;
+            }
             continue;
         };
         if p == c {
@@ -52,7 +61,7 @@ pub fn order(
         }
     }
     let roots: Vec<usize> = (0..link_decls.len())
-        .filter(|&l| parent_of[l].is_none())
+        .filter(|&l| parent_of[l].is_none() && !excused[l])
         .collect();
     if roots.len() > 1 {
         for &r in &roots[1..] {
@@ -90,11 +99,18 @@ pub fn order(
             }
         }
     }
-    // Whatever is not reachable from a root sits on a cycle (or hangs below one).
-    let mut reported = false;
+    // A link not reachable from a root either hangs below a link excused
+    // above, or sits on a cycle: follow its parents to tell which.
     for l in 0..link_decls.len() {
-        if !seen[l] && !reported {
-            if let Some((_, j)) = parent_of[l] {
+        if seen[l] {
+            continue;
+        }
+        let mut at = l;
+        let mut steps = 0;
+        while let Some((p, j)) = parent_of[at] {
+            at = p;
+            steps += 1;
+            if at == l {
                 cx.error_spanned_by(
                     &joint_decls[j].name,
                     format!(
@@ -102,7 +118,19 @@ pub fn order(
                         joint_decls[j].name, link_decls[l].name
                     ),
                 );
-                reported = true;
+                // Report each cycle once: mark its links as seen.
+                let mut k = l;
+                while let Some((p, _)) = parent_of[k] {
+                    seen[k] = true;
+                    if p == l {
+                        break;
+                    }
+                    k = p;
+                }
+                break;
+            }
+            if steps > link_decls.len() {
+                break; // below a cycle reported from another link
             }
         }
     }

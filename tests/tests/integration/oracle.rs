@@ -71,7 +71,7 @@ fn seed_rrp_potential_force_matches_seed_eq_3_11() {
     // Pi = [m1 c1 + (m2+m3+m) l1] g sin q1 + [m2 c2 + m3 c3 + m l3 + (m3 + m) q3] g sin(q1+q2)
     //      + 1/2 c (l0 - q3)^2   (m1 c1 = m2 c2 = 0 here)
     let r = robots::Rrp::default();
-    let (q1, q2, q3) = (0.3, -0.7, 0.12);
+    let (q1, q2, q3): (f64, f64, f64) = (0.3, -0.7, 0.12);
     let q = Vector3::new(q1, q2, q3);
     let qd = Vector3::new(0.1, 0.2, -0.3);
     let (m3, m, c3, l1, l3, g, c, b) = (1.0, 10.0, 0.5, 0.5, 1.0, 10.0, 350.0, [0.15, 0.15, 0.25]);
