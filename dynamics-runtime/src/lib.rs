@@ -24,7 +24,7 @@ mod solve;
 
 pub use error::DynamicsError;
 pub use params::Parameters;
-pub use robot::{JointKind, MotionTerms, Robot};
+pub use robot::{JointKind, MotionTerms, PerturbationJacobians, Robot};
 
 /// Re-exported so that generated code names one nalgebra version.
 pub use nalgebra;

@@ -63,19 +63,7 @@ pub fn compare(ours: &[Evaluated], reference: &Value) -> Comparison {
         .get("states")
         .and_then(Value::as_array)
         .unwrap_or(&empty);
-    let mut worst: Vec<(&'static str, f64)> = [
-        "tau",
-        "M",
-        "g",
-        "C v",
-        "nle",
-        "ddq",
-        "kinetic_energy",
-        "potential_energy",
-    ]
-    .iter()
-    .map(|f| (*f, 0.0))
-    .collect();
+    let mut worst: Vec<(&'static str, f64)> = Vec::new();
     if states.len() != ours.len() {
         return Comparison {
             fields: vec![("states", f64::INFINITY)],
@@ -92,16 +80,27 @@ pub fn compare(ours: &[Evaluated], reference: &Value) -> Comparison {
             mat_vec(&c, &get("v"))
         };
         let errs = [
-            rel(&o.tau, &get("tau")),
-            rel(&o.m.concat(), &get("M")),
-            rel(&o.g, &get("g")),
-            rel(&mat_vec(&o.c, &o.v), &cv_ref),
-            rel(&o.nle, &get("nle")),
-            rel(&o.ddq, &get("ddq")),
-            rel(&[o.kinetic_energy], &get("kinetic_energy")),
-            rel(&[o.potential_energy], &get("potential_energy")),
+            ("tau", rel(&o.tau, &get("tau"))),
+            ("M", rel(&o.m.concat(), &get("M"))),
+            ("g", rel(&o.g, &get("g"))),
+            ("C v", rel(&mat_vec(&o.c, &o.v), &cv_ref)),
+            ("nle", rel(&o.nle, &get("nle"))),
+            ("ddq", rel(&o.ddq, &get("ddq"))),
+            (
+                "kinetic_energy",
+                rel(&[o.kinetic_energy], &get("kinetic_energy")),
+            ),
+            (
+                "potential_energy",
+                rel(&[o.potential_energy], &get("potential_energy")),
+            ),
+            ("dtau_dq", rel(&o.dtau_dq.concat(), &get("dtau_dq"))),
+            ("dtau_dv", rel(&o.dtau_dv.concat(), &get("dtau_dv"))),
         ];
-        for (w, e) in worst.iter_mut().zip(errs) {
+        if worst.is_empty() {
+            worst = errs.iter().map(|(f, _)| (*f, 0.0)).collect();
+        }
+        for (w, (_, e)) in worst.iter_mut().zip(errs) {
             w.1 = w.1.max(if e.is_nan() { f64::INFINITY } else { e });
         }
     }

@@ -31,6 +31,10 @@ pub struct Evaluated {
     pub nle: Vec<f64>,
     /// Forward dynamics of `tau`.
     pub ddq: Vec<f64>,
+    /// Perturbation Jacobian K = d tau/dq (Pinocchio's `dtau_dq`).
+    pub dtau_dq: Vec<Vec<f64>>,
+    /// Perturbation Jacobian D = d tau/dqd (Pinocchio's `dtau_dv`).
+    pub dtau_dv: Vec<Vec<f64>>,
     /// T.
     pub kinetic_energy: f64,
     /// Pi.
@@ -63,6 +67,7 @@ pub fn evaluate<R: Robot<N>, const N: usize>(
                     .map(|i| (0..N).map(|j| x[(i, j)]).collect())
                     .collect()
             };
+            let pj = robot.perturbation_jacobians(&q, &v, &a);
             Ok(Evaluated {
                 q: s.q.clone(),
                 v: s.v.clone(),
@@ -77,6 +82,8 @@ pub fn evaluate<R: Robot<N>, const N: usize>(
                     .iter()
                     .copied()
                     .collect(),
+                dtau_dq: rows(&pj.k),
+                dtau_dv: rows(&pj.d),
                 kinetic_energy: robot.kinetic_energy(&q, &v),
                 potential_energy: robot.potential_energy(&q),
             })

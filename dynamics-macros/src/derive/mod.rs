@@ -12,6 +12,7 @@ mod forces;
 mod inertia;
 mod kinematics;
 mod lower;
+mod perturbation;
 
 use dynamics_symbolic::{Graph, Id, Var};
 
@@ -81,6 +82,8 @@ pub struct Derived {
     pub q0: Vec<Id>,
     /// U = A qdd - Q(0) - Qqt1 - Qqt2.
     pub tau: Vec<Id>,
+    /// Perturbation Jacobians K = dU/dq, D = dU/dqd and dU/dparam.
+    pub perturbation: perturbation::Perturbation,
     /// T.
     pub kinetic: Id,
     /// Pi (gravity + springs).
@@ -114,6 +117,7 @@ pub fn derive(model: &Model) -> Derived {
         let lhs = g.sum(&terms);
         tau.push(g.sub(lhs, rhs));
     }
+    let perturbation = perturbation::jacobians(&tau, model.params.len(), vars, &mut g);
     let mut ke_terms = Vec::new();
     for i in 0..n {
         let qdi = g.var(vars.qd(i));
@@ -146,6 +150,7 @@ pub fn derive(model: &Model) -> Derived {
         gravity: f.gravity,
         q0: f.q0,
         tau,
+        perturbation,
         kinetic,
         potential: f.potential,
         frames: kin.into_iter().map(|k| k.pose).collect(),

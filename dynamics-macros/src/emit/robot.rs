@@ -83,6 +83,27 @@ pub fn emit(model: &Model, d: &Derived) -> TokenStream {
         }
     };
 
+    let perturbation = {
+        let p = &d.perturbation;
+        let mut roots: Vec<_> = p.k.iter().flatten().copied().collect();
+        roots.extend(p.d.iter().flatten());
+        let (lets, vals) = body::chain(g, &roots, &sp);
+        let nn = n * n;
+        let k_set = body::assign_matrix(g, &roots[..nn], &vals[..nn], n, quote!(k));
+        let d_set = body::assign_matrix(g, &roots[nn..], &vals[nn..], n, quote!(d));
+        quote! {
+            #lets
+            let mut k = ::dynamics_runtime::nalgebra::SMatrix::<f64, #n, #n>::zeros();
+            let mut d = ::dynamics_runtime::nalgebra::SMatrix::<f64, #n, #n>::zeros();
+            #k_set #d_set
+            ::dynamics_runtime::PerturbationJacobians { k, d }
+        }
+    };
+    let sensitivity_arms = d.perturbation.dp.iter().enumerate().map(|(k, col)| {
+        let b = body::vector(g, col, &sp);
+        quote! { #k => ::core::option::Option::Some({ #b }), }
+    });
+
     let frame_arms = d.frames.iter().enumerate().map(|(k, pose)| {
         let r = &pose.r;
         let roots = vec![
@@ -178,6 +199,17 @@ pub fn emit(model: &Model, d: &Derived) -> TokenStream {
                 qd: &::dynamics_runtime::nalgebra::SVector<f64, #n>,
                 qdd: &::dynamics_runtime::nalgebra::SVector<f64, #n>)
                 -> ::dynamics_runtime::nalgebra::SVector<f64, #n> { #tau }
+            #[inline]
+            fn perturbation_jacobians(&self, q: &::dynamics_runtime::nalgebra::SVector<f64, #n>,
+                qd: &::dynamics_runtime::nalgebra::SVector<f64, #n>,
+                qdd: &::dynamics_runtime::nalgebra::SVector<f64, #n>)
+                -> ::dynamics_runtime::PerturbationJacobians<#n> { #perturbation }
+            fn parameter_sensitivity(&self, index: usize, q: &::dynamics_runtime::nalgebra::SVector<f64, #n>,
+                qd: &::dynamics_runtime::nalgebra::SVector<f64, #n>,
+                qdd: &::dynamics_runtime::nalgebra::SVector<f64, #n>)
+                -> ::core::option::Option<::dynamics_runtime::nalgebra::SVector<f64, #n>> {
+                match index { #(#sensitivity_arms)* _ => ::core::option::Option::None }
+            }
             #[inline]
             fn motion_terms(&self, q: &::dynamics_runtime::nalgebra::SVector<f64, #n>,
                 qd: &::dynamics_runtime::nalgebra::SVector<f64, #n>)

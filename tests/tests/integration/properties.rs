@@ -147,3 +147,61 @@ proptest! {
         power_balance(&robots::Mar::with_drives([0.1, -0.2, 0.05]), &vec3([q[0], q[1], q[2] / 10.0]), &vec3([w[0], w[1], w[2] / 10.0]));
     }
 }
+
+/// K, D and dF/dp against central finite differences of the inverse
+/// dynamics (with damping, springs and drives switched on).
+fn perturbation_by_differences<R: Robot<N> + Clone, const N: usize>(
+    r: &R,
+    q: &SVector<f64, N>,
+    qd: &SVector<f64, N>,
+    qdd: &SVector<f64, N>,
+) {
+    use dynamics_runtime::Parameters;
+    let pj = r.perturbation_jacobians(q, qd, qdd);
+    let h = 1e-6;
+    let tau = |q: &SVector<f64, N>, qd: &SVector<f64, N>| r.inverse_dynamics(q, qd, qdd);
+    let scale = 1.0 + tau(q, qd).abs().max();
+    for j in 0..N {
+        let mut e = SVector::<f64, N>::zeros();
+        e[j] = h;
+        let dk = (tau(&(q + e), qd) - tau(&(q - e), qd)) / (2.0 * h);
+        let dd = (tau(q, &(qd + e)) - tau(q, &(qd - e))) / (2.0 * h);
+        assert!(
+            (pj.k.column(j) - dk).abs().max() < 1e-6 * scale,
+            "K column {j}: {} vs {dk}",
+            pj.k.column(j)
+        );
+        assert!(
+            (pj.d.column(j) - dd).abs().max() < 1e-6 * scale,
+            "D column {j}"
+        );
+    }
+    for (p, name) in R::Params::NAMES.iter().enumerate() {
+        let value = r.params().get(name).expect("parameter");
+        let dh = h * (1.0 + value.abs());
+        let (mut up, mut down) = (r.clone(), r.clone());
+        up.params_mut().set(name, value + dh).expect("set");
+        down.params_mut().set(name, value - dh).expect("set");
+        let fd = (up.inverse_dynamics(q, qd, qdd) - down.inverse_dynamics(q, qd, qdd)) / (2.0 * dh);
+        let ours = r.parameter_sensitivity(p, q, qd, qdd).expect("sensitivity");
+        assert!(
+            (ours - fd).abs().max() < 1e-5 * scale,
+            "d tau/d {name}: {ours} vs {fd}"
+        );
+    }
+    assert!(r
+        .parameter_sensitivity(R::Params::NAMES.len(), q, qd, qdd)
+        .is_none());
+}
+
+proptest! {
+    #![proptest_config(ProptestConfig::with_cases(32))]
+
+    #[test]
+    fn perturbation_jacobians_match_finite_differences((q, qd, qdd) in state()) {
+        perturbation_by_differences(&robots::Arm3r::new(robots::Arm3rParams { m: 2.0, b1: 1.0, b2: 0.5, b3: 0.2 }), &vec3(q), &vec3(qd), &vec3(qdd));
+        let small = vec3([q[0], q[1], q[2] / 10.0]);
+        perturbation_by_differences(&robots::Rrp::default(), &small, &vec3(qd), &vec3(qdd));
+        perturbation_by_differences(&robots::Mar::with_drives([0.1, 0.2, 0.0]), &small, &vec3(qd), &vec3(qdd));
+    }
+}
