@@ -27,6 +27,7 @@ mod count;
 mod diff;
 mod emit;
 mod eval;
+mod expand;
 mod graph;
 mod node;
 mod text;

@@ -53,8 +53,14 @@ pub fn forces(model: &Model, kin: &[LinkKin], vars: Vars, g: &mut Graph) -> Forc
             pg_terms.push(g.neg(e));
         }
     }
-    let pi_gravity = g.sum(&pg_terms);
-    let gravity: Vec<Id> = (0..n).map(|i| g.diff(pi_gravity, vars.q(i))).collect();
+    let pi_sum = g.sum(&pg_terms);
+    let pi_gravity = super::smaller_expanded(g, pi_sum);
+    let gravity: Vec<Id> = (0..n)
+        .map(|i| {
+            let d = g.diff(pi_gravity, vars.q(i));
+            super::smaller_expanded(g, d)
+        })
+        .collect();
 
     let mut spring_terms = Vec::new();
     let mut q0 = Vec::with_capacity(n);

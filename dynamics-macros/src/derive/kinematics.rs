@@ -100,7 +100,7 @@ fn apply(k: &mut LinkKin, e: &Elem, coord: Option<usize>, vars: Vars, g: &mut Gr
 
 /// Rotation about the unit axis u by theta (Rodrigues); exact zeros and ones
 /// for the coordinate axes.
-fn rotation(g: &mut Graph, u: [f64; 3], theta: Id) -> [[Id; 3]; 3] {
+pub fn rotation(g: &mut Graph, u: [f64; 3], theta: Id) -> [[Id; 3]; 3] {
     let c = g.cos(theta);
     let s = g.sin(theta);
     let one = g.constant(1.0);

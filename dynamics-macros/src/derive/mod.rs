@@ -7,6 +7,7 @@
 //! gravity and Q(0) from `forces.rs`. Everything lives in one hash-consed
 //! [`Graph`], so terms shared between outputs are one node.
 
+mod body_jacobian;
 mod coriolis;
 mod forces;
 mod inertia;
@@ -96,13 +97,26 @@ pub struct Derived {
     pub point_jacobians: Vec<[Vec<Id>; 3]>,
 }
 
+/// Largest number of monomials an expression may expand to.
+const EXPAND_LIMIT: usize = 256;
+
+/// `e` as a canonical trigonometric polynomial (products distributed,
+/// `sin^2 = 1 - cos^2`) when that takes fewer operations, else `e`.
+fn smaller_expanded(g: &mut Graph, e: Id) -> Id {
+    match g.expand(e, EXPAND_LIMIT) {
+        Some(x) if g.count_ops(&[x]).total() <= g.count_ops(&[e]).total() => x,
+        _ => e,
+    }
+}
+
 /// Derives every output of the model.
 pub fn derive(model: &Model) -> Derived {
     let n = model.joints.iter().filter(|j| j.coord.is_some()).count();
     let vars = Vars { n };
     let mut g = Graph::new();
     let kin = kinematics::frames(model, vars, &mut g);
-    let a = inertia::mass_matrix(model, &kin, vars, &mut g);
+    let jac = body_jacobian::body_jacobians(model, vars, &mut g);
+    let a = inertia::mass_matrix(model, &jac, vars, &mut g);
     let dyn_terms = coriolis::terms(&a, vars, &mut g);
     let f = forces::forces(model, &kin, vars, &mut g);
 
