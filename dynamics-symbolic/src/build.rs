@@ -7,6 +7,7 @@
 //!   negation is only ever a coefficient (negation normal form);
 //! - `k r sin(x)^2 + k r cos(x)^2 = k r`;
 //! - `sin(-x) = -sin(x)`, `cos(-x) = cos(x)`.
+//!
 //! Products are never distributed over sums (that would grow the DAG).
 
 use std::collections::BTreeMap;

@@ -82,8 +82,8 @@ impl Graph {
                     n.mul += terms.iter().filter(|(_, c)| c.get().abs() != 1.0).count();
                 }
                 Node::Product { coef, factors } => {
-                    let (num, den): (Vec<&(Id, i32)>, Vec<&(Id, i32)>) =
-                        factors.iter().partition(|f| f.1 > 0);
+                    let num: Vec<&(Id, i32)> = factors.iter().filter(|f| f.1 > 0).collect();
+                    let den: Vec<&(Id, i32)> = factors.iter().filter(|f| f.1 < 0).collect();
                     let pow_cost = |e: i32| {
                         if e.abs() <= 3 {
                             (e.abs() - 1) as usize

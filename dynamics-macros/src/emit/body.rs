@@ -64,9 +64,8 @@ pub fn assign_vector(
         .iter()
         .zip(vals)
         .enumerate()
-        .filter_map(|(i, (id, v))| {
-            (g.as_constant(*id) != Some(0.0)).then(|| quote!(#target[#i] = #v;))
-        });
+        .filter(|(_, (id, _))| g.as_constant(**id) != Some(0.0))
+        .map(|(i, (_, v))| quote!(#target[#i] = #v;));
     quote!(#(#sets)*)
 }
 
