@@ -10,6 +10,8 @@
 mod body_jacobian;
 mod coriolis;
 mod forces;
+#[cfg(test)]
+mod golden;
 mod inertia;
 mod kinematics;
 mod lower;
