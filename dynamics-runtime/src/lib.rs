@@ -21,6 +21,7 @@ mod error;
 mod params;
 mod robot;
 mod solve;
+pub mod trig;
 
 pub use error::DynamicsError;
 pub use params::Parameters;

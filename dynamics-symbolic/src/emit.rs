@@ -55,6 +55,26 @@ fn ident(id: Id) -> Ident {
 /// assert_eq!(out.roots[0].to_string(), "t3");
 /// ```
 pub fn emit(graph: &Graph, roots: &[Id], var: &dyn Fn(Var) -> TokenStream) -> Emitted {
+    emit_with(graph, roots, var, &quote!(f64::sin_cos))
+}
+
+/// [`emit()`] with the function that computes `(sin x, cos x)` given as a
+/// path (called as `path(x)`), e.g. a faster one than `f64::sin_cos`.
+///
+/// ```
+/// use dynamics_symbolic::{emit_with, Graph, Var};
+/// let mut g = Graph::new();
+/// let x = g.var(Var(0));
+/// let s = g.sin(x);
+/// let out = emit_with(&g, &[s], &|_| quote::quote!(x), &quote::quote!(my::sin_cos));
+/// assert_eq!(out.lets.to_string(), "let t1 : f64 = my :: sin_cos (x) . 0 ;");
+/// ```
+pub fn emit_with(
+    graph: &Graph,
+    roots: &[Id],
+    var: &dyn Fn(Var) -> TokenStream,
+    sin_cos: &TokenStream,
+) -> Emitted {
     let reach = graph.reachable(roots);
     // sin/cos pairs: argument -> (sin id, cos id)
     let mut trig: HashMap<Id, (Option<Id>, Option<Id>)> = HashMap::new();
@@ -147,16 +167,16 @@ pub fn emit(graph: &Graph, roots: &[Id], var: &dyn Fn(Var) -> TokenStream) -> Em
                     (Some(s), Some(c)) => {
                         if id == s.min(c) {
                             let (si, ci, x) = (ident(s), ident(c), operand(*a));
-                            lets.extend(quote!(let (#si, #ci): (f64, f64) = #x.sin_cos();));
+                            lets.extend(quote!(let (#si, #ci): (f64, f64) = #sin_cos(#x);));
                         }
                         continue;
                     }
                     _ => {
                         let x = operand(*a);
                         if matches!(graph.node(id), Node::Sin(_)) {
-                            quote!(#x.sin())
+                            quote!(#sin_cos(#x).0)
                         } else {
-                            quote!(#x.cos())
+                            quote!(#sin_cos(#x).1)
                         }
                     }
                 }

@@ -33,6 +33,6 @@ mod node;
 mod text;
 
 pub use count::OpCount;
-pub use emit::{emit, float, Emitted};
+pub use emit::{emit, emit_with, float, Emitted};
 pub use graph::Graph;
 pub use node::{Id, Node, Var, F64};

@@ -36,7 +36,12 @@ impl<'a> Spelling<'a> {
 
 /// The `let` chain for `roots` and the tokens of each root's value.
 pub fn chain(g: &Graph, roots: &[Id], sp: &Spelling) -> (TokenStream, Vec<TokenStream>) {
-    let e = dynamics_symbolic::emit(g, roots, &|v| sp.var(v));
+    let e = dynamics_symbolic::emit_with(
+        g,
+        roots,
+        &|v| sp.var(v),
+        &quote!(::dynamics_runtime::trig::sin_cos),
+    );
     (e.lets, e.roots)
 }
 

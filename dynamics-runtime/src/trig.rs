@@ -1,0 +1,104 @@
+//! Sine and cosine together, for the generated code.
+//!
+//! Generated dynamics spend most of their time in trigonometric functions
+//! (a 3-joint arm's inertia matrix is ~70 flops beside two `sin_cos`
+//! calls). `std`'s `f64::sin_cos` calls libm's `sin` and `cos` one after
+//! the other; this evaluates both from one argument reduction with the
+//! fdlibm kernels (`__kernel_sin`, `__kernel_cos`: minimax polynomials on
+//! [-pi/4, pi/4], error below 1 ulp) and a three-part Cody-Waite reduction,
+//! which is exact enough for |x| < 2^20 pi/2. Larger or non-finite
+//! arguments go to `std`.
+
+use core::f64::consts::FRAC_2_PI;
+
+// pi/2 split in three parts, each with trailing zero bits so that n * part
+// is exact for the quotients used here (fdlibm's pio2_1, pio2_2, pio2_3).
+const PIO2_1: f64 = 1.570_796_326_734_125_614_17e+00;
+const PIO2_2: f64 = 6.077_100_506_303_965_976_60e-11;
+const PIO2_3: f64 = 2.022_266_248_711_166_455_80e-21;
+
+const S1: f64 = -1.666_666_666_666_663_243_48e-01;
+const S2: f64 = 8.333_333_333_322_489_461_24e-03;
+const S3: f64 = -1.984_126_982_985_794_931_34e-04;
+const S4: f64 = 2.755_731_370_707_006_767_89e-06;
+const S5: f64 = -2.505_076_025_340_686_341_95e-08;
+const S6: f64 = 1.589_690_995_211_550_102_21e-10;
+
+const C1: f64 = 4.166_666_666_666_660_190_37e-02;
+const C2: f64 = -1.388_888_888_887_410_957_49e-03;
+const C3: f64 = 2.480_158_728_947_672_941_78e-05;
+const C4: f64 = -2.755_731_435_139_066_330_35e-07;
+const C5: f64 = 2.087_572_321_298_174_827_90e-09;
+const C6: f64 = -1.135_964_755_778_819_482_65e-11;
+
+/// Largest |x| reduced here; beyond it `std` is used.
+const REDUCE_LIMIT: f64 = 1_647_099.0; // 2^20 * pi/2
+
+/// `(sin x, cos x)` from one argument reduction.
+///
+/// ```
+/// let (s, c) = dynamics_runtime::trig::sin_cos(1.0);
+/// assert!((s - 1.0f64.sin()).abs() <= 2e-16);
+/// assert!((c - 1.0f64.cos()).abs() <= 2e-16);
+/// ```
+#[inline]
+pub fn sin_cos(x: f64) -> (f64, f64) {
+    if !(x.abs() < REDUCE_LIMIT) {
+        return x.sin_cos();
+    }
+    let n = (x * FRAC_2_PI).round();
+    let r = ((x - n * PIO2_1) - n * PIO2_2) - n * PIO2_3;
+    let z = r * r;
+    let s = r + r * z * (S1 + z * (S2 + z * (S3 + z * (S4 + z * (S5 + z * S6)))));
+    let poly = z * (C1 + z * (C2 + z * (C3 + z * (C4 + z * (C5 + z * C6)))));
+    let hz = 0.5 * z;
+    let w = 1.0 - hz;
+    let c = w + (((1.0 - w) - hz) + z * poly);
+    match (n as i64) & 3 {
+        0 => (s, c),
+        1 => (c, -s),
+        2 => (-s, -c),
+        _ => (-c, s),
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::sin_cos;
+
+    fn ulps(a: f64, b: f64) -> f64 {
+        (a - b).abs() / f64::EPSILON / b.abs().max(f64::MIN_POSITIVE)
+    }
+
+    #[test]
+    fn agrees_with_std_to_a_few_ulp() {
+        let mut worst: f64 = 0.0;
+        let mut abs_worst: f64 = 0.0;
+        let mut x = -1000.0;
+        while x < 1000.0 {
+            let (s, c) = sin_cos(x);
+            let (es, ec) = x.sin_cos();
+            abs_worst = abs_worst.max((s - es).abs()).max((c - ec).abs());
+            if es.abs() > 1e-3 {
+                worst = worst.max(ulps(s, es));
+            }
+            if ec.abs() > 1e-3 {
+                worst = worst.max(ulps(c, ec));
+            }
+            x += 0.000_731;
+        }
+        assert!(abs_worst < 5e-16, "absolute error {abs_worst:e}");
+        assert!(worst < 4.0, "{worst} ulp");
+    }
+
+    #[test]
+    fn special_values() {
+        assert_eq!(sin_cos(0.0), (0.0, 1.0));
+        assert!(sin_cos(f64::NAN).0.is_nan());
+        assert!(sin_cos(f64::INFINITY).1.is_nan());
+        let big = 1e12;
+        assert_eq!(sin_cos(big), big.sin_cos());
+        let (s, c) = sin_cos(core::f64::consts::FRAC_PI_2);
+        assert!((s - 1.0).abs() < 1e-16 && c.abs() < 1e-16);
+    }
+}
