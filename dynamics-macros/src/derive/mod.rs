@@ -16,6 +16,7 @@ mod inertia;
 mod kinematics;
 mod lower;
 mod perturbation;
+mod rnea;
 
 use dynamics_symbolic::{Graph, Id, Var};
 
@@ -122,17 +123,41 @@ pub fn derive(model: &Model) -> Derived {
     let dyn_terms = coriolis::terms(&a, vars, &mut g);
     let f = forces::forces(model, &kin, vars, &mut g);
 
-    let mut tau = Vec::with_capacity(n);
+    // The non-gravity part of Q(0) (damping, friction, springs).
+    let extras: Vec<Id> = (0..n).map(|i| g.add(f.q0[i], f.gravity[i])).collect();
+    // Gravity: from the potential, or by Newton-Euler at rest, whichever is
+    // cheaper.
+    let gravity = match rnea::inverse_dynamics(model, vars, false, &mut g) {
+        Some(gr) if g.count_ops(&gr).total() < g.count_ops(&f.gravity).total() => gr,
+        _ => f.gravity.clone(),
+    };
+    let q0: Vec<Id> = (0..n).map(|i| g.sub(extras[i], gravity[i])).collect();
+
+    // Inverse dynamics: the matrix form A qdd - Q(0) - Qqt1 - Qqt2, or
+    // Newton-Euler for the rigid body minus the extra forces, whichever is
+    // cheaper.
+    let mut matrix_form = Vec::with_capacity(n);
     for i in 0..n {
         let mut terms = Vec::with_capacity(n + 3);
         for (j, aij) in a[i].iter().enumerate() {
             let qdd = g.var(vars.qdd(j));
             terms.push(g.mul(*aij, qdd));
         }
-        let rhs = g.sum(&[f.q0[i], dyn_terms.qqt1[i], dyn_terms.qqt2[i]]);
+        let rhs = g.sum(&[q0[i], dyn_terms.qqt1[i], dyn_terms.qqt2[i]]);
         let lhs = g.sum(&terms);
-        tau.push(g.sub(lhs, rhs));
+        matrix_form.push(g.sub(lhs, rhs));
     }
+    let tau = match rnea::inverse_dynamics(model, vars, true, &mut g) {
+        Some(rigid) => {
+            let ne: Vec<Id> = (0..n).map(|i| g.sub(rigid[i], extras[i])).collect();
+            if g.count_ops(&ne).total() < g.count_ops(&matrix_form).total() {
+                ne
+            } else {
+                matrix_form
+            }
+        }
+        None => matrix_form,
+    };
     let perturbation = perturbation::jacobians(&tau, model.params.len(), vars, &mut g);
     let mut ke_terms = Vec::new();
     for i in 0..n {
@@ -163,8 +188,8 @@ pub fn derive(model: &Model) -> Derived {
         qqt1: dyn_terms.qqt1,
         qqt2: dyn_terms.qqt2,
         coriolis: dyn_terms.coriolis,
-        gravity: f.gravity,
-        q0: f.q0,
+        gravity,
+        q0,
         tau,
         perturbation,
         kinetic,
