@@ -22,7 +22,7 @@ pub fn robot(input: TokenStream) -> TokenStream {
     }
 }
 
-fn expand(input: TokenStream) -> TokenStream {
+pub(crate) fn expand(input: TokenStream) -> TokenStream {
     let mut cx = Ctxt::default();
     let ast = parse::parse(input, &mut cx);
     let complete = cx.is_ok();
@@ -47,5 +47,59 @@ fn expand(input: TokenStream) -> TokenStream {
         (Ok(()), None) => quote! {
             ::core::compile_error!("internal error in `robot!`: the model was rejected without a message");
         },
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use proptest::prelude::*;
+
+    /// Fragments of the grammar, right and wrong, glued at random.
+    const FRAGMENTS: &[&str] = &[
+        "pub robot R;",
+        "robot",
+        "gravity = [0.0, -9.81, 0.0];",
+        "gravity = [1.0];",
+        "const L = 0.5;",
+        "const L = q;",
+        "param m = 2.0;",
+        "param m = m;",
+        "link base;",
+        "link a { mass = 1.0; com = [L, 0.0, 0.0]; inertia = [1e-3, 0.1, 0.1]; }",
+        "link b { mass = m; point tip = [0.1, 0.0, 0.0]; }",
+        "link a;",
+        "link c { mass = -1.0; }",
+        "joint j1 = revolute(base -> a) { transfer = [rot_z(q)]; }",
+        "joint j2 = prismatic(a -> b) { transfer = [tu(q)]; spring = 10.0; rest = 0.1; }",
+        "joint j3 = revolute(b -> c) { origin = [0.0, 0.0, 1.0]; axis = [0.0, 0.0, 0.0]; }",
+        "joint j4 = fixed(b -> c) { transfer = [matrix([[1.0, 0.0], [0.0, 1.0]])]; }",
+        "joint j5 = revolute(c -> a) { transfer = [rot_x(q / 0.0)]; damping = 1.0 / 0.0; }",
+        "joint j6 = weird(a -> b);",
+        "{",
+        "}",
+        ";",
+        "= [",
+        "->",
+        "q",
+        "1e400",
+        "sin(",
+        ")",
+        "link d { inertia = [1.0, 1.0, 1.0, 5.0, 0.0, 0.0]; mass = 1.0; }",
+        "joint j7 = revolute(base -> d) { transfer = [rot(q), tu(sqrt(-1.0))]; coulomb = 0.5; }",
+    ];
+
+    proptest! {
+        #![proptest_config(ProptestConfig::with_cases(256))]
+
+        /// The pipeline never panics, whatever it is given: it expands or
+        /// returns compile errors.
+        #[test]
+        fn never_panics(picks in prop::collection::vec(0..FRAGMENTS.len(), 0..14)) {
+            let text: String = picks.iter().map(|&i| FRAGMENTS[i]).collect::<Vec<_>>().join(" ");
+            if let Ok(tokens) = text.parse::<proc_macro2::TokenStream>() {
+                let out = super::expand(tokens);
+                prop_assert!(!out.is_empty());
+            }
+        }
     }
 }
