@@ -42,6 +42,7 @@ fn name_of(vars: Vars, model: &Model, v: Var) -> String {
         0 => format!("q{i}"),
         1 => format!("qd{i}"),
         2 => format!("qdd{i}"),
+        4 => "t".to_string(),
         _ => model.params[i].name.to_string(),
     }
 }

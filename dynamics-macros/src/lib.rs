@@ -33,6 +33,8 @@ use proc_macro::TokenStream;
 ///             | "gravity" "=" "[" e "," e "," e "]" ";"  // m/s^2, world frame, constants
 ///             | "const" NAME "=" e ";"                   // folded into the code
 ///             | "param" NAME "=" e ";"                   // run-time, default e (a field of NAMEParams)
+///             | "constraint" NAME "=" e ";"              // program constraint f(t, q) = 0: joint names
+///                                                        // stand for their coordinates, `t` for time
 ///             | "link" NAME ";"                          // a massless frame (e.g. the base)
 ///             | "link" NAME "{" link_prop* "}"
 ///             | "joint" NAME "=" KIND "(" PARENT "->" CHILD ")" ( ";" | "{" joint_prop* "}" )
@@ -61,7 +63,9 @@ use proc_macro::TokenStream;
 /// ```
 ///
 /// `q` is the joint's own coordinate and may appear only in its transfer
-/// chain. The link frame is the frame at the end of its joint's chain; `com`,
+/// chain. With `constraint` items the robot also implements
+/// `dynamics_runtime::Constrained<N, M>` (residual, Jacobian and the
+/// acceleration bias of the constraints, derived symbolically). The link frame is the frame at the end of its joint's chain; `com`,
 /// `inertia` and points are given in it. Coordinates are numbered depth-first
 /// from the root link (as Pinocchio does); fixed joints weld their child to
 /// the parent. Every error of an input is reported at once, each at the token

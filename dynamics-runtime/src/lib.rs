@@ -17,12 +17,14 @@
 //! `C qd = -(Qqt1 + Qqt2)`, `g = dPi_gravity/dq`, `tau = U`.
 
 mod check;
+mod constraint;
 mod error;
 mod params;
 mod robot;
 mod solve;
 pub mod trig;
 
+pub use constraint::Constrained;
 pub use error::DynamicsError;
 pub use params::Parameters;
 pub use robot::{JointKind, MotionTerms, PerturbationJacobians, Robot};

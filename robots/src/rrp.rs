@@ -41,6 +41,14 @@ dynamics_macros::robot! {
     joint q2 = revolute(oa -> cylinder) { transfer = [tu(L1), rot(q)]; damping = b2; }
     joint q3 = prismatic(cylinder -> plunger) { transfer = [tu(q)]; damping = b3; spring = c; rest = l0; }
     joint load_mount = fixed(plunger -> load) { transfer = [tu(L3)]; }
+
+    /// The program of sec. 3.1.2: the load M moves along the line KL,
+    /// `y - 2 x + 2 (l1 + l3) = 0` (eq. 3.7) with the load at
+    /// `x = l1 cos q1 + (l3 + q3) cos(q1 + q2)`, `y = l1 sin q1 + (l3 + q3) sin(q1 + q2)`
+    /// (eq. 3.14; the OCR prints `2 (l1 + l2)` for the constant, but only
+    /// `2 (l1 + l3)` = OK puts the start q = 0, the point L, on the line).
+    constraint kl = L1 * sin(q1) + (L3 + q3) * sin(q1 + q2)
+        - 2.0 * (L1 * cos(q1) + (L3 + q3) * cos(q1 + q2)) + 2.0 * (L1 + L3);
 }
 
 impl Rrp {

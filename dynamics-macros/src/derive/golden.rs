@@ -18,7 +18,7 @@ fn derived(tokens: proc_macro2::TokenStream) -> derive::Derived {
 fn text(d: &derive::Derived, roots: &[dynamics_symbolic::Id]) -> String {
     let names = |v: Var| {
         let (kind, i) = d.vars.classify(v);
-        format!("{}{i}", ["q", "qd", "qdd", "p"][kind])
+        format!("{}{i}", ["q", "qd", "qdd", "p", "t"][kind])
     };
     // Rename arena ids in order of appearance so the golden pins structure.
     let raw = d.graph.to_text(roots, &names);

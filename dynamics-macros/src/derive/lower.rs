@@ -15,6 +15,8 @@ pub fn lower(s: &Scalar, coord: Option<usize>, vars: Vars, g: &mut Graph) -> Id 
             // The model stage only lets `q` appear in moving joints' chains.
             None => g.constant(0.0),
         },
+        Scalar::Joint(i) => g.var(vars.q(*i)),
+        Scalar::Time => g.var(vars.time()),
         Scalar::Neg(a) => {
             let a = lower(a, coord, vars, g);
             g.neg(a)

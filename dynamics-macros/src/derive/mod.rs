@@ -8,6 +8,7 @@
 //! [`Graph`], so terms shared between outputs are one node.
 
 mod body_jacobian;
+mod constraints;
 mod coriolis;
 mod forces;
 #[cfg(test)]
@@ -27,6 +28,8 @@ use crate::model::Model;
 pub struct Vars {
     /// Number of coordinates.
     pub n: usize,
+    /// Number of run-time parameters.
+    pub n_params: usize,
 }
 
 impl Vars {
@@ -46,13 +49,19 @@ impl Vars {
     pub fn param(self, k: usize) -> Var {
         Var((3 * self.n + k) as u32)
     }
-    /// What a variable is: (kind, index); kind 0..=3 = q, qd, qdd, param.
+    /// Time t (in constraint expressions).
+    pub fn time(self) -> Var {
+        Var((3 * self.n + self.n_params) as u32)
+    }
+    /// What a variable is: (kind, index); kind 0..=4 = q, qd, qdd, param, t.
     pub fn classify(self, v: Var) -> (usize, usize) {
         let i = v.0 as usize;
         if i < 3 * self.n {
             (i / self.n, i % self.n)
-        } else {
+        } else if i < 3 * self.n + self.n_params {
             (3, i - 3 * self.n)
+        } else {
+            (4, 0)
         }
     }
 }
@@ -88,6 +97,8 @@ pub struct Derived {
     pub tau: Vec<Id>,
     /// Perturbation Jacobians K = dU/dq, D = dU/dqd and dU/dparam.
     pub perturbation: perturbation::Perturbation,
+    /// Program constraints: residual, Jacobian, acceleration bias.
+    pub constraints: Vec<constraints::ConstraintRoots>,
     /// T.
     pub kinetic: Id,
     /// Pi (gravity + springs).
@@ -115,7 +126,10 @@ fn smaller_expanded(g: &mut Graph, e: Id) -> Id {
 /// Derives every output of the model.
 pub fn derive(model: &Model) -> Derived {
     let n = model.joints.iter().filter(|j| j.coord.is_some()).count();
-    let vars = Vars { n };
+    let vars = Vars {
+        n,
+        n_params: model.params.len(),
+    };
     let mut g = Graph::new();
     let kin = kinematics::frames(model, vars, &mut g);
     let jac = body_jacobian::body_jacobians(model, vars, &mut g);
@@ -158,6 +172,7 @@ pub fn derive(model: &Model) -> Derived {
         }
         None => matrix_form,
     };
+    let constraint_roots = constraints::constraints(model, vars, &mut g);
     let perturbation = perturbation::jacobians(&tau, model.params.len(), vars, &mut g);
     let mut ke_terms = Vec::new();
     for i in 0..n {
@@ -192,6 +207,7 @@ pub fn derive(model: &Model) -> Derived {
         q0,
         tau,
         perturbation,
+        constraints: constraint_roots,
         kinetic,
         potential: f.potential,
         frames: kin.into_iter().map(|k| k.pose).collect(),

@@ -26,6 +26,7 @@ impl<'a> Spelling<'a> {
             0 => quote!(q[#i]),
             1 => quote!(qd[#i]),
             2 => quote!(qdd[#i]),
+            4 => quote!(t),
             _ => {
                 let field = format_ident!("{}", self.model.params[i].name.to_string());
                 quote!(self.params.#field)

@@ -137,6 +137,7 @@ pub fn emit(model: &Model, d: &Derived) -> TokenStream {
         quote! { #k => { ::core::option::Option::Some({ #b }) } }
     });
 
+    let constrained = constraints(model, d, &sp);
     let doc_n = format!(" Number of joint coordinates of [`{name}`].");
     quote! {
         #(#attrs)*
@@ -231,6 +232,42 @@ pub fn emit(model: &Model, d: &Derived) -> TokenStream {
                 -> ::core::option::Option<::dynamics_runtime::nalgebra::SMatrix<f64, 3, #n>> {
                 match index { #(#jac_arms)* _ => ::core::option::Option::None }
             }
+        }
+
+        #constrained
+    }
+}
+
+/// `impl Constrained<N, M>` when the robot has program constraints.
+fn constraints(model: &Model, d: &Derived, sp: &Spelling) -> TokenStream {
+    if d.constraints.is_empty() {
+        return TokenStream::new();
+    }
+    let g = &d.graph;
+    let (n, m) = (d.vars.n, d.constraints.len());
+    let name = &model.name;
+    let names = model.constraints.iter().map(|c| c.name.to_string());
+    let f: Vec<_> = d.constraints.iter().map(|c| c.f).collect();
+    let jac: Vec<_> = d
+        .constraints
+        .iter()
+        .flat_map(|c| c.jacobian.iter().copied())
+        .collect();
+    let bias: Vec<_> = d.constraints.iter().map(|c| c.bias).collect();
+    let f_body = body::vector(g, &f, sp);
+    let jac_body = body::matrix(g, &jac, m, n, sp);
+    let bias_body = body::vector(g, &bias, sp);
+    quote! {
+        #[allow(unused_variables, clippy::all, clippy::pedantic)]
+        impl ::dynamics_runtime::Constrained<#n, #m> for #name {
+            const CONSTRAINT_NAMES: [&'static str; #m] = [#(#names),*];
+            fn constraint_residual(&self, t: f64, q: &::dynamics_runtime::nalgebra::SVector<f64, #n>)
+                -> ::dynamics_runtime::nalgebra::SVector<f64, #m> { #f_body }
+            fn constraint_jacobian(&self, t: f64, q: &::dynamics_runtime::nalgebra::SVector<f64, #n>)
+                -> ::dynamics_runtime::nalgebra::SMatrix<f64, #m, #n> { #jac_body }
+            fn constraint_bias(&self, t: f64, q: &::dynamics_runtime::nalgebra::SVector<f64, #n>,
+                qd: &::dynamics_runtime::nalgebra::SVector<f64, #n>)
+                -> ::dynamics_runtime::nalgebra::SVector<f64, #m> { #bias_body }
         }
     }
 }

@@ -26,6 +26,7 @@ pub fn build(input: Input, complete: bool, cx: &mut Ctxt) -> Option<Model> {
     let mut param_names: Vec<String> = Vec::new();
     let mut links: Vec<LinkDecl> = Vec::new();
     let mut joints: Vec<JointDecl> = Vec::new();
+    let mut constraint_decls = Vec::new();
     let mut symbols: HashMap<String, Span> = HashMap::new();
 
     for item in input.items {
@@ -53,6 +54,7 @@ pub fn build(input: Input, complete: bool, cx: &mut Ctxt) -> Option<Model> {
                     params: &param_names,
                     coord: false,
                     allow_params: false,
+                    joints: &[],
                 };
                 let value = resolve(&b.value, &scope, cx).and_then(|s| s.as_number());
                 if unique_symbol(&b.name, &mut symbols, cx) {
@@ -65,6 +67,7 @@ pub fn build(input: Input, complete: bool, cx: &mut Ctxt) -> Option<Model> {
                     params: &param_names,
                     coord: false,
                     allow_params: false,
+                    joints: &[],
                 };
                 let default = resolve(&b.value, &scope, cx).and_then(|s| s.as_number());
                 if unique_symbol(&b.name, &mut symbols, cx) {
@@ -76,6 +79,7 @@ pub fn build(input: Input, complete: bool, cx: &mut Ctxt) -> Option<Model> {
                     });
                 }
             }
+            Item::Constraint(b) => constraint_decls.push(b),
             Item::Link(l) => links.push(l),
             Item::Joint(j) => joints.push(j),
         }
@@ -105,6 +109,7 @@ pub fn build(input: Input, complete: bool, cx: &mut Ctxt) -> Option<Model> {
                 params: &param_names,
                 coord: false,
                 allow_params: false,
+                joints: &[],
             };
             resolve_array::<3>(value, "`gravity`", &scope, cx)
                 .and_then(|g| Some([g[0].as_number()?, g[1].as_number()?, g[2].as_number()?]))
@@ -122,6 +127,7 @@ pub fn build(input: Input, complete: bool, cx: &mut Ctxt) -> Option<Model> {
         params: &param_names,
         coord: false,
         allow_params: true,
+        joints: &[],
     };
     let mut link_index: HashMap<String, usize> = HashMap::new();
     let mut point_names: HashMap<String, Span> = HashMap::new();
@@ -163,7 +169,39 @@ pub fn build(input: Input, complete: bool, cx: &mut Ctxt) -> Option<Model> {
         );
         return None;
     }
+    // Constraints name joints: resolve them against the coordinates.
+    let coord_names: Vec<(String, usize)> = joints
+        .iter()
+        .filter_map(|j| j.coord.map(|c| (j.name.to_string(), c)))
+        .collect();
+    let mut constraints = Vec::new();
+    let mut constraint_names: Vec<String> = Vec::new();
+    for b in &constraint_decls {
+        let key = b.name.to_string();
+        if constraint_names.contains(&key) {
+            cx.error_spanned_by(&b.name, format!("duplicate constraint name `{key}`"));
+            continue;
+        }
+        constraint_names.push(key);
+        let scope = Scope {
+            consts: &consts,
+            params: &param_names,
+            coord: false,
+            allow_params: true,
+            joints: &coord_names,
+        };
+        if let Some(f) = resolve(&b.value, &scope, cx) {
+            constraints.push(super::Constraint {
+                name: b.name.clone(),
+                f,
+            });
+        }
+    }
+    if !cx.is_ok() {
+        return None;
+    }
     Some(Model {
+        constraints,
         attrs: header.attrs,
         vis: header.vis,
         name: header.name,

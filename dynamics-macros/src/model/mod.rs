@@ -31,6 +31,16 @@ pub struct Model {
     pub links: Vec<Link>,
     /// Joints, depth-first (the joint of `links[k]` comes before its subtree).
     pub joints: Vec<Joint>,
+    /// Program constraints f(t, q) = 0, in declaration order.
+    pub constraints: Vec<Constraint>,
+}
+
+/// A program constraint `f(t, q) = 0`.
+pub struct Constraint {
+    /// Its name.
+    pub name: Ident,
+    /// f, with joint names resolved to coordinates.
+    pub f: Scalar,
 }
 
 /// A run-time parameter.

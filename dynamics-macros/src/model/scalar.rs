@@ -16,6 +16,10 @@ pub enum Scalar {
     Param(usize),
     /// The coordinate `q` of the joint whose transfer chain this is in.
     Coord,
+    /// Coordinate number i, named by its joint (in constraint expressions).
+    Joint(usize),
+    /// Time `t` (in constraint expressions).
+    Time,
     /// `-x`
     Neg(Box<Scalar>),
     /// `a op b`
@@ -57,7 +61,7 @@ impl Scalar {
     pub fn as_number(&self) -> Option<f64> {
         Some(match self {
             Scalar::Num(v) => *v,
-            Scalar::Param(_) | Scalar::Coord => return None,
+            Scalar::Param(_) | Scalar::Coord | Scalar::Joint(_) | Scalar::Time => return None,
             Scalar::Neg(a) => -a.as_number()?,
             Scalar::Bin(op, a, b) => {
                 let (a, b) = (a.as_number()?, b.as_number()?);
@@ -85,7 +89,7 @@ impl Scalar {
     pub fn has_coord(&self) -> bool {
         match self {
             Scalar::Coord => true,
-            Scalar::Num(_) | Scalar::Param(_) => false,
+            Scalar::Num(_) | Scalar::Param(_) | Scalar::Joint(_) | Scalar::Time => false,
             Scalar::Neg(a) | Scalar::Call(_, a) => a.has_coord(),
             Scalar::Bin(_, a, b) => a.has_coord() || b.has_coord(),
         }
@@ -102,6 +106,9 @@ pub struct Scope<'a> {
     pub coord: bool,
     /// Whether run-time parameters may appear.
     pub allow_params: bool,
+    /// Joint names that stand for their coordinates, and whether `t` is
+    /// time (in constraint expressions).
+    pub joints: &'a [(String, usize)],
 }
 
 /// Resolves `expr`; every problem is recorded in `cx` (None then).
@@ -155,6 +162,12 @@ pub fn resolve(expr: &Expr, scope: &Scope, cx: &mut Ctxt) -> Option<Scalar> {
                 );
                 return None;
             }
+            if let Some((_, i)) = scope.joints.iter().find(|(n, _)| *n == name) {
+                return Some(Scalar::Joint(*i));
+            }
+            if name == "t" && !scope.joints.is_empty() {
+                return Some(Scalar::Time);
+            }
             if name == "PI" || name == "pi" {
                 return Some(Scalar::Num(std::f64::consts::PI));
             }
@@ -171,10 +184,16 @@ pub fn resolve(expr: &Expr, scope: &Scope, cx: &mut Ctxt) -> Option<Scalar> {
                 );
                 return None;
             }
-            cx.error_spanned_by(
-                ident,
-                format!("unknown symbol `{name}`: declare it with `const {name} = ...;` or `param {name} = ...;`"),
-            );
+            let msg = if scope.joints.is_empty() {
+                format!("unknown symbol `{name}`: declare it with `const {name} = ...;` or `param {name} = ...;`")
+            } else {
+                let joints: Vec<&str> = scope.joints.iter().map(|(n, _)| n.as_str()).collect();
+                format!(
+                    "unknown symbol `{name}`: not a joint ({}), `t`, a constant or a parameter",
+                    joints.join(", ")
+                )
+            };
+            cx.error_spanned_by(ident, msg);
             None
         }
         Expr::Call(c) => {

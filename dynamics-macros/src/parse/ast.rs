@@ -24,6 +24,10 @@ pub enum Item {
     Const(Binding),
     /// `param NAME = expr;`: a run-time parameter with its default.
     Param(Binding),
+    /// `constraint NAME = expr;`: a program constraint f(t, q) = 0 on the
+    /// motion (seed 001 eq. 2.39), with joint names standing for their
+    /// coordinates and `t` for time.
+    Constraint(Binding),
     /// `link NAME;` or `link NAME { ... }`
     Link(LinkDecl),
     /// `joint NAME = KIND(PARENT -> CHILD) { ... }`

@@ -6,7 +6,7 @@ use syn::{braced, parenthesized, Attribute, Expr, Ident, Token, Visibility};
 use super::ast::{Binding, Header, Item, JointDecl, LinkDecl, Prop};
 
 const ITEMS: &str = "expected an item: `robot Name;`, `gravity = [..];`, `const NAME = ..;`, \
-                     `param NAME = ..;`, `link NAME {..}` or `joint NAME = revolute(PARENT -> CHILD) {..}`";
+                     `param NAME = ..;`, `constraint NAME = ..;`, `link NAME {..}` or `joint NAME = revolute(PARENT -> CHILD) {..}`";
 
 impl Parse for Item {
     fn parse(input: ParseStream) -> syn::Result<Self> {
@@ -35,6 +35,7 @@ impl Parse for Item {
                 }
             }
             "param" => Item::Param(binding(attrs, input)?),
+            "constraint" => Item::Constraint(binding(attrs, input)?),
             "link" => {
                 let name = input.parse()?;
                 let props = body(input)?;

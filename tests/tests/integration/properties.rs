@@ -205,3 +205,42 @@ proptest! {
         perturbation_by_differences(&robots::Mar::with_drives([0.1, 0.2, 0.0]), &small, &vec3(qd), &vec3(qdd));
     }
 }
+
+/// The constraint Jacobian and acceleration bias against finite
+/// differences along a path: d2f/dt2 = J qdd + bias.
+fn constraint_by_differences<
+    R: dynamics_runtime::Constrained<N, M>,
+    const N: usize,
+    const M: usize,
+>(
+    r: &R,
+    q0: &SVector<f64, N>,
+    w: &SVector<f64, N>,
+) {
+    let path = |t: f64| (q0 + w * t.sin(), w * t.cos(), -w * t.sin());
+    let f = |t: f64| r.constraint_residual(t, &path(t).0);
+    for k in 0..10 {
+        let t = 0.2 + 0.5 * k as f64;
+        let (q, qd, qdd) = path(t);
+        let h = 1e-4;
+        let d2 = (f(t + h) - f(t) * 2.0 + f(t - h)) / (h * h);
+        let ours = r.constraint_jacobian(t, &q) * qdd + r.constraint_bias(t, &q, &qd);
+        assert!(
+            (d2 - ours).abs().max() < 1e-5 * (1.0 + ours.abs().max()),
+            "t = {t}: {d2} vs {ours}"
+        );
+        let d1 = (f(t + h) - f(t - h)) / (2.0 * h);
+        assert!(
+            (d1 - r.constraint_jacobian(t, &q) * qd).abs().max() < 1e-6 * (1.0 + d1.abs().max())
+        );
+    }
+}
+
+proptest! {
+    #![proptest_config(ProptestConfig::with_cases(32))]
+
+    #[test]
+    fn rrp_line_constraint_derivatives((q, w, _) in state()) {
+        constraint_by_differences(&robots::Rrp::default(), &vec3([q[0], q[1], q[2] / 10.0]), &vec3(w));
+    }
+}
