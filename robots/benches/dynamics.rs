@@ -74,6 +74,12 @@ fn bench_robot<R: Robot<N>, const N: usize>(c: &mut Criterion, name: &str, r: &R
             black_box(r.coriolis_matrix(black_box(q), black_box(v)))
         })
     });
+    group.bench_function("perturbation_jacobians (dtau/dq, dtau/dqd)", |b| {
+        b.iter(|| {
+            let [q, v, a] = next();
+            black_box(r.perturbation_jacobians(black_box(q), black_box(v), black_box(a)))
+        })
+    });
     group.bench_function("forward_dynamics", |b| {
         b.iter(|| {
             let [q, v, a] = next();
