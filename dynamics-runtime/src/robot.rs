@@ -5,6 +5,18 @@ use nalgebra::{Matrix4, SMatrix, SVector, Vector3};
 use crate::{DynamicsError, Parameters};
 
 /// The kind of a joint, as declared in `robot!`.
+///
+/// ```
+/// use dynamics_runtime::{JointKind, Robot};
+/// dynamics_macros::robot! {
+///     pub robot Cart;
+///     gravity = [0.0, 0.0, -9.81];
+///     link base;
+///     link cart { mass = 2.0; }
+///     joint x = prismatic(base -> cart) { axis = [1.0, 0.0, 0.0]; }
+/// }
+/// assert_eq!(Cart::JOINT_KINDS, [JointKind::Prismatic]);
+/// ```
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Hash)]
 pub enum JointKind {
     /// q is an angle in rad; its effort is a torque in N m.
@@ -17,6 +29,22 @@ pub enum JointKind {
 ///
 /// `A(q) qdd = Q + Qqt1 + Qqt2 + U`, evaluated in one straight-line function
 /// that shares every subexpression between the terms.
+///
+/// ```
+/// use dynamics_runtime::Robot;
+/// dynamics_macros::robot! {
+///     pub robot Pendulum;
+///     gravity = [0.0, -9.81, 0.0];
+///     link base;
+///     link rod { mass = 1.0; com = [1.0, 0.0, 0.0]; }
+///     joint j = revolute(base -> rod) { transfer = [rot_z(q)]; damping = 0.5; }
+/// }
+/// let p = Pendulum::default();
+/// let (q, qd) = (nalgebra::Vector1::new(0.0), nalgebra::Vector1::new(2.0));
+/// let m = p.motion_terms(&q, &qd);
+/// assert!((m.a[(0, 0)] - 1.0).abs() < 1e-15);          // m l^2
+/// assert!((m.bias()[0] - (-9.81 - 0.5 * 2.0)).abs() < 1e-12); // -m g l cos q - b qd
+/// ```
 #[derive(Debug, Clone, Copy, PartialEq)]
 pub struct MotionTerms<const N: usize> {
     /// The inertia matrix A(q), symmetric positive definite.
@@ -41,6 +69,22 @@ impl<const N: usize> MotionTerms<N> {
 /// nominal motion: with the residual `F(q, qd, qdd) = A qdd - Q - Qqt1 -
 /// Qqt2 - U`, a small disturbance obeys `A dxdd + D dxd + K dx = dU`.
 /// For a rigid robot, `K` and `D` are Pinocchio's `dtau_dq` and `dtau_dv`.
+///
+/// ```
+/// use dynamics_runtime::Robot;
+/// dynamics_macros::robot! {
+///     pub robot Pendulum;
+///     gravity = [0.0, -9.81, 0.0];
+///     link base;
+///     link rod { mass = 1.0; com = [1.0, 0.0, 0.0]; }
+///     joint j = revolute(base -> rod) { transfer = [rot_z(q)]; damping = 0.5; }
+/// }
+/// let p = Pendulum::default();
+/// let z = nalgebra::Vector1::new(0.0);
+/// let pj = p.perturbation_jacobians(&z, &z, &z);
+/// // Linearised about the horizontal rest: K = -m g l sin q = 0, D = b.
+/// assert!(pj.k[(0, 0)].abs() < 1e-15 && (pj.d[(0, 0)] - 0.5).abs() < 1e-15);
+/// ```
 #[derive(Debug, Clone, Copy, PartialEq)]
 pub struct PerturbationJacobians<const N: usize> {
     /// K = dF/dq (stiffness of the perturbation equation).
