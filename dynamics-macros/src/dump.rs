@@ -33,7 +33,13 @@ pub fn outputs(d: &Derived) -> Vec<(&'static str, Vec<Id>)> {
         ("motion_terms (A, Qqt1, Qqt2, Q0)", terms),
         (
             "perturbation_jacobians (K, D)",
-            d.perturbation.k.iter().chain(&d.perturbation.d).flatten().copied().collect(),
+            d.perturbation
+                .k
+                .iter()
+                .chain(&d.perturbation.d)
+                .flatten()
+                .copied()
+                .collect(),
         ),
         ("kinetic_energy", vec![d.kinetic]),
         ("potential_energy", vec![d.potential]),
