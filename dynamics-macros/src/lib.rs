@@ -12,6 +12,7 @@ mod emit;
 mod expand;
 mod model;
 mod parse;
+mod urdf;
 
 use proc_macro::TokenStream;
 
@@ -31,6 +32,8 @@ use proc_macro::TokenStream;
 /// input      := item*
 /// item       := attr* vis "robot" NAME ";"              // exactly one: the type name
 ///             | "gravity" "=" "[" e "," e "," e "]" ";"  // m/s^2, world frame, constants
+///             | "urdf" "=" STRING ";"                    // links and joints from a URDF file, path
+///                                                        // relative to CARGO_MANIFEST_DIR
 ///             | "const" NAME "=" e ";"                   // folded into the code
 ///             | "param" NAME "=" e ";"                   // run-time, default e (a field of NAMEParams)
 ///             | "constraint" NAME "=" e ";"              // program constraint f(t, q) = 0: joint names

@@ -8,6 +8,9 @@ use quote::quote;
 use crate::graph::Graph;
 use crate::node::{Id, Node, Var};
 
+/// Largest tuple bound by one `let`.
+const MAX_TUPLE: usize = 48;
+
 /// The emitted code: the `let` chain, and the expression of each root.
 pub struct Emitted {
     /// `let tN: f64 = ...;` statements, in topological order.
@@ -67,7 +70,7 @@ pub fn emit(graph: &Graph, roots: &[Id], var: &dyn Fn(Var) -> TokenStream) -> Em
 /// let x = g.var(Var(0));
 /// let s = g.sin(x);
 /// let out = emit_with(&g, &[s], &|_| quote::quote!(x), &quote::quote!(my::sin_cos));
-/// assert_eq!(out.lets.to_string(), "let t1 : f64 = my :: sin_cos (x) . 0 ;");
+/// assert_eq!(out.lets.to_string(), "let t1 = my :: sin_cos (x) . 0 ;");
 /// ```
 pub fn emit_with(
     graph: &Graph,
@@ -104,7 +107,19 @@ pub fn emit_with(
             _ => quote!(#x.powi(#e)),
         }
     };
-    let mut lets = TokenStream::new();
+    // Depth of each node: nodes of one depth do not depend on each other.
+    let mut level = vec![0usize; graph.len()];
+    for &id in &reach {
+        level[id.index()] = graph
+            .node(id)
+            .children()
+            .iter()
+            .map(|c| level[c.index()] + 1)
+            .max()
+            .unwrap_or(0);
+    }
+    // (depth, pattern, expression) of every binding.
+    let mut items: Vec<(usize, TokenStream, TokenStream)> = Vec::new();
     for &id in &reach {
         let name = ident(id);
         let rhs = match graph.node(id) {
@@ -167,7 +182,11 @@ pub fn emit_with(
                     (Some(s), Some(c)) => {
                         if id == s.min(c) {
                             let (si, ci, x) = (ident(s), ident(c), operand(*a));
-                            lets.extend(quote!(let (#si, #ci): (f64, f64) = #sin_cos(#x);));
+                            items.push((
+                                level[id.index()],
+                                quote!((#si, #ci)),
+                                quote!(#sin_cos(#x)),
+                            ));
                         }
                         continue;
                     }
@@ -194,7 +213,31 @@ pub fn emit_with(
                 quote!(#x.abs())
             }
         };
-        lets.extend(quote!(let #name: f64 = #rhs;));
+        items.push((level[id.index()], quote!(#name), rhs));
+    }
+    // One `let` per depth (in chunks), binding a tuple: a long chain of
+    // single `let`s nests one lexical scope per binding, and rustc's debug
+    // info recursion overflows its stack on the tens of thousands a 7-DOF
+    // arm needs; the depth of the DAG is small.
+    items.sort_by_key(|(l, _, _)| *l);
+    let mut lets = TokenStream::new();
+    let mut start = 0;
+    while start < items.len() {
+        let l = items[start].0;
+        let mut end = start;
+        while end < items.len() && items[end].0 == l && end - start < MAX_TUPLE {
+            end += 1;
+        }
+        let chunk = &items[start..end];
+        if chunk.len() == 1 {
+            let (_, p, e) = &chunk[0];
+            lets.extend(quote!(let #p = #e;));
+        } else {
+            let pats = chunk.iter().map(|c| &c.1);
+            let exprs = chunk.iter().map(|c| &c.2);
+            lets.extend(quote!(let (#(#pats),*) = (#(#exprs),*);));
+        }
+        start = end;
     }
     Emitted {
         lets,

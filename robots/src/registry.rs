@@ -5,7 +5,7 @@ use thiserror::Error;
 
 use crate::eval::{evaluate, Evaluated};
 use crate::states::{self, StatesError};
-use crate::{Arm3r, Mar, Rrp};
+use crate::{Arm3r, Arm3rUrdf, Mar, MarUrdf, Panda, Rrp, RrpUrdf, Ur5};
 
 /// Names the command-line program knows, with a line each.
 pub const ROBOTS: &[(&str, &str)] = &[
@@ -26,6 +26,15 @@ pub const ROBOTS: &[(&str, &str)] = &[
         "mar-drives",
         "MAR with Table 1's drive stiffness and damping (3 DOF)",
     ),
+    ("ur5", "Universal Robots UR5 from its URDF (6 DOF)"),
+    ("panda", "Franka Emika Panda from its URDF, rigid (7 DOF)"),
+    (
+        "panda-damped",
+        "the Panda with the URDF's joint damping (7 DOF)",
+    ),
+    ("arm3r-urdf", "arm3r read from its URDF (3 DOF)"),
+    ("rrp-urdf", "the RRP arm read from its URDF, rigid (3 DOF)"),
+    ("mar-urdf", "the MAR read from its URDF (3 DOF)"),
 ];
 
 /// A robot chosen by name.
@@ -37,6 +46,16 @@ pub enum AnyRobot {
     Rrp(Rrp),
     /// [`Mar`]
     Mar(Mar),
+    /// [`Ur5`]
+    Ur5(Ur5),
+    /// [`Panda`]
+    Panda(Panda),
+    /// [`Arm3rUrdf`]
+    Arm3rUrdf(Arm3rUrdf),
+    /// [`RrpUrdf`]
+    RrpUrdf(RrpUrdf),
+    /// [`MarUrdf`]
+    MarUrdf(MarUrdf),
 }
 
 /// What the registry can fail with.
@@ -59,6 +78,11 @@ macro_rules! each {
             AnyRobot::Arm3r($r) => $body,
             AnyRobot::Rrp($r) => $body,
             AnyRobot::Mar($r) => $body,
+            AnyRobot::Ur5($r) => $body,
+            AnyRobot::Panda($r) => $body,
+            AnyRobot::Arm3rUrdf($r) => $body,
+            AnyRobot::RrpUrdf($r) => $body,
+            AnyRobot::MarUrdf($r) => $body,
         }
     };
 }
@@ -78,6 +102,12 @@ impl AnyRobot {
             "rrp-rigid" => AnyRobot::Rrp(Rrp::rigid()),
             "mar" => AnyRobot::Mar(Mar::default()),
             "mar-drives" => AnyRobot::Mar(Mar::with_drives([0.0; 3])),
+            "ur5" => AnyRobot::Ur5(Ur5::default()),
+            "panda" => AnyRobot::Panda(Panda::rigid()),
+            "panda-damped" => AnyRobot::Panda(Panda::default()),
+            "arm3r-urdf" => AnyRobot::Arm3rUrdf(Arm3rUrdf::default()),
+            "rrp-urdf" => AnyRobot::RrpUrdf(RrpUrdf::rigid()),
+            "mar-urdf" => AnyRobot::MarUrdf(MarUrdf::default()),
             other => return Err(RegistryError::UnknownRobot(other.to_string())),
         })
     }
@@ -106,9 +136,17 @@ impl AnyRobot {
     /// The Pinocchio reference states shipped for this robot's rigid body.
     pub fn reference(&self) -> (&'static str, &'static str) {
         match self {
-            AnyRobot::Arm3r(_) => ("arm3r.json", include_str!("../data/pinocchio/arm3r.json")),
-            AnyRobot::Rrp(_) => ("rrp.json", include_str!("../data/pinocchio/rrp.json")),
-            AnyRobot::Mar(_) => ("mar.json", include_str!("../data/pinocchio/mar.json")),
+            AnyRobot::Arm3r(_) | AnyRobot::Arm3rUrdf(_) => {
+                ("arm3r.json", include_str!("../data/pinocchio/arm3r.json"))
+            }
+            AnyRobot::Rrp(_) | AnyRobot::RrpUrdf(_) => {
+                ("rrp.json", include_str!("../data/pinocchio/rrp.json"))
+            }
+            AnyRobot::Mar(_) | AnyRobot::MarUrdf(_) => {
+                ("mar.json", include_str!("../data/pinocchio/mar.json"))
+            }
+            AnyRobot::Ur5(_) => ("ur5.json", include_str!("../data/pinocchio/ur5.json")),
+            AnyRobot::Panda(_) => ("panda.json", include_str!("../data/pinocchio/panda.json")),
         }
     }
 }

@@ -26,6 +26,17 @@ pub struct Forces {
     pub q0: Vec<Id>,
 }
 
+/// Whether some joint between the root and link `l` has a coordinate.
+fn moves(model: &Model, mut l: usize) -> bool {
+    while let Some(j) = model.links[l].joint {
+        if model.joints[j].coord.is_some() {
+            return true;
+        }
+        l = model.joints[j].parent;
+    }
+    false
+}
+
 /// Derives the forces.
 pub fn forces(model: &Model, kin: &[LinkKin], vars: Vars, g: &mut Graph) -> Forces {
     let n = vars.n;
@@ -43,8 +54,8 @@ pub fn forces(model: &Model, kin: &[LinkKin], vars: Vars, g: &mut Graph) -> Forc
         }
         for (mass, at) in bodies {
             let c = point_world(&kin[l], at, vars, g);
-            if (0..n).all(|j| !(0..3).any(|r| g.depends_on(c[r], vars.q(j)))) {
-                continue; // welded to the base: constant energy
+            if !moves(model, l) {
+                continue; // welded to the base: constant energy, left out as Pinocchio does
             }
             let m = lower(mass, None, vars, g);
             let t: Vec<Id> = (0..3).map(|r| g.mul(grav[r], c[r])).collect();

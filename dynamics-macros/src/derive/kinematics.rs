@@ -122,9 +122,21 @@ pub fn rotation(g: &mut Graph, u: [f64; 3], theta: Id) -> [[Id; 3]; 3] {
             let sc = g.mul(s, cross);
             let uu = g.constant(u[i] * u[j]);
             let outer = g.mul(omc, uu);
-            g.sum(&[delta, sc, outer])
+            let e = g.sum(&[delta, sc, outer]);
+            snap(g, e)
         })
     })
+}
+
+/// A constant rotation entry within rounding of 0 or +-1 is made exact:
+/// `cos(pi/2)` evaluates to 6e-17, and keeping it would cost the
+/// sparsity that rotations by right angles (common in URDFs) give.
+fn snap(g: &mut Graph, e: Id) -> Id {
+    match g.as_constant(e) {
+        Some(v) if v.abs() < 1e-15 => g.constant(0.0),
+        Some(v) if (v.abs() - 1.0).abs() < 1e-15 => g.constant(v.signum()),
+        _ => e,
+    }
 }
 
 /// World position of a point given in a link's frame.

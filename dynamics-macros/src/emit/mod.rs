@@ -6,6 +6,7 @@
 mod body;
 mod params;
 mod robot;
+mod urdf;
 
 use proc_macro2::TokenStream;
 use quote::{format_ident, quote};
@@ -17,7 +18,8 @@ use crate::model::Model;
 pub fn emit(model: &Model, d: &Derived) -> TokenStream {
     let params = params::emit(model);
     let robot = robot::emit(model, d);
-    quote! { #params #robot }
+    let urdf = urdf::emit(model);
+    quote! { #params #robot #urdf }
 }
 
 /// What is emitted when the input has errors, beside the errors: the bare

@@ -29,8 +29,33 @@ pub fn build(input: Input, complete: bool, cx: &mut Ctxt) -> Option<Model> {
     let mut constraint_decls = Vec::new();
     let mut symbols: HashMap<String, Span> = HashMap::new();
 
+    // A URDF item stands for the links, joints and parameters it holds.
+    let mut urdf: Option<(std::path::PathBuf, HashMap<String, crate::urdf::Limits>)> = None;
+    let mut items = Vec::with_capacity(input.items.len());
     for item in input.items {
         match item {
+            Item::Urdf { kw, path } => {
+                if urdf.is_some() {
+                    cx.error_spanned_by(&kw, "`urdf` is given twice");
+                    continue;
+                }
+                match crate::urdf::load(&path, cx) {
+                    Some(l) => {
+                        items.extend(l.params.into_iter().map(Item::Param));
+                        items.extend(l.links.into_iter().map(Item::Link));
+                        items.extend(l.joints.into_iter().map(Item::Joint));
+                        urdf = Some((l.path, l.limits));
+                    }
+                    // Nothing to check the rest against: stop here.
+                    None => return None,
+                }
+            }
+            other => items.push(other),
+        }
+    }
+    for item in items {
+        match item {
+            Item::Urdf { .. } => {}
             Item::Header(h) => {
                 if header.is_some() {
                     cx.error_spanned_by(
@@ -200,7 +225,13 @@ pub fn build(input: Input, complete: bool, cx: &mut Ctxt) -> Option<Model> {
     if !cx.is_ok() {
         return None;
     }
+    let (urdf, limits) = match urdf {
+        Some((p, l)) => (Some(p), l),
+        None => (None, HashMap::new()),
+    };
     Some(Model {
+        urdf,
+        limits,
         constraints,
         attrs: header.attrs,
         vis: header.vis,

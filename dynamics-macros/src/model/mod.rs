@@ -33,6 +33,10 @@ pub struct Model {
     pub joints: Vec<Joint>,
     /// Program constraints f(t, q) = 0, in declaration order.
     pub constraints: Vec<Constraint>,
+    /// The URDF file read, if any (its absolute path).
+    pub urdf: Option<std::path::PathBuf>,
+    /// Joint limits from the URDF, by joint name.
+    pub limits: std::collections::HashMap<String, crate::urdf::Limits>,
 }
 
 /// A program constraint `f(t, q) = 0`.

@@ -20,6 +20,13 @@ pub enum Item {
         /// The vector expression.
         value: Expr,
     },
+    /// `urdf = "path.urdf";`: links and joints from a URDF file.
+    Urdf {
+        /// The `urdf` keyword.
+        kw: Ident,
+        /// The path, relative to the using crate's manifest directory.
+        path: syn::LitStr,
+    },
     /// `const NAME = expr;`: a compile-time constant, folded into the code.
     Const(Binding),
     /// `param NAME = expr;`: a run-time parameter with its default.

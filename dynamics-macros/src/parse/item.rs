@@ -35,6 +35,13 @@ impl Parse for Item {
                 }
             }
             "param" => Item::Param(binding(attrs, input)?),
+            "urdf" => {
+                input.parse::<Token![=]>()?;
+                Item::Urdf {
+                    kw,
+                    path: input.parse()?,
+                }
+            }
             "constraint" => Item::Constraint(binding(attrs, input)?),
             "link" => {
                 let name = input.parse()?;

@@ -76,9 +76,18 @@ fn main() -> ExitCode {
 type Res = Result<(), Box<dyn std::error::Error>>;
 
 fn check() -> Res {
-    println!("Seed robots against Pinocchio 4.1.0 (shipped reference states; worst relative error per field)");
+    println!("Our models against Pinocchio 4.1.0 (shipped reference states; worst relative error per field)");
     let mut failed = false;
-    for name in ["arm3r", "rrp-rigid", "mar"] {
+    for name in [
+        "arm3r",
+        "rrp-rigid",
+        "mar",
+        "ur5",
+        "panda",
+        "arm3r-urdf",
+        "rrp-urdf",
+        "mar-urdf",
+    ] {
         let robot = AnyRobot::by_name(name)?;
         let (file, text) = robot.reference();
         let ours = robot.evaluate_json(text, file)?;

@@ -1,0 +1,72 @@
+//! Robots read from URDF files at compile time: the two industrial arms,
+//! and URDF twins of the seed robots that tests compare with the
+//! hand-written descriptions.
+
+dynamics_macros::robot! {
+    /// Universal Robots UR5 (6 DOF), from `data/urdf/ur5.urdf`
+    /// (example-robot-data 6.0.0, inertials and kinematics only).
+    pub robot Ur5;
+    gravity = [0.0, 0.0, -9.81];
+    urdf = "data/urdf/ur5.urdf";
+}
+
+dynamics_macros::robot! {
+    /// Franka Emika Panda (7 DOF, fingers fixed), from `data/urdf/panda.urdf`.
+    ///
+    /// URDF joint damping (0.003) is the run-time parameter
+    /// `damping_panda_jointK`; set it to 0 for the rigid body Pinocchio models.
+    pub robot Panda;
+    gravity = [0.0, 0.0, -9.81];
+    urdf = "data/urdf/panda.urdf";
+}
+
+dynamics_macros::robot! {
+    /// The arm3r seed robot read from its URDF (twin of [`crate::Arm3r`]).
+    pub robot Arm3rUrdf;
+    gravity = [0.0, -9.8, 0.0];
+    urdf = "data/urdf/arm3r.urdf";
+}
+
+dynamics_macros::robot! {
+    /// The RRP seed robot read from its URDF (twin of [`crate::Rrp::rigid`]
+    /// when its damping parameters are zero).
+    pub robot RrpUrdf;
+    gravity = [0.0, -10.0, 0.0];
+    urdf = "data/urdf/rrp.urdf";
+}
+
+dynamics_macros::robot! {
+    /// The MAR seed robot read from its URDF (twin of [`crate::Mar`]).
+    pub robot MarUrdf;
+    gravity = [0.0, -9.81, 0.0];
+    urdf = "data/urdf/mar.urdf";
+}
+
+impl Panda {
+    /// The rigid body alone (URDF damping off), as Pinocchio models it.
+    ///
+    /// ```
+    /// use dynamics_runtime::{Parameters, Robot};
+    /// let p = robots::Panda::rigid();
+    /// assert!(p.params().get("damping_panda_joint1") == Some(0.0));
+    /// assert_eq!(robots::Panda::JOINT_NAMES[6], "panda_joint7");
+    /// ```
+    pub fn rigid() -> Self {
+        let mut p = PandaParams::default();
+        for i in 0..<PandaParams as dynamics_runtime::Parameters>::NAMES.len() {
+            dynamics_runtime::Parameters::set_value(&mut p, i, 0.0);
+        }
+        Self::new(p)
+    }
+}
+
+impl RrpUrdf {
+    /// The rigid body alone (URDF damping off).
+    pub fn rigid() -> Self {
+        let mut p = RrpUrdfParams::default();
+        for i in 0..<RrpUrdfParams as dynamics_runtime::Parameters>::NAMES.len() {
+            dynamics_runtime::Parameters::set_value(&mut p, i, 0.0);
+        }
+        Self::new(p)
+    }
+}
