@@ -47,7 +47,12 @@ pub fn load(lit: &LitStr, cx: &mut Ctxt) -> Option<Loaded> {
     let text = match std::fs::read_to_string(&path) {
         Ok(t) => t,
         Err(e) => {
-            cx.error_spanned_by(lit, format!("cannot read URDF `{}`: {e}", path.display()));
+            cx.error_spanned_by(
+                lit,
+                format!(
+                    "cannot read URDF `{rel}` (relative to the crate's CARGO_MANIFEST_DIR): {e}"
+                ),
+            );
             return None;
         }
     };
@@ -96,6 +101,7 @@ pub fn load(lit: &LitStr, cx: &mut Ctxt) -> Option<Loaded> {
     let mut params = Vec::new();
     let mut limits = HashMap::new();
     let mut children: HashMap<String, String> = HashMap::new();
+    let mut parent_of: HashMap<String, String> = HashMap::new();
     for node in root.children().filter(|n| n.has_tag_name("joint")) {
         let Some(name) = r.attr(node, "name", "joint") else {
             continue;
@@ -144,6 +150,7 @@ pub fn load(lit: &LitStr, cx: &mut Ctxt) -> Option<Loaded> {
             ));
             continue;
         }
+        parent_of.insert(child.clone(), parent.clone());
         let mut props = Vec::new();
         let origin = node.children().find(|c| c.has_tag_name("origin"));
         let xyz = origin
@@ -237,6 +244,27 @@ pub fn load(lit: &LitStr, cx: &mut Ctxt) -> Option<Loaded> {
         });
     }
     // Exactly one root, and no cycle: checked here to name the file.
+    let mut names: Vec<&String> = parent_of.keys().collect();
+    names.sort();
+    for start in names {
+        let mut at = start;
+        for _ in 0..=parent_of.len() {
+            match parent_of.get(at) {
+                Some(p) if p == start => {
+                    r.error(format!(
+                        "the joints form a cycle through link `{start}` (joint `{}` has it as child)",
+                        children.get(start).map(String::as_str).unwrap_or("?")
+                    ));
+                    break;
+                }
+                Some(p) => at = p,
+                None => break,
+            }
+        }
+        if !r.ok {
+            break;
+        }
+    }
     let roots: Vec<&String> = link_names
         .iter()
         .filter(|l| !children.contains_key(*l))

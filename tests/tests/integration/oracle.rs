@@ -92,3 +92,20 @@ fn seed_rrp_potential_force_matches_seed_eq_3_11() {
         );
     }
 }
+
+#[test]
+fn ur5_from_urdf_matches_pinocchio() {
+    check("ur5");
+}
+
+#[test]
+fn panda_from_urdf_matches_pinocchio() {
+    check("panda");
+}
+
+#[test]
+fn urdf_twins_of_the_seed_robots_match_pinocchio() {
+    for name in ["arm3r-urdf", "rrp-urdf", "mar-urdf"] {
+        check(name);
+    }
+}
