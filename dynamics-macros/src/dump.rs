@@ -18,8 +18,7 @@ pub fn outputs(d: &Derived) -> Vec<(&'static str, Vec<Id>)> {
         .flat_map(|i| (i..n).map(move |j| (i, j)))
         .map(|(i, j)| d.a[i][j])
         .collect();
-    let mut qqt = d.qqt1.clone();
-    qqt.extend(&d.qqt2);
+    let qqt = d.qqt.clone();
     let mut terms = upper.clone();
     terms.extend(&qqt);
     terms.extend(&d.q0);
@@ -30,7 +29,7 @@ pub fn outputs(d: &Derived) -> Vec<(&'static str, Vec<Id>)> {
         ("generalized_forces", d.q0.clone()),
         ("coriolis_matrix", flat(&d.coriolis)),
         ("inverse_dynamics", d.tau.clone()),
-        ("motion_terms (A, Qqt1, Qqt2, Q0)", terms),
+        ("motion_terms (A, Qqt1 + Qqt2, Q0)", terms),
         (
             "perturbation_jacobians (K, D)",
             d.perturbation

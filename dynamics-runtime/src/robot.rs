@@ -49,10 +49,10 @@ pub enum JointKind {
 pub struct MotionTerms<const N: usize> {
     /// The inertia matrix A(q), symmetric positive definite.
     pub a: SMatrix<f64, N, N>,
-    /// Qqt1_i = 1/2 qd^T (dA/dq_i) qd.
-    pub qqt1: SVector<f64, N>,
-    /// Qqt2 = -sum_i (dA/dq_i) qd qd_i.
-    pub qqt2: SVector<f64, N>,
+    /// Qqt1 + Qqt2: the inertial forces (`= -C qd`), by whichever
+    /// derivation is cheaper (from dA/dq, or Newton-Euler at zero
+    /// acceleration without gravity).
+    pub qqt: SVector<f64, N>,
     /// Q = Q(0): potential, dissipative, friction and spring forces.
     pub q0: SVector<f64, N>,
 }
@@ -61,7 +61,7 @@ impl<const N: usize> MotionTerms<N> {
     /// Everything on the right-hand side but the control forces:
     /// `Q + Qqt1 + Qqt2`.
     pub fn bias(&self) -> SVector<f64, N> {
-        self.q0 + self.qqt1 + self.qqt2
+        self.q0 + self.qqt
     }
 }
 
@@ -183,7 +183,7 @@ pub trait Robot<const N: usize> {
         qd: &SVector<f64, N>,
         qdd: &SVector<f64, N>,
     ) -> Option<SVector<f64, N>>;
-    /// A, Qqt1, Qqt2 and Q(0) in one straight-line pass.
+    /// A, Qqt1 + Qqt2 and Q(0) in one straight-line pass.
     fn motion_terms(&self, q: &SVector<f64, N>, qd: &SVector<f64, N>) -> MotionTerms<N>;
     /// T = 1/2 qd^T A qd.
     fn kinetic_energy(&self, q: &SVector<f64, N>, qd: &SVector<f64, N>) -> f64;

@@ -87,6 +87,8 @@ pub struct Derived {
     pub qqt1: Vec<Id>,
     /// Qqt2.
     pub qqt2: Vec<Id>,
+    /// Qqt1 + Qqt2, by the cheaper derivation.
+    pub qqt: Vec<Id>,
     /// Christoffel Coriolis matrix.
     pub coriolis: Vec<Vec<Id>>,
     /// g = dPi_gravity/dq.
@@ -141,7 +143,12 @@ pub fn derive(model: &Model) -> Derived {
     let extras: Vec<Id> = (0..n).map(|i| g.add(f.q0[i], f.gravity[i])).collect();
     // Gravity: from the potential, or by Newton-Euler at rest, whichever is
     // cheaper.
-    let gravity = match rnea::inverse_dynamics(model, vars, false, &mut g) {
+    let only = |velocity, acceleration, gravity| rnea::Terms {
+        velocity,
+        acceleration,
+        gravity,
+    };
+    let gravity = match rnea::inverse_dynamics(model, vars, only(false, false, true), &mut g) {
         Some(gr) if g.count_ops(&gr).total() < g.count_ops(&f.gravity).total() => gr,
         _ => f.gravity.clone(),
     };
@@ -161,7 +168,7 @@ pub fn derive(model: &Model) -> Derived {
         let lhs = g.sum(&terms);
         matrix_form.push(g.sub(lhs, rhs));
     }
-    let tau = match rnea::inverse_dynamics(model, vars, true, &mut g) {
+    let tau = match rnea::inverse_dynamics(model, vars, only(true, true, true), &mut g) {
         Some(rigid) => {
             let ne: Vec<Id> = (0..n).map(|i| g.sub(rigid[i], extras[i])).collect();
             if g.count_ops(&ne).total() < g.count_ops(&matrix_form).total() {
@@ -173,6 +180,22 @@ pub fn derive(model: &Model) -> Derived {
         None => matrix_form,
     };
     let constraint_roots = constraints::constraints(model, vars, &mut g);
+    // Qqt1 + Qqt2 = -(Newton-Euler with velocities only), when cheaper than
+    // the sum of the dA/dq forms.
+    let qqt_sum: Vec<Id> = (0..n)
+        .map(|i| g.add(dyn_terms.qqt1[i], dyn_terms.qqt2[i]))
+        .collect();
+    let qqt = match rnea::inverse_dynamics(model, vars, only(true, false, false), &mut g) {
+        Some(c) => {
+            let ne: Vec<Id> = c.iter().map(|&x| g.neg(x)).collect();
+            if g.count_ops(&ne).total() < g.count_ops(&qqt_sum).total() {
+                ne
+            } else {
+                qqt_sum
+            }
+        }
+        None => qqt_sum,
+    };
     let perturbation = perturbation::jacobians(&tau, model.params.len(), vars, &mut g);
     let mut ke_terms = Vec::new();
     for i in 0..n {
@@ -202,6 +225,7 @@ pub fn derive(model: &Model) -> Derived {
         a,
         qqt1: dyn_terms.qqt1,
         qqt2: dyn_terms.qqt2,
+        qqt,
         coriolis: dyn_terms.coriolis,
         gravity,
         q0,

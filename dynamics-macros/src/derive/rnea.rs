@@ -47,24 +47,36 @@ enum Step {
     Trans { t: V3, dt_dq: Vec<(usize, V3)> },
 }
 
+/// Which terms a Newton-Euler pass includes.
+#[derive(Clone, Copy)]
+pub struct Terms {
+    /// Velocities qd (else zero).
+    pub velocity: bool,
+    /// Accelerations qdd (else zero).
+    pub acceleration: bool,
+    /// Gravity (else none).
+    pub gravity: bool,
+}
+
 /// The efforts `U` of the rigid body (no damping, friction, springs) that
-/// produce `qdd` at (q, qd), or `None` when a chain has a general matrix
-/// that moves with q. With `with_motion = false`, qd = qdd = 0: gravity.
-pub fn inverse_dynamics(
-    model: &Model,
-    vars: Vars,
-    with_motion: bool,
-    g: &mut Graph,
-) -> Option<Vec<Id>> {
+/// produce `qdd` at (q, qd) with the chosen terms, or `None` when a chain has
+/// a general matrix that moves with q. Velocities only give
+/// `-(Qqt1 + Qqt2)`; gravity only gives `g`.
+pub fn inverse_dynamics(model: &Model, vars: Vars, terms: Terms, g: &mut Graph) -> Option<Vec<Id>> {
     let n = vars.n;
     let zero = g.constant(0.0);
     let z3 = [zero; 3];
-    let neg_gravity = model.gravity.map(|x| g.constant(-x));
+    let neg_gravity = if terms.gravity {
+        model.gravity.map(|x| g.constant(-x))
+    } else {
+        z3
+    };
     let rate = |g: &mut Graph, c: usize, second: bool| -> Id {
-        if !with_motion {
-            return g.constant(0.0);
+        match (second, terms.velocity, terms.acceleration) {
+            (false, true, _) => g.var(vars.qd(c)),
+            (true, _, true) => g.var(vars.qdd(c)),
+            _ => g.constant(0.0),
         }
-        g.var(if second { vars.qdd(c) } else { vars.qd(c) })
     };
 
     let mut motion: Vec<Motion> = Vec::with_capacity(model.links.len());

@@ -36,23 +36,7 @@ pub fn emit(model: &Model, d: &Derived) -> TokenStream {
     let mass_matrix = body::matrix(g, &a_roots, n, n, &sp);
     let qqt1 = body::vector(g, &d.qqt1, &sp);
     let qqt2 = body::vector(g, &d.qqt2, &sp);
-    let qqt_sum: Vec<_> = (0..n).map(|i| (d.qqt1[i], d.qqt2[i])).collect();
-    let qqt = {
-        // Qqt1 + Qqt2 share dA/dq: emit them in one chain and add.
-        let mut roots = d.qqt1.clone();
-        roots.extend(&d.qqt2);
-        let (lets, vals) = body::chain(g, &roots, &sp);
-        let sets = qqt_sum.iter().enumerate().map(|(i, _)| {
-            let (a, b) = (&vals[i], &vals[n + i]);
-            quote!(out[#i] = #a + #b;)
-        });
-        quote! {
-            #lets
-            let mut out = ::dynamics_runtime::nalgebra::SVector::<f64, #n>::zeros();
-            #(#sets)*
-            out
-        }
-    };
+    let qqt = body::vector(g, &d.qqt, &sp);
     let c_roots: Vec<_> = upper.iter().map(|&(i, j)| d.coriolis[i][j]).collect();
     let coriolis = body::matrix(g, &c_roots, n, n, &sp);
     let gravity_body = body::vector(g, &d.gravity, &sp);
@@ -63,23 +47,20 @@ pub fn emit(model: &Model, d: &Derived) -> TokenStream {
 
     let terms = {
         let mut roots = a_roots.clone();
-        roots.extend(&d.qqt1);
-        roots.extend(&d.qqt2);
+        roots.extend(&d.qqt);
         roots.extend(&d.q0);
         let (lets, vals) = body::chain(g, &roots, &sp);
         let nn = n * n;
         let a_set = body::assign_matrix(g, &a_roots, &vals[..nn], n, quote!(a));
-        let q1_set = body::assign_vector(g, &d.qqt1, &vals[nn..nn + n], quote!(qqt1));
-        let q2_set = body::assign_vector(g, &d.qqt2, &vals[nn + n..nn + 2 * n], quote!(qqt2));
-        let q0_set = body::assign_vector(g, &d.q0, &vals[nn + 2 * n..], quote!(q0));
+        let qqt_set = body::assign_vector(g, &d.qqt, &vals[nn..nn + n], quote!(qqt));
+        let q0_set = body::assign_vector(g, &d.q0, &vals[nn + n..], quote!(q0));
         quote! {
             #lets
             let mut a = ::dynamics_runtime::nalgebra::SMatrix::<f64, #n, #n>::zeros();
-            let mut qqt1 = ::dynamics_runtime::nalgebra::SVector::<f64, #n>::zeros();
-            let mut qqt2 = ::dynamics_runtime::nalgebra::SVector::<f64, #n>::zeros();
+            let mut qqt = ::dynamics_runtime::nalgebra::SVector::<f64, #n>::zeros();
             let mut q0 = ::dynamics_runtime::nalgebra::SVector::<f64, #n>::zeros();
-            #a_set #q1_set #q2_set #q0_set
-            ::dynamics_runtime::MotionTerms { a, qqt1, qqt2, q0 }
+            #a_set #qqt_set #q0_set
+            ::dynamics_runtime::MotionTerms { a, qqt, q0 }
         }
     };
 

@@ -229,7 +229,7 @@ pub fn build(input: Input, complete: bool, cx: &mut Ctxt) -> Option<Model> {
         Some((p, l)) => (Some(p), l),
         None => (None, HashMap::new()),
     };
-    Some(Model {
+    let mut model = Model {
         urdf,
         limits,
         constraints,
@@ -240,7 +240,9 @@ pub fn build(input: Input, complete: bool, cx: &mut Ctxt) -> Option<Model> {
         params,
         links,
         joints,
-    })
+    };
+    super::merge::weld_fixed(&mut model);
+    Some(model)
 }
 
 fn unique_symbol(name: &Ident, seen: &mut HashMap<String, Span>, cx: &mut Ctxt) -> bool {
