@@ -1,4 +1,5 @@
-//! Time per call of the generated dynamics of the seed robots, cycling over
+//! Time per call of the generated dynamics of the seed robots and the two
+//! industrial arms, cycling over
 //! 1000 pseudo-random states as the Pinocchio anchor does
 //! (shared/anchors/pinocchio/bench.cpp). Run: `cargo bench -p robots`.
 
@@ -93,6 +94,8 @@ fn seed_robots(c: &mut Criterion) {
     bench_robot(c, "arm3r", &robots::Arm3r::default());
     bench_robot(c, "rrp", &robots::Rrp::rigid());
     bench_robot(c, "mar", &robots::Mar::default());
+    bench_robot(c, "ur5", &robots::Ur5::default());
+    bench_robot(c, "panda", &robots::Panda::rigid());
 }
 
 criterion_group!(benches, seed_robots);

@@ -244,3 +244,22 @@ proptest! {
         constraint_by_differences(&robots::Rrp::default(), &vec3([q[0], q[1], q[2] / 10.0]), &vec3(w));
     }
 }
+
+fn vec_n<const N: usize>(x: &[f64]) -> SVector<f64, N> {
+    SVector::from_fn(|i, _| x[i])
+}
+
+proptest! {
+    #![proptest_config(ProptestConfig::with_cases(16))]
+
+    #[test]
+    fn industrial_arm_invariants(
+        x in prop::collection::vec(-3.1f64..3.1, 7),
+        v in prop::collection::vec(-2.0f64..2.0, 7),
+        a in prop::collection::vec(-2.0f64..2.0, 7),
+    ) {
+        invariants(&robots::Ur5::default(), &vec_n::<6>(&x), &vec_n::<6>(&v), &vec_n::<6>(&a));
+        invariants(&robots::Panda::rigid(), &vec_n::<7>(&x), &vec_n::<7>(&v), &vec_n::<7>(&a));
+        perturbation_by_differences(&robots::Panda::default(), &vec_n::<7>(&x), &vec_n::<7>(&v), &vec_n::<7>(&a));
+    }
+}
