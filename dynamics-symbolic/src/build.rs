@@ -15,6 +15,10 @@ use std::collections::BTreeMap;
 use crate::graph::Graph;
 use crate::node::{Id, Node, F64};
 
+/// Whether `k * (a + b)` becomes `k a + k b` for every constant k (else
+/// only for k = -1).
+const DISTRIBUTE_CONSTANTS: bool = false;
+
 fn finite(v: f64) -> Option<f64> {
     v.is_finite().then_some(v)
 }
@@ -193,7 +197,15 @@ impl Graph {
             if coef == 1.0 {
                 return f;
             }
-            // A constant times a sum: distribute into the sum's coefficients.
+            // Minus a sum: distribute into the sum's coefficients (negation
+            // normal form). Other constants stay outside, one multiply on
+            // a shared sum rather than one per term.
+            if coef != -1.0 && !DISTRIBUTE_CONSTANTS {
+                return self.intern(Node::Product {
+                    coef: F64::new(coef),
+                    factors: factors.into(),
+                });
+            }
             if let Node::Sum { constant, terms } = self.node(f).clone() {
                 let acc: BTreeMap<Id, f64> =
                     terms.iter().map(|(t, c)| (*t, c.get() * coef)).collect();
