@@ -10,6 +10,7 @@
 mod body_jacobian;
 mod constraints;
 mod coriolis;
+mod crba;
 mod forces;
 #[cfg(test)]
 mod golden;
@@ -135,7 +136,19 @@ pub fn derive(model: &Model) -> Derived {
     let mut g = Graph::new();
     let kin = kinematics::frames(model, vars, &mut g);
     let jac = body_jacobian::body_jacobians(model, vars, &mut g);
-    let a = inertia::mass_matrix(model, &jac, vars, &mut g);
+    let a_jacobian = inertia::mass_matrix(model, &jac, vars, &mut g);
+    // The composite-rigid-body form when it is cheaper.
+    let a = match crba::mass_matrix(model, vars, &mut g) {
+        Some(c) => {
+            let flat = |m: &Vec<Vec<Id>>| -> Vec<Id> { m.iter().flatten().copied().collect() };
+            if g.count_ops(&flat(&c)).total() < g.count_ops(&flat(&a_jacobian)).total() {
+                c
+            } else {
+                a_jacobian
+            }
+        }
+        None => a_jacobian,
+    };
     let dyn_terms = coriolis::terms(&a, vars, &mut g);
     let f = forces::forces(model, &kin, vars, &mut g);
 
