@@ -33,7 +33,9 @@ use proc_macro::TokenStream;
 /// item       := attr* vis "robot" NAME ";"              // exactly one: the type name
 ///             | "gravity" "=" "[" e "," e "," e "]" ";"  // m/s^2, world frame, constants
 ///             | "urdf" "=" STRING ";"                    // links and joints from a URDF file, path
-///                                                        // relative to CARGO_MANIFEST_DIR
+///                                                        // relative to CARGO_MANIFEST_DIR; a `link`
+///                                                        // item naming one of its links overrides
+///                                                        // that link's properties (`mass = payload;`)
 ///             | "const" NAME "=" e ";"                   // folded into the code
 ///             | "param" NAME "=" e ";"                   // run-time, default e (a field of NAMEParams)
 ///             | "constraint" NAME "=" e ";"              // program constraint f(t, q) = 0: joint names

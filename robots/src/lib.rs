@@ -21,7 +21,9 @@ pub mod urdf_robots;
 pub use arm3r::{Arm3r, Arm3rParams};
 pub use mar::{Mar, MarParams};
 pub use rrp::{Rrp, RrpParams};
-pub use urdf_robots::{Arm3rUrdf, MarUrdf, Panda, PandaParams, RrpUrdf, Ur5, Ur5Params};
+pub use urdf_robots::{
+    Arm3rUrdf, MarUrdf, Panda, PandaParams, PandaPayload, RrpUrdf, Ur5, Ur5Params,
+};
 
 /// The README's example, compiled and run as a doc test.
 #[doc = include_str!("../../README.md")]

@@ -11,6 +11,19 @@ dynamics_macros::robot! {
 }
 
 dynamics_macros::robot! {
+    /// The Panda with a symbolic payload: the URDF's hand link (welded to
+    /// link 8) gets its mass from the run-time parameter `payload`
+    /// (default: the file's 0.73 kg), so the payload can be changed, fitted
+    /// or differentiated (`parameter_sensitivity`) at run time.
+    pub robot PandaPayload;
+    gravity = [0.0, 0.0, -9.81];
+    urdf = "data/urdf/panda.urdf";
+    /// Mass of the hand and what it holds, kg.
+    param payload = 0.73;
+    link panda_hand { mass = payload; }
+}
+
+dynamics_macros::robot! {
     /// Franka Emika Panda (7 DOF, fingers fixed), from `data/urdf/panda.urdf`.
     ///
     /// URDF joint damping (0.003) is the run-time parameter

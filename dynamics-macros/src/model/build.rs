@@ -32,6 +32,7 @@ pub fn build(input: Input, complete: bool, cx: &mut Ctxt) -> Option<Model> {
     // A URDF item stands for the links, joints and parameters it holds.
     let mut urdf: Option<(std::path::PathBuf, HashMap<String, crate::urdf::Limits>)> = None;
     let mut items = Vec::with_capacity(input.items.len());
+    let mut urdf_links: Vec<LinkDecl> = Vec::new();
     for item in input.items {
         match item {
             Item::Urdf { kw, path } => {
@@ -42,7 +43,7 @@ pub fn build(input: Input, complete: bool, cx: &mut Ctxt) -> Option<Model> {
                 match crate::urdf::load(&path, cx) {
                     Some(l) => {
                         items.extend(l.params.into_iter().map(Item::Param));
-                        items.extend(l.links.into_iter().map(Item::Link));
+                        urdf_links = l.links;
                         items.extend(l.joints.into_iter().map(Item::Joint));
                         urdf = Some((l.path, l.limits));
                     }
@@ -52,6 +53,9 @@ pub fn build(input: Input, complete: bool, cx: &mut Ctxt) -> Option<Model> {
             }
             other => items.push(other),
         }
+    }
+    if urdf.is_some() {
+        items = override_urdf_links(items, urdf_links);
     }
     for item in items {
         match item {
@@ -243,6 +247,34 @@ pub fn build(input: Input, complete: bool, cx: &mut Ctxt) -> Option<Model> {
     };
     super::merge::weld_fixed(&mut model);
     Some(model)
+}
+
+/// A `link` item naming a link the URDF already has overrides that link's
+/// properties one by one (e.g. `link panda_link7 { mass = payload; }` keeps
+/// a payload mass symbolic); its other properties stay as the file says.
+fn override_urdf_links(items: Vec<Item>, mut urdf_links: Vec<LinkDecl>) -> Vec<Item> {
+    let mut out: Vec<Item> = Vec::with_capacity(items.len() + urdf_links.len());
+    for item in items {
+        match item {
+            Item::Link(o) if urdf_links.iter().any(|l| l.name == o.name) => {
+                let Some(target) = urdf_links.iter_mut().find(|l| l.name == o.name) else {
+                    continue;
+                };
+                for prop in o.props {
+                    if let Prop::Value { key: k, .. } = &prop {
+                        let k = k.to_string();
+                        target
+                            .props
+                            .retain(|p| !matches!(p, Prop::Value { key, .. } if *key == k));
+                    }
+                    target.props.push(prop);
+                }
+            }
+            other => out.push(other),
+        }
+    }
+    out.extend(urdf_links.into_iter().map(Item::Link));
+    out
 }
 
 fn unique_symbol(name: &Ident, seen: &mut HashMap<String, Span>, cx: &mut Ctxt) -> bool {

@@ -76,3 +76,36 @@ fn urdf_damping_is_a_parameter_of_the_generalized_forces() {
     let rrp = robots::RrpUrdf::default();
     assert_eq!(rrp.params.get("damping_q3"), Some(0.25));
 }
+
+#[test]
+fn a_urdf_mass_can_be_made_a_parameter() {
+    let fixed = robots::Panda::default();
+    let mut symbolic = robots::PandaPayload::default();
+    let q = SVector::<f64, 7>::from_fn(|i, _| 0.3 - 0.1 * i as f64);
+    let v = SVector::<f64, 7>::from_fn(|i, _| 0.5 - 0.15 * i as f64);
+    let a = SVector::<f64, 7>::from_fn(|i, _| 0.2 * i as f64 - 0.6);
+    let (t1, t2) = (
+        fixed.inverse_dynamics(&q, &v, &a),
+        symbolic.inverse_dynamics(&q, &v, &a),
+    );
+    assert!((t1 - t2).abs().max() < 1e-12, "same default: {t1} vs {t2}");
+    // The payload enters linearly: tau(m + 1) - tau(m) = d tau / d payload.
+    let k = robots::urdf_robots::PandaPayloadParams::NAMES
+        .iter()
+        .position(|n| *n == "payload")
+        .expect("declared");
+    let slope = symbolic
+        .parameter_sensitivity(k, &q, &v, &a)
+        .expect("a parameter");
+    symbolic.params.set("payload", 1.73).expect("known");
+    let t3 = symbolic.inverse_dynamics(&q, &v, &a);
+    assert!(
+        (t3 - t2 - slope).abs().max() < 1e-12,
+        "{} vs {slope}",
+        t3 - t2
+    );
+    assert!(
+        slope.abs().max() > 0.1,
+        "the hand's weight matters: {slope}"
+    );
+}
