@@ -65,21 +65,22 @@ impl Panda {
     /// assert_eq!(robots::Panda::JOINT_NAMES[6], "panda_joint7");
     /// ```
     pub fn rigid() -> Self {
-        let mut p = PandaParams::default();
-        for i in 0..<PandaParams as dynamics_runtime::Parameters>::NAMES.len() {
-            dynamics_runtime::Parameters::set_value(&mut p, i, 0.0);
-        }
-        Self::new(p)
+        Self::new(zeroed())
     }
 }
 
 impl RrpUrdf {
     /// The rigid body alone (URDF damping off).
     pub fn rigid() -> Self {
-        let mut p = RrpUrdfParams::default();
-        for i in 0..<RrpUrdfParams as dynamics_runtime::Parameters>::NAMES.len() {
-            dynamics_runtime::Parameters::set_value(&mut p, i, 0.0);
-        }
-        Self::new(p)
+        Self::new(zeroed())
     }
+}
+
+/// Parameters all set to zero (the URDF's damping and friction off).
+fn zeroed<P: dynamics_runtime::Parameters>() -> P {
+    let mut p = P::default();
+    for i in 0..P::NAMES.len() {
+        p.set_value(i, 0.0);
+    }
+    p
 }

@@ -17,7 +17,7 @@
 use dynamics_symbolic::{Graph, Id};
 
 use super::body_jacobian::cross;
-use super::kinematics::{mat_mat, mat_vec, rotation, transpose};
+use super::kinematics::{add3 as add, dot, mat_mat, mat_vec, rotation, transpose};
 use super::lower::lower;
 use super::Vars;
 use crate::model::scalar::Scalar;
@@ -211,13 +211,4 @@ fn shift(g: &mut Graph, c: &mut Composite, t: V3) {
     let mt = t.map(|x| g.mul(c.m, x));
     c.h = add(g, c.h, mt);
     c.j = j;
-}
-
-fn add(g: &mut Graph, a: V3, b: V3) -> V3 {
-    std::array::from_fn(|i| g.add(a[i], b[i]))
-}
-
-fn dot(g: &mut Graph, a: V3, b: V3) -> Id {
-    let t: Vec<Id> = (0..3).map(|i| g.mul(a[i], b[i])).collect();
-    g.sum(&t)
 }

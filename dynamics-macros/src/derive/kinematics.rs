@@ -146,6 +146,13 @@ pub fn point_world(k: &LinkKin, at: &[Scalar; 3], vars: Vars, g: &mut Graph) -> 
     add3(g, k.pose.p, rotated)
 }
 
+/// a . b
+pub fn dot(g: &mut Graph, a: [Id; 3], b: [Id; 3]) -> Id {
+    let t: Vec<Id> = (0..3).map(|i| g.mul(a[i], b[i])).collect();
+    g.sum(&t)
+}
+
+/// a + b
 pub fn add3(g: &mut Graph, a: [Id; 3], b: [Id; 3]) -> [Id; 3] {
     std::array::from_fn(|i| g.add(a[i], b[i]))
 }

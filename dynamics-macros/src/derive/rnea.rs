@@ -19,7 +19,7 @@
 use dynamics_symbolic::{Graph, Id};
 
 use super::body_jacobian::cross;
-use super::kinematics::{mat_vec, transpose};
+use super::kinematics::{add3 as add, dot, mat_vec, transpose};
 use super::lower::lower;
 use super::Vars;
 use crate::model::{Elem, Model};
@@ -283,15 +283,6 @@ pub fn inverse_dynamics(model: &Model, vars: Vars, terms: Terms, g: &mut Graph) 
     Some(tau.iter().map(|t| g.sum(t)).collect())
 }
 
-fn add(g: &mut Graph, a: V3, b: V3) -> V3 {
-    std::array::from_fn(|i| g.add(a[i], b[i]))
-}
-
 fn add3(g: &mut Graph, a: V3, b: V3, c: V3) -> V3 {
     std::array::from_fn(|i| g.sum(&[a[i], b[i], c[i]]))
-}
-
-fn dot(g: &mut Graph, a: V3, b: V3) -> Id {
-    let t: Vec<Id> = (0..3).map(|i| g.mul(a[i], b[i])).collect();
-    g.sum(&t)
 }

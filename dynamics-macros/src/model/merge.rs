@@ -118,10 +118,8 @@ fn full(t: [f64; 6]) -> [[f64; 3]; 3] {
     [[xx, xy, xz], [xy, yy, yz], [xz, yz, zz]]
 }
 
-/// A body (mass, com, inertia about com) seen from the parent frame.
-fn transform((m, c, t): (f64, [f64; 3], [f64; 6]), (r, p): &Pose) -> (f64, [f64; 3], [f64; 6]) {
-    let rc = mat_vec(r, c);
-    let com = [rc[0] + p[0], rc[1] + p[1], rc[2] + p[2]];
+/// `R I R^T` for a tensor [ixx, iyy, izz, ixy, ixz, iyz].
+pub fn rotate_tensor(t: [f64; 6], r: &[[f64; 3]; 3]) -> [f64; 6] {
     let i = full(t);
     let mut out = [[0.0; 3]; 3];
     for a in 0..3 {
@@ -133,13 +131,24 @@ fn transform((m, c, t): (f64, [f64; 3], [f64; 6]), (r, p): &Pose) -> (f64, [f64;
             }
         }
     }
-    (
-        m,
-        com,
-        [
-            out[0][0], out[1][1], out[2][2], out[0][1], out[0][2], out[1][2],
-        ],
-    )
+    [
+        out[0][0], out[1][1], out[2][2], out[0][1], out[0][2], out[1][2],
+    ]
+}
+
+/// The rotation of URDF's `rpy`: Rz(yaw) Ry(pitch) Rx(roll).
+pub fn rpy_matrix(rpy: [f64; 3]) -> [[f64; 3]; 3] {
+    let rz = rodrigues([0.0, 0.0, 1.0], rpy[2]);
+    let ry = rodrigues([0.0, 1.0, 0.0], rpy[1]);
+    let rx = rodrigues([1.0, 0.0, 0.0], rpy[0]);
+    mat_mat(&mat_mat(&rz, &ry), &rx)
+}
+
+/// A body (mass, com, inertia about com) seen from the parent frame.
+fn transform((m, c, t): (f64, [f64; 3], [f64; 6]), (r, p): &Pose) -> (f64, [f64; 3], [f64; 6]) {
+    let rc = mat_vec(r, c);
+    let com = [rc[0] + p[0], rc[1] + p[1], rc[2] + p[2]];
+    (m, com, rotate_tensor(t, r))
 }
 
 /// Two bodies as one: total mass, common centre, inertia about it

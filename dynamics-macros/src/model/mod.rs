@@ -7,7 +7,7 @@
 
 mod build;
 mod inertia;
-mod merge;
+pub mod merge;
 pub mod scalar;
 mod transfer;
 mod tree;

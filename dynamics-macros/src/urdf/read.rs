@@ -411,34 +411,12 @@ impl Reader<'_> {
     }
 }
 
-/// `R I R^T` for the inertial frame's rpy (R = Rz(yaw) Ry(pitch) Rx(roll)).
+/// `R I R^T` for the inertial frame's rpy.
 fn rotate_inertia(i: [f64; 6], rpy: [f64; 3]) -> [f64; 6] {
     if rpy == [0.0; 3] {
         return i;
     }
-    let [xx, yy, zz, xy, xz, yz] = i;
-    let m = [[xx, xy, xz], [xy, yy, yz], [xz, yz, zz]];
-    let (sr, cr) = rpy[0].sin_cos();
-    let (sp, cp) = rpy[1].sin_cos();
-    let (sy, cy) = rpy[2].sin_cos();
-    let r = [
-        [cy * cp, cy * sp * sr - sy * cr, cy * sp * cr + sy * sr],
-        [sy * cp, sy * sp * sr + cy * cr, sy * sp * cr - cy * sr],
-        [-sp, cp * sr, cp * cr],
-    ];
-    let mut out = [[0.0; 3]; 3];
-    for a in 0..3 {
-        for b in 0..3 {
-            for c in 0..3 {
-                for d in 0..3 {
-                    out[a][b] += r[a][c] * m[c][d] * r[b][d];
-                }
-            }
-        }
-    }
-    [
-        out[0][0], out[1][1], out[2][2], out[0][1], out[0][2], out[1][2],
-    ]
+    crate::model::merge::rotate_tensor(i, &crate::model::merge::rpy_matrix(rpy))
 }
 
 /// A name as an identifier (characters that cannot be in one become `_`).
