@@ -19,8 +19,10 @@
 mod check;
 mod constraint;
 mod error;
+pub mod ode;
 mod params;
 mod robot;
+mod simulate;
 mod solve;
 pub mod trig;
 
@@ -28,6 +30,7 @@ pub use constraint::Constrained;
 pub use error::DynamicsError;
 pub use params::Parameters;
 pub use robot::{JointKind, MotionTerms, PerturbationJacobians, Robot};
+pub use simulate::{simulate, SimError, Trajectory};
 
 /// Re-exported so that generated code names one nalgebra version.
 pub use nalgebra;

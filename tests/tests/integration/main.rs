@@ -2,4 +2,5 @@
 
 mod oracle;
 mod properties;
+mod simulate;
 mod urdf;
