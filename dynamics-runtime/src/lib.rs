@@ -21,6 +21,7 @@ mod constraint;
 mod error;
 pub mod ode;
 mod params;
+mod program;
 mod robot;
 mod simulate;
 mod solve;
@@ -29,6 +30,7 @@ pub mod trig;
 pub use constraint::Constrained;
 pub use error::DynamicsError;
 pub use params::Parameters;
+pub use program::{simulate_program, Baumgarte, ProgramMotion};
 pub use robot::{JointKind, MotionTerms, PerturbationJacobians, Robot};
 pub use simulate::{simulate, SimError, Trajectory};
 

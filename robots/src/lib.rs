@@ -13,8 +13,10 @@ pub mod arm3r;
 pub mod compare;
 pub mod eval;
 pub mod mar;
+pub mod plot;
 pub mod registry;
 pub mod rrp;
+pub mod scenarios;
 pub mod states;
 pub mod urdf_robots;
 

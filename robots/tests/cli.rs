@@ -105,3 +105,49 @@ fn bad_input_is_a_clear_error() {
         "{err}"
     );
 }
+
+#[test]
+fn scenarios_run_by_name_and_write_csv_and_svg() {
+    let dir = tmp("rrp-line");
+    let out = dynamics()
+        .args(["scenario", "rrp-line", "--out"])
+        .arg(&dir)
+        .output()
+        .expect("runs");
+    let text = String::from_utf8_lossy(&out.stdout);
+    assert!(
+        out.status.success(),
+        "{text}{}",
+        String::from_utf8_lossy(&out.stderr)
+    );
+    for f in [
+        "rrp-line.csv",
+        "q.svg",
+        "qd.svg",
+        "tau.svg",
+        "path.svg",
+        "lambda.svg",
+    ] {
+        assert!(dir.join(f).exists(), "missing {f}");
+    }
+    // The program holds: the reported violation is tiny.
+    let line = text
+        .lines()
+        .find(|l| l.contains("violation"))
+        .expect("a violation line");
+    let v: f64 = line
+        .rsplit('=')
+        .next()
+        .and_then(|s| s.trim().trim_end_matches(" m").parse().ok())
+        .expect("a number");
+    assert!(v < 1e-8, "{line}");
+    let list = dynamics().args(["scenario"]).output().expect("runs");
+    assert!(String::from_utf8_lossy(&list.stdout).contains("arm3r-free"));
+    let bad = dynamics()
+        .args(["scenario", "nope"])
+        .output()
+        .expect("runs");
+    assert!(
+        !bad.status.success() && String::from_utf8_lossy(&bad.stderr).contains("unknown scenario")
+    );
+}

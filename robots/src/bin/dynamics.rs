@@ -30,6 +30,14 @@ enum Command {
     Check,
     /// List the robots.
     List,
+    /// Run a scenario of the seeds by name, writing CSV and SVG plots.
+    Scenario {
+        /// Scenario name; omit to list them.
+        name: Option<String>,
+        /// Output folder (default `out/NAME`).
+        #[arg(long)]
+        out: Option<PathBuf>,
+    },
     /// Evaluate tau, M, g, C, nle, ddq and the energies at given states.
     Eval {
         /// Robot name (see `dynamics list`).
@@ -57,6 +65,7 @@ fn main() -> ExitCode {
             }
             Ok(())
         }
+        Command::Scenario { name, out } => scenario(name, out),
         Command::Eval {
             robot,
             states,
@@ -107,6 +116,22 @@ fn check() -> Res {
         println!("\nall within 1e-10");
         Ok(())
     }
+}
+
+fn scenario(name: Option<String>, out: Option<PathBuf>) -> Res {
+    let Some(name) = name else {
+        for (n, what) in robots::scenarios::SCENARIOS {
+            println!("{n:14} {what}");
+        }
+        return Ok(());
+    };
+    let dir = out.unwrap_or_else(|| PathBuf::from("out").join(&name));
+    let lines = robots::scenarios::run(&name, &dir)?;
+    println!("{name}: outputs in {}", dir.display());
+    for l in lines {
+        println!("  {l}");
+    }
+    Ok(())
 }
 
 fn eval(name: &str, states: Option<PathBuf>, out: Option<PathBuf>, set: &[String]) -> Res {

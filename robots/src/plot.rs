@@ -1,0 +1,147 @@
+//! Minimal SVG line plots (time series and x-y paths), written by hand: a
+//! plotting crate (plotters) would bring fonts and backends for what is
+//! ~80 lines of text output here.
+
+use std::fmt::Write as _;
+
+/// One named line.
+pub struct Series<'a> {
+    /// Legend text.
+    pub name: &'a str,
+    /// Points (x, y).
+    pub points: Vec<(f64, f64)>,
+}
+
+const COLORS: [&str; 6] = [
+    "#1f77b4", "#d62728", "#2ca02c", "#9467bd", "#ff7f0e", "#17becf",
+];
+
+/// An SVG document with the series drawn over common axes.
+///
+/// ```
+/// use robots::plot::{svg, Series};
+/// let s = svg("sine", "t [s]", "y", &[Series { name: "y", points: (0..50).map(|i| (i as f64 * 0.1, (i as f64 * 0.1).sin())).collect() }], false);
+/// assert!(s.starts_with("<svg") && s.contains("<polyline"));
+/// ```
+pub fn svg(title: &str, xlabel: &str, ylabel: &str, series: &[Series], equal_axes: bool) -> String {
+    let (w, h, m) = (720.0, 420.0, 60.0);
+    let pts = series
+        .iter()
+        .flat_map(|s| s.points.iter())
+        .filter(|p| p.0.is_finite() && p.1.is_finite());
+    let (mut x0, mut x1, mut y0, mut y1) = (
+        f64::INFINITY,
+        f64::NEG_INFINITY,
+        f64::INFINITY,
+        f64::NEG_INFINITY,
+    );
+    for &(x, y) in pts {
+        x0 = x0.min(x);
+        x1 = x1.max(x);
+        y0 = y0.min(y);
+        y1 = y1.max(y);
+    }
+    if !x0.is_finite() {
+        (x0, x1, y0, y1) = (0.0, 1.0, 0.0, 1.0);
+    }
+    if x1 - x0 < 1e-12 {
+        x1 = x0 + 1.0;
+    }
+    if y1 - y0 < 1e-12 {
+        (y0, y1) = (y0 - 0.5, y1 + 0.5);
+    }
+    let pad = 0.05 * (y1 - y0);
+    (y0, y1) = (y0 - pad, y1 + pad);
+    let (pw, ph) = (w - 2.0 * m, h - 2.0 * m);
+    let (mut sx, mut sy) = (pw / (x1 - x0), ph / (y1 - y0));
+    if equal_axes {
+        let s = sx.min(sy);
+        (sx, sy) = (s, s);
+    }
+    let px = |x: f64| m + (x - x0) * sx;
+    let py = |y: f64| h - m - (y - y0) * sy;
+    let mut out = String::new();
+    let _ = write!(out, "<svg xmlns=\"http://www.w3.org/2000/svg\" width=\"{w}\" height=\"{h}\" font-family=\"sans-serif\" font-size=\"12\">");
+    let _ = write!(out, "<rect width=\"100%\" height=\"100%\" fill=\"white\"/>");
+    let _ = write!(
+        out,
+        "<text x=\"{}\" y=\"24\" text-anchor=\"middle\" font-size=\"15\">{}</text>",
+        w / 2.0,
+        esc(title)
+    );
+    let _ = write!(
+        out,
+        "<rect x=\"{m}\" y=\"{m}\" width=\"{pw}\" height=\"{ph}\" fill=\"none\" stroke=\"#888\"/>"
+    );
+    for k in 0..=4 {
+        let fx = x0 + (x1 - x0) * k as f64 / 4.0;
+        let fy = y0 + (y1 - y0) * k as f64 / 4.0;
+        let _ = write!(
+            out,
+            "<text x=\"{:.1}\" y=\"{:.1}\" text-anchor=\"middle\">{}</text>",
+            px(fx),
+            h - m + 16.0,
+            num(fx)
+        );
+        let _ = write!(
+            out,
+            "<text x=\"{:.1}\" y=\"{:.1}\" text-anchor=\"end\">{}</text>",
+            m - 6.0,
+            py(fy) + 4.0,
+            num(fy)
+        );
+    }
+    let _ = write!(
+        out,
+        "<text x=\"{}\" y=\"{}\" text-anchor=\"middle\">{}</text>",
+        w / 2.0,
+        h - 14.0,
+        esc(xlabel)
+    );
+    let _ = write!(
+        out,
+        "<text x=\"16\" y=\"{}\" transform=\"rotate(-90 16 {})\" text-anchor=\"middle\">{}</text>",
+        h / 2.0,
+        h / 2.0,
+        esc(ylabel)
+    );
+    for (i, s) in series.iter().enumerate() {
+        let color = COLORS[i % COLORS.len()];
+        let line: Vec<String> = s
+            .points
+            .iter()
+            .filter(|p| p.0.is_finite() && p.1.is_finite())
+            .map(|&(x, y)| format!("{:.2},{:.2}", px(x), py(y)))
+            .collect();
+        let _ = write!(
+            out,
+            "<polyline fill=\"none\" stroke=\"{color}\" stroke-width=\"1.5\" points=\"{}\"/>",
+            line.join(" ")
+        );
+        let ly = m + 16.0 + 16.0 * i as f64;
+        let _ = write!(out, "<line x1=\"{}\" y1=\"{ly}\" x2=\"{}\" y2=\"{ly}\" stroke=\"{color}\" stroke-width=\"2\"/>", w - m - 110.0, w - m - 90.0);
+        let _ = write!(
+            out,
+            "<text x=\"{}\" y=\"{}\">{}</text>",
+            w - m - 85.0,
+            ly + 4.0,
+            esc(s.name)
+        );
+    }
+    out.push_str("</svg>\n");
+    out
+}
+
+fn num(v: f64) -> String {
+    if v.abs() >= 1e4 || (v != 0.0 && v.abs() < 1e-2) {
+        format!("{v:.2e}")
+    } else {
+        format!("{v:.3}")
+    }
+}
+
+fn esc(s: &str) -> String {
+    s.replace('&', "&amp;")
+        .replace('<', "&lt;")
+        .replace('>', "&gt;")
+}
