@@ -55,7 +55,11 @@ pub fn svg(title: &str, xlabel: &str, ylabel: &str, series: &[Series], equal_axe
     let (pw, ph) = (w - 2.0 * m, h - 2.0 * m);
     let (mut sx, mut sy) = (pw / (x1 - x0), ph / (y1 - y0));
     if equal_axes {
+        // One scale for both axes, the data centred in the wider range.
         let s = sx.min(sy);
+        let (cx, cy) = (0.5 * (x0 + x1), 0.5 * (y0 + y1));
+        (x0, x1) = (cx - 0.5 * pw / s, cx + 0.5 * pw / s);
+        (y0, y1) = (cy - 0.5 * ph / s, cy + 0.5 * ph / s);
         (sx, sy) = (s, s);
     }
     let px = |x: f64| m + (x - x0) * sx;
