@@ -18,6 +18,7 @@
 
 mod check;
 mod constraint;
+pub mod control;
 mod error;
 pub mod ode;
 mod params;

@@ -11,6 +11,8 @@ use thiserror::Error;
 
 use crate::plot::{svg, Series};
 
+mod circle;
+
 /// Scenario names with a line each.
 pub const SCENARIOS: &[(&str, &str)] = &[
     (
@@ -55,6 +57,7 @@ pub fn run(name: &str, dir: &Path) -> Result<Vec<String>, ScenarioError> {
     match name {
         "arm3r-free" => arm3r_free(dir),
         "rrp-line" => rrp_line(dir),
+        "arm3r-circle" => circle::run(dir),
         other => Err(ScenarioError::Unknown(other.to_string())),
     }
 }
@@ -66,9 +69,21 @@ fn io(path: &Path, source: std::io::Error) -> ScenarioError {
     }
 }
 
-fn write(dir: &Path, file: &str, text: &str) -> Result<(), ScenarioError> {
+pub(crate) fn write(dir: &Path, file: &str, text: &str) -> Result<(), ScenarioError> {
     let path = dir.join(file);
     std::fs::write(&path, text).map_err(|e| io(&path, e))
+}
+
+/// The trajectory as `<name>.csv`.
+pub(crate) fn outputs_csv<R: Robot<3>>(
+    name: &str,
+    tr: &Trajectory<3>,
+    dir: &Path,
+) -> Result<(), ScenarioError> {
+    let mut csv = Vec::new();
+    tr.write_csv(&mut csv, &R::JOINT_NAMES)
+        .map_err(|e| io(dir, e))?;
+    write(dir, &format!("{name}.csv"), &String::from_utf8_lossy(&csv))
 }
 
 /// CSV plus q, qd, tau plots and the path of a named point.
@@ -79,10 +94,7 @@ fn outputs<R: Robot<3>>(
     point: usize,
     dir: &Path,
 ) -> Result<(), ScenarioError> {
-    let mut csv = Vec::new();
-    tr.write_csv(&mut csv, &R::JOINT_NAMES)
-        .map_err(|e| io(dir, e))?;
-    write(dir, &format!("{name}.csv"), &String::from_utf8_lossy(&csv))?;
+    outputs_csv::<R>(name, tr, dir)?;
     for (file, label, data) in [
         ("q.svg", "q", &tr.q),
         ("qd.svg", "qd", &tr.qd),

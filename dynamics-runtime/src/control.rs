@@ -1,0 +1,122 @@
+//! Joint-space tracking controllers (seed 001, chapter 4): PD with gravity
+//! compensation, computed torque, and sliding-mode control with a boundary
+//! layer. Each uses a model of the robot (any `Robot<N>`; it may differ
+//! from the plant).
+
+use nalgebra::SVector;
+
+use crate::Robot;
+
+/// A reference motion sample.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct Reference<const N: usize> {
+    /// Desired positions.
+    pub q: SVector<f64, N>,
+    /// Desired velocities.
+    pub qd: SVector<f64, N>,
+    /// Desired accelerations.
+    pub qdd: SVector<f64, N>,
+}
+
+/// A controller: efforts from the measured state and the reference.
+pub trait Controller<const N: usize> {
+    /// The joint efforts to apply.
+    fn effort(
+        &mut self,
+        q: &SVector<f64, N>,
+        qd: &SVector<f64, N>,
+        r: &Reference<N>,
+    ) -> SVector<f64, N>;
+}
+
+/// `tau = g(q) + Kp (q_r - q) + Kd (qd_r - qd)` (gravity from the model).
+///
+/// ```
+/// use dynamics_runtime::control::{Controller, PdGravity, Reference};
+/// use dynamics_runtime::Robot;
+/// dynamics_macros::robot! {
+///     pub robot Pendulum;
+///     gravity = [0.0, -9.81, 0.0];
+///     link base;
+///     link rod { mass = 1.0; com = [1.0, 0.0, 0.0]; }
+///     joint j = revolute(base -> rod) { transfer = [rot_z(q)]; }
+/// }
+/// let model = Pendulum::default();
+/// let mut c = PdGravity { model: &model, kp: [100.0].into(), kd: [20.0].into() };
+/// let z = nalgebra::Vector1::new(0.0);
+/// let tau = c.effort(&z, &z, &Reference { q: z, qd: z, qdd: z });
+/// assert!((tau[0] - 9.81).abs() < 1e-12); // holds the rod up
+/// ```
+pub struct PdGravity<'a, R, const N: usize> {
+    /// The model whose gravity is compensated.
+    pub model: &'a R,
+    /// Position gains.
+    pub kp: SVector<f64, N>,
+    /// Velocity gains.
+    pub kd: SVector<f64, N>,
+}
+
+impl<R: Robot<N>, const N: usize> Controller<N> for PdGravity<'_, R, N> {
+    fn effort(
+        &mut self,
+        q: &SVector<f64, N>,
+        qd: &SVector<f64, N>,
+        r: &Reference<N>,
+    ) -> SVector<f64, N> {
+        self.model.gravity(q)
+            + self.kp.component_mul(&(r.q - q))
+            + self.kd.component_mul(&(r.qd - qd))
+    }
+}
+
+/// Computed torque: `tau = A(q) (qdd_r + Kd e_d + Kp e) - (Q(0) + Qqt)`.
+pub struct ComputedTorque<'a, R, const N: usize> {
+    /// The model.
+    pub model: &'a R,
+    /// Position gains.
+    pub kp: SVector<f64, N>,
+    /// Velocity gains.
+    pub kd: SVector<f64, N>,
+}
+
+impl<R: Robot<N>, const N: usize> Controller<N> for ComputedTorque<'_, R, N> {
+    fn effort(
+        &mut self,
+        q: &SVector<f64, N>,
+        qd: &SVector<f64, N>,
+        r: &Reference<N>,
+    ) -> SVector<f64, N> {
+        let m = self.model.motion_terms(q, qd);
+        let v = r.qdd + self.kd.component_mul(&(r.qd - qd)) + self.kp.component_mul(&(r.q - q));
+        m.a * v - m.bias()
+    }
+}
+
+/// Sliding mode with a boundary layer: with `e = q_r - q` and the sliding
+/// variable `s = e_d + Lambda e`,
+/// `tau = A(q) (qdd_r + Lambda e_d) - (Q(0) + Qqt) + K sat(s / phi)`.
+pub struct SlidingMode<'a, R, const N: usize> {
+    /// The model.
+    pub model: &'a R,
+    /// Slope of the sliding surface, 1/s.
+    pub lambda: SVector<f64, N>,
+    /// Switching gain.
+    pub k: SVector<f64, N>,
+    /// Boundary layer width (no chattering inside it).
+    pub phi: f64,
+}
+
+impl<R: Robot<N>, const N: usize> Controller<N> for SlidingMode<'_, R, N> {
+    fn effort(
+        &mut self,
+        q: &SVector<f64, N>,
+        qd: &SVector<f64, N>,
+        r: &Reference<N>,
+    ) -> SVector<f64, N> {
+        let m = self.model.motion_terms(q, qd);
+        let (e, ed) = (r.q - q, r.qd - qd);
+        let s = ed + self.lambda.component_mul(&e);
+        let sat = s.map(|x| (x / self.phi).clamp(-1.0, 1.0));
+        m.a * (r.qdd + self.lambda.component_mul(&ed)) - m.bias() + self.k.component_mul(&sat)
+    }
+}
