@@ -151,3 +151,26 @@ fn scenarios_run_by_name_and_write_csv_and_svg() {
         !bad.status.success() && String::from_utf8_lossy(&bad.stderr).contains("unknown scenario")
     );
 }
+
+#[test]
+fn every_controller_follows_the_circle() {
+    let dir = tmp("circle");
+    let lines = robots::scenarios::run("arm3r-circle", &dir).expect("runs");
+    let rms = |name: &str| -> f64 {
+        let line = lines
+            .iter()
+            .find(|l| l.starts_with(name))
+            .expect("a line per controller");
+        let after = line.split("RMS ").nth(1).expect("an RMS figure");
+        after
+            .split(' ')
+            .next()
+            .and_then(|v| v.parse().ok())
+            .expect("a number")
+    };
+    // PD with gravity compensation lags; the model-based ones track.
+    assert!(rms("pd-gravity") < 2e-3);
+    assert!(rms("computed-torque") < 1e-4);
+    assert!(rms("sliding-mode") < 1e-4);
+    assert!(dir.join("path.svg").exists() && dir.join("arm3r-circle-sliding-mode.csv").exists());
+}
