@@ -47,7 +47,14 @@ impl Graph {
                     }
                     let mut p: Vec<Id> = Vec::with_capacity(factors.len() + 2);
                     p.push(self.constant(coef.get() * e as f64));
-                    p.push(self.powi(f, e - 1));
+                    p.push(match e.checked_sub(1) {
+                        Some(m) => self.powi(f, m),
+                        None => {
+                            let inv = self.powi(f, -1);
+                            let fe = self.powi(f, e);
+                            self.mul(fe, inv)
+                        }
+                    });
                     p.push(df);
                     for (j, &(g, ge)) in factors.iter().enumerate() {
                         if j != i {
@@ -90,5 +97,94 @@ impl Graph {
         };
         self.diff_memo.insert((id, v), d);
         d
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use crate::text::golden;
+    use crate::{Graph, Id, Var};
+
+    const X: Var = Var(0);
+
+    /// The derivative by x of what `f` builds from x and y, as text.
+    fn d(f: impl Fn(&mut Graph, Id, Id) -> Id) -> String {
+        let mut g = Graph::new();
+        let (x, y) = (g.var(X), g.var(Var(1)));
+        let e = f(&mut g, x, y);
+        let de = g.diff(e, X);
+        golden(&g, &[de])
+    }
+
+    #[test]
+    fn rules() {
+        assert_eq!(d(|g, x, _| g.sin(x)), "%a = cos(x)\nout[0] = %a\n");
+        assert_eq!(
+            d(|g, x, _| g.cos(x)),
+            "%a = sin(x)\n%b = -1 * %a\nout[0] = %b\n"
+        );
+        assert_eq!(
+            d(|g, x, _| g.tanh(x)),
+            "%a = tanh(x)\n%b = %a^2\n%c = 1 + -1 * %b\nout[0] = %c\n"
+        );
+        assert_eq!(
+            d(|g, x, _| g.sqrt(x)),
+            "%a = sqrt(x)\n%b = 0.5 * %a^-1\nout[0] = %b\n"
+        );
+        assert_eq!(
+            d(|g, x, _| g.abs(x)),
+            "%a = abs(x)\n%b = x * %a^-1\nout[0] = %b\n"
+        );
+        assert_eq!(d(|g, x, _| g.powi(x, 3)), "%a = 3 * x^2\nout[0] = %a\n");
+        assert_eq!(d(|g, x, _| g.powi(x, -1)), "%a = -1 * x^-2\nout[0] = %a\n");
+        assert_eq!(d(|g, x, y| g.mul(x, y)), "out[0] = y\n");
+        assert_eq!(d(|g, _, y| g.sin(y)), "out[0] = 0\n");
+        assert_eq!(d(|g, _, _| g.constant(2.0)), "out[0] = 0\n");
+        assert_eq!(
+            d(|g, x, y| {
+                let xy = g.mul(x, y);
+                let s = g.sin(xy);
+                let k = g.constant(3.0);
+                g.sum(&[s, x, k])
+            }),
+            "%a = x * y\n%b = cos(%a)\n%c = y * %b\n%d = 1 + %c\nout[0] = %d\n"
+        );
+        // Chain rule through a square: d sin(x^2) = 2 x cos(x^2).
+        assert_eq!(
+            d(|g, x, _| {
+                let x2 = g.powi(x, 2);
+                g.sin(x2)
+            }),
+            "%a = x^2\n%b = cos(%a)\n%c = 2 * x * %b\nout[0] = %c\n"
+        );
+    }
+
+    #[test]
+    fn memoised_and_free_when_independent() {
+        let mut g = Graph::new();
+        let (x, y) = (g.var(X), g.var(Var(1)));
+        let s = g.sin(x);
+        let e = g.mul(s, y);
+        let d1 = g.diff(e, X);
+        let n = g.len();
+        assert_eq!(g.diff(e, X), d1);
+        assert_eq!(g.len(), n);
+        let dz = g.diff(e, Var(7));
+        assert!(g.is_zero(dz));
+        // Second derivative: d2/dx2 (y sin x) = -y sin x.
+        let d2 = g.diff(d1, X);
+        let v = g.eval(&[d2], &|v| if v == X { 0.3 } else { 2.0 })[0];
+        assert!((v + 2.0 * 0.3f64.sin()).abs() < 1e-15);
+    }
+
+    #[test]
+    fn abs_kink_is_undefined() {
+        let mut g = Graph::new();
+        let x = g.var(X);
+        let a = g.abs(x);
+        let da = g.diff(a, X);
+        assert_eq!(g.eval(&[da], &|_| -2.0), vec![-1.0]);
+        assert_eq!(g.eval(&[da], &|_| 3.0), vec![1.0]);
+        assert!(g.eval(&[da], &|_| 0.0)[0].is_nan());
     }
 }

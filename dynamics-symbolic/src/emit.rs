@@ -1,4 +1,15 @@
 //! Emission of a DAG as a straight-line Rust `let` chain.
+//!
+//! Every used non-leaf node N is bound once to `tN: f64`; leaves are inlined
+//! (a variable as the caller's tokens, a constant as a suffixed literal).
+//! Bindings are grouped by depth in the DAG: all nodes of one depth (at
+//! most [`MAX_TUPLE`] at a time) are bound by one tuple `let`, e.g.
+//! `let (t4, (t5, t6)): (f64, (f64, f64)) = (x * y, x.sin_cos());`. A chain
+//! of tens of thousands of single `let`s nests one scope per binding, and
+//! rustc's debug-info pass overflowed its stack on a 7-DOF arm; the depth
+//! of these DAGs is small. Sums are `k + a - 2.5 * b`, products
+//! `-3.0 * a * b * b / (c * d.powi(4))` (powers 2 and 3 as repeated
+//! multiplies, `x^-1` as `1.0 / x`), no allocation anywhere.
 
 use std::collections::HashMap;
 
@@ -9,11 +20,12 @@ use crate::graph::Graph;
 use crate::node::{Id, Node, Var};
 
 /// Largest tuple bound by one `let`.
-const MAX_TUPLE: usize = 48;
+pub(crate) const MAX_TUPLE: usize = 48;
 
 /// The emitted code: the `let` chain, and the expression of each root.
+#[derive(Debug, Clone)]
 pub struct Emitted {
-    /// `let tN: f64 = ...;` statements, in topological order.
+    /// `let` statements in topological order; node N is bound to `tN`.
     pub lets: TokenStream,
     /// Each root's value: an identifier, a variable or a literal.
     pub roots: Vec<TokenStream>,
@@ -42,8 +54,21 @@ fn ident(id: Id) -> Ident {
     Ident::new(&format!("t{}", id.index()), Span::call_site())
 }
 
-/// Emits one `let` per used non-leaf node reachable from `roots`; `sin(x)`
-/// and `cos(x)` of the same `x` become one `x.sin_cos()`.
+/// How `sin` and `cos` are computed.
+#[derive(Clone, Copy)]
+enum Trig<'a> {
+    /// `x.sin()`, `x.cos()`, `x.sin_cos()`.
+    Method,
+    /// `path(x).0`, `path(x).1`, `path(x)`.
+    Path(&'a TokenStream),
+}
+
+/// Emits one binding per used non-leaf node reachable from `roots` (see
+/// the module doc for the shape); `sin(x)` and `cos(x)` of the same `x`
+/// become one `x.sin_cos()`, a lone one `x.sin()` or `x.cos()`.
+///
+/// `var` must give an expression that binds tighter than any operator
+/// (an identifier, `q[0]`, `self.p`): it is used as a method receiver.
 ///
 /// ```
 /// use dynamics_symbolic::{emit, Graph, Var};
@@ -52,17 +77,21 @@ fn ident(id: Id) -> Ident {
 /// let s = g.sin(x);
 /// let c = g.cos(x);
 /// let e = g.mul(s, c);
-/// let out = emit(&g, &[e], &|_| quote::quote!(x));
-/// let code = out.lets.to_string();
-/// assert!(code.contains("sin_cos"), "{code}");
+/// let out = emit(&g, &[e, s], &|_| quote::quote!(x));
+/// assert_eq!(
+///     out.lets.to_string(),
+///     "let (t1 , t2) : (f64 , f64) = x . sin_cos () ; let t3 : f64 = t1 * t2 ;"
+/// );
 /// assert_eq!(out.roots[0].to_string(), "t3");
+/// assert_eq!(out.roots[1].to_string(), "t1");
 /// ```
 pub fn emit(graph: &Graph, roots: &[Id], var: &dyn Fn(Var) -> TokenStream) -> Emitted {
-    emit_with(graph, roots, var, &quote!(f64::sin_cos))
+    emit_impl(graph, roots, var, Trig::Method)
 }
 
 /// [`emit()`] with the function that computes `(sin x, cos x)` given as a
-/// path (called as `path(x)`), e.g. a faster one than `f64::sin_cos`.
+/// path (called as `path(x)`, also for a lone sin or cos), e.g. a faster
+/// one than `f64::sin_cos`.
 ///
 /// ```
 /// use dynamics_symbolic::{emit_with, Graph, Var};
@@ -70,13 +99,30 @@ pub fn emit(graph: &Graph, roots: &[Id], var: &dyn Fn(Var) -> TokenStream) -> Em
 /// let x = g.var(Var(0));
 /// let s = g.sin(x);
 /// let out = emit_with(&g, &[s], &|_| quote::quote!(x), &quote::quote!(my::sin_cos));
-/// assert_eq!(out.lets.to_string(), "let t1 = my :: sin_cos (x) . 0 ;");
+/// assert_eq!(out.lets.to_string(), "let t1 : f64 = my :: sin_cos (x) . 0 ;");
 /// ```
 pub fn emit_with(
     graph: &Graph,
     roots: &[Id],
     var: &dyn Fn(Var) -> TokenStream,
     sin_cos: &TokenStream,
+) -> Emitted {
+    emit_impl(graph, roots, var, Trig::Path(sin_cos))
+}
+
+/// One binding: depth, pattern, type, expression.
+struct Item {
+    level: usize,
+    pat: TokenStream,
+    ty: TokenStream,
+    expr: TokenStream,
+}
+
+fn emit_impl(
+    graph: &Graph,
+    roots: &[Id],
+    var: &dyn Fn(Var) -> TokenStream,
+    trig_fn: Trig<'_>,
 ) -> Emitted {
     let reach = graph.reachable(roots);
     // sin/cos pairs: argument -> (sin id, cos id)
@@ -98,37 +144,43 @@ pub fn emit_with(
             }
         }
     };
-    let power = |f: Id, e: i32| -> TokenStream {
+    // `x^e` for e > 0, and whether it is one operand (needs no parentheses).
+    let power = |f: Id, e: i32| -> (TokenStream, bool) {
         let x = operand(f);
         match e {
-            1 => x,
-            2 => quote!(#x * #x),
-            3 => quote!(#x * #x * #x),
-            _ => quote!(#x.powi(#e)),
+            1 => (x, true),
+            2 => (quote!(#x * #x), false),
+            3 => (quote!(#x * #x * #x), false),
+            _ => (quote!(#x.powi(#e)), true),
         }
     };
+    let f64_ty = quote!(f64);
     // Depth of each node: nodes of one depth do not depend on each other.
     let mut level = vec![0usize; graph.len()];
     for &id in &reach {
-        level[id.index()] = graph
+        let mut l = 0;
+        graph
             .node(id)
-            .children()
-            .iter()
-            .map(|c| level[c.index()] + 1)
-            .max()
-            .unwrap_or(0);
+            .for_each_child(|c| l = l.max(level[c.index()] + 1));
+        level[id.index()] = l;
     }
-    // (depth, pattern, expression) of every binding.
-    let mut items: Vec<(usize, TokenStream, TokenStream)> = Vec::new();
+    let mut items: Vec<Item> = Vec::new();
     for &id in &reach {
         let name = ident(id);
-        let rhs = match graph.node(id) {
+        let expr = match graph.node(id) {
             Node::Const(_) | Node::Var(_) => continue,
             Node::Sum { constant, terms } => {
                 let mut out = TokenStream::new();
                 let mut first = true;
-                if constant.get() != 0.0 {
-                    out.extend(float(constant.get()));
+                let k = constant.get();
+                if k != 0.0 {
+                    // Leading: a bare `-1.5f64` needs no parentheses.
+                    out.extend(if k < 0.0 && k.is_finite() {
+                        let lit = Literal::f64_suffixed(-k);
+                        quote!(-#lit)
+                    } else {
+                        float(k)
+                    });
                     first = false;
                 }
                 for (t, c) in terms.iter() {
@@ -151,53 +203,62 @@ pub fn emit_with(
                 out
             }
             Node::Product { coef, factors } => {
-                let num: Vec<TokenStream> = factors
+                let c = coef.get();
+                let mut num: Vec<TokenStream> = Vec::new();
+                // i32::MIN has no positive counterpart: it stays a powi.
+                let in_den = |e: i32| e < 0 && e != i32::MIN;
+                if c.abs() != 1.0 || factors.iter().all(|f| in_den(f.1)) {
+                    num.push(float(c.abs()));
+                }
+                num.extend(
+                    factors
+                        .iter()
+                        .filter(|f| !in_den(f.1))
+                        .map(|&(f, e)| power(f, e).0),
+                );
+                let den: Vec<(TokenStream, bool)> = factors
                     .iter()
-                    .filter(|f| f.1 > 0)
-                    .map(|&(f, e)| power(f, e))
-                    .collect();
-                let den: Vec<TokenStream> = factors
-                    .iter()
-                    .filter(|f| f.1 < 0)
+                    .filter(|f| in_den(f.1))
                     .map(|&(f, e)| power(f, -e))
                     .collect();
-                let c = coef.get();
-                let mut all = Vec::new();
-                if c.abs() != 1.0 || num.is_empty() {
-                    all.push(float(c.abs()));
-                }
-                all.extend(num);
-                let numer = join_mul(all);
-                let signed = if c < 0.0 { quote!(-(#numer)) } else { numer };
-                if den.is_empty() {
-                    signed
-                } else {
-                    let d = join_mul(den);
-                    quote!((#signed) / (#d))
+                let numer = join_mul(num);
+                // `-a * b` is `-(a * b)` exactly (rounding is symmetric).
+                let signed = if c < 0.0 { quote!(-#numer) } else { numer };
+                match &den[..] {
+                    [] => signed,
+                    [(d, true)] => quote!(#signed / #d),
+                    _ => {
+                        let d = join_mul(den.into_iter().map(|d| d.0).collect());
+                        quote!(#signed / (#d))
+                    }
                 }
             }
-            Node::Sin(a) | Node::Cos(a) => {
-                let (s, c) = trig[a];
-                match (s, c) {
+            node @ (Node::Sin(a) | Node::Cos(a)) => {
+                let is_sin = matches!(node, Node::Sin(_));
+                let x = operand(*a);
+                match trig[a] {
                     (Some(s), Some(c)) => {
                         if id == s.min(c) {
-                            let (si, ci, x) = (ident(s), ident(c), operand(*a));
-                            items.push((
-                                level[id.index()],
-                                quote!((#si, #ci)),
-                                quote!(#sin_cos(#x)),
-                            ));
+                            let (si, ci) = (ident(s), ident(c));
+                            let expr = match trig_fn {
+                                Trig::Method => quote!(#x.sin_cos()),
+                                Trig::Path(p) => quote!(#p(#x)),
+                            };
+                            items.push(Item {
+                                level: level[id.index()],
+                                pat: quote!((#si, #ci)),
+                                ty: quote!((f64, f64)),
+                                expr,
+                            });
                         }
                         continue;
                     }
-                    _ => {
-                        let x = operand(*a);
-                        if matches!(graph.node(id), Node::Sin(_)) {
-                            quote!(#sin_cos(#x).0)
-                        } else {
-                            quote!(#sin_cos(#x).1)
-                        }
-                    }
+                    _ => match (trig_fn, is_sin) {
+                        (Trig::Method, true) => quote!(#x.sin()),
+                        (Trig::Method, false) => quote!(#x.cos()),
+                        (Trig::Path(p), true) => quote!(#p(#x).0),
+                        (Trig::Path(p), false) => quote!(#p(#x).1),
+                    },
                 }
             }
             Node::Tanh(a) => {
@@ -213,31 +274,28 @@ pub fn emit_with(
                 quote!(#x.abs())
             }
         };
-        items.push((level[id.index()], quote!(#name), rhs));
+        items.push(Item {
+            level: level[id.index()],
+            pat: quote!(#name),
+            ty: f64_ty.clone(),
+            expr,
+        });
     }
-    // One `let` per depth (in chunks), binding a tuple: a long chain of
-    // single `let`s nests one lexical scope per binding, and rustc's debug
-    // info recursion overflows its stack on the tens of thousands a 7-DOF
-    // arm needs; the depth of the DAG is small.
-    items.sort_by_key(|(l, _, _)| *l);
+    // One `let` per depth (in chunks of at most MAX_TUPLE), binding a tuple.
+    items.sort_by_key(|it| it.level);
     let mut lets = TokenStream::new();
-    let mut start = 0;
-    while start < items.len() {
-        let l = items[start].0;
-        let mut end = start;
-        while end < items.len() && items[end].0 == l && end - start < MAX_TUPLE {
-            end += 1;
+    for group in items.chunk_by(|a, b| a.level == b.level) {
+        for chunk in group.chunks(MAX_TUPLE) {
+            if let [it] = chunk {
+                let (p, t, e) = (&it.pat, &it.ty, &it.expr);
+                lets.extend(quote!(let #p: #t = #e;));
+            } else {
+                let pats = chunk.iter().map(|c| &c.pat);
+                let tys = chunk.iter().map(|c| &c.ty);
+                let exprs = chunk.iter().map(|c| &c.expr);
+                lets.extend(quote!(let (#(#pats),*): (#(#tys),*) = (#(#exprs),*);));
+            }
         }
-        let chunk = &items[start..end];
-        if chunk.len() == 1 {
-            let (_, p, e) = &chunk[0];
-            lets.extend(quote!(let #p = #e;));
-        } else {
-            let pats = chunk.iter().map(|c| &c.1);
-            let exprs = chunk.iter().map(|c| &c.2);
-            lets.extend(quote!(let (#(#pats),*) = (#(#exprs),*);));
-        }
-        start = end;
     }
     Emitted {
         lets,
@@ -255,4 +313,122 @@ fn join_mul(factors: Vec<TokenStream>) -> TokenStream {
         out.extend(f);
     }
     out
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    fn names(v: Var) -> TokenStream {
+        let n = Ident::new(["x", "y", "z"][v.0 as usize], Span::call_site());
+        quote!(#n)
+    }
+
+    #[test]
+    fn golden_small_emission() {
+        let mut g = Graph::new();
+        let (x, y) = (g.var(Var(0)), g.var(Var(1)));
+        let (s, c) = (g.sin(x), g.cos(x));
+        let k = g.constant(-0.5);
+        let ks = g.mul(k, s);
+        let c2 = g.powi(c, 2);
+        let y3 = g.powi(y, -3);
+        let p = g.product(&[ks, c2, y3]);
+        let one = g.constant(1.0);
+        let e = g.sum(&[p, y, one]);
+        let t = g.tanh(y);
+        let out = emit(&g, &[e, t, x, k], &names);
+        assert_eq!(
+            out.lets.to_string(),
+            "let ((t2 , t3) , t12) : ((f64 , f64) , f64) = (x . sin_cos () , y . tanh ()) ; \
+             let t10 : f64 = t2 * t3 * t3 / (y * y * y) ; \
+             let t11 : f64 = 1f64 + y - 0.5f64 * t10 ;"
+        );
+        let roots: Vec<String> = out.roots.iter().map(|r| r.to_string()).collect();
+        assert_eq!(roots, ["t11", "t12", "x", "(- 0.5f64)"]);
+    }
+
+    #[test]
+    fn lone_trig_powers_and_signs() {
+        let mut g = Graph::new();
+        let (x, y) = (g.var(Var(0)), g.var(Var(1)));
+        let c = g.cos(x);
+        let inv = g.powi(y, -1);
+        let m = g.neg(inv);
+        let x5 = g.powi(x, 5);
+        let two = g.constant(2.0);
+        let twox = g.mul(two, x);
+        let sq = g.sqrt(twox);
+        let ab = g.abs(y);
+        let k = g.constant(-1.5);
+        let sum = g.sum(&[k, c, m]);
+        let out = emit(&g, &[sum, x5, sq, ab], &names);
+        assert_eq!(
+            out.lets.to_string(),
+            "let (t2 , t3 , t6 , t8 , t10) : (f64 , f64 , f64 , f64 , f64) = \
+             (x . cos () , 1f64 / y , x . powi (5i32) , 2f64 * x , y . abs ()) ; \
+             let (t9 , t12) : (f64 , f64) = (t8 . sqrt () , - 1.5f64 + t2 - t3) ;"
+        );
+    }
+
+    #[test]
+    fn negative_coefficients_and_quotients() {
+        let mut g = Graph::new();
+        let (x, y) = (g.var(Var(0)), g.var(Var(1)));
+        let inv = g.powi(y, -1);
+        let m = g.neg(inv);
+        let k = g.constant(-3.0);
+        let p = g.product(&[k, x, inv]);
+        let out = emit(&g, &[m, p], &names);
+        assert_eq!(
+            out.lets.to_string(),
+            "let (t4 , t6) : (f64 , f64) = (- 1f64 / y , - 3f64 * x / y) ;"
+        );
+    }
+
+    #[test]
+    fn custom_sin_cos_path() {
+        let mut g = Graph::new();
+        let x = g.var(Var(0));
+        let (s, c) = (g.sin(x), g.cos(x));
+        let y = g.var(Var(1));
+        let cy = g.cos(y);
+        let e = g.product(&[s, c, cy]);
+        let out = emit_with(&g, &[e], &names, &quote!(k::sc));
+        assert_eq!(
+            out.lets.to_string(),
+            "let ((t1 , t2) , t4) : ((f64 , f64) , f64) = (k :: sc (x) , k :: sc (y) . 1) ; \
+             let t5 : f64 = t1 * t2 * t4 ;"
+        );
+    }
+
+    #[test]
+    fn wide_levels_are_split_into_tuples_of_max_size() {
+        let mut g = Graph::new();
+        let x = g.var(Var(0));
+        let roots: Vec<Id> = (1..=(MAX_TUPLE as i32 + 2))
+            .map(|n| g.powi(x, n + 3))
+            .collect();
+        let out = emit(&g, &roots, &names);
+        let lets = out.lets.to_string();
+        assert_eq!(lets.matches("let").count(), 2, "{lets}");
+        assert_eq!(lets.matches("powi").count(), MAX_TUPLE + 2);
+    }
+
+    #[test]
+    fn floats() {
+        assert_eq!(float(2.0).to_string(), "2f64");
+        assert_eq!(float(-0.25).to_string(), "(- 0.25f64)");
+        assert_eq!(float(f64::NAN).to_string(), "f64 :: NAN");
+        assert_eq!(float(f64::NEG_INFINITY).to_string(), "(- f64 :: INFINITY)");
+    }
+
+    #[test]
+    fn leaves_only_emit_nothing() {
+        let mut g = Graph::new();
+        let x = g.var(Var(2));
+        let out = emit(&g, &[x], &names);
+        assert!(out.lets.is_empty());
+        assert_eq!(out.roots[0].to_string(), "z");
+    }
 }

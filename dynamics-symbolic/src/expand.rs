@@ -170,3 +170,41 @@ impl Graph {
         self.sum(&terms)
     }
 }
+
+#[cfg(test)]
+mod tests {
+    use crate::text::golden;
+    use crate::{Graph, Var};
+
+    #[test]
+    fn sin_squares_become_cos_squares_and_cancel() {
+        let mut g = Graph::new();
+        let (x, y) = (g.var(Var(0)), g.var(Var(1)));
+        let (s, c) = (g.sin(x), g.cos(x));
+        // (y + s)^2 + (c - y)(c + y) ... = s^2 + 2 y s + c^2 = 1 + 2 y s
+        let ys = g.add(y, s);
+        let a = g.powi(ys, 2);
+        let cmy = g.sub(c, y);
+        let cpy = g.add(c, y);
+        let b = g.mul(cmy, cpy);
+        let e = g.add(a, b);
+        let z = g.expand(e, 100).expect("small");
+        assert_eq!(
+            golden(&g, &[z]),
+            "%a = sin(x)\n%b = y * %a\n%c = 1 + 2 * %b\nout[0] = %c\n"
+        );
+        let at = |v: Var| if v == Var(0) { 0.4 } else { -1.1 };
+        let (before, after) = (g.eval(&[e], &at)[0], g.eval(&[z], &at)[0]);
+        assert!((before - after).abs() < 1e-14);
+    }
+
+    #[test]
+    fn too_many_terms_is_none() {
+        let mut g = Graph::new();
+        let (x, y) = (g.var(Var(0)), g.var(Var(1)));
+        let s = g.add(x, y);
+        let p = g.powi(s, 6); // 7 terms
+        assert!(g.expand(p, 6).is_none());
+        assert!(g.expand(p, 7).is_some());
+    }
+}

@@ -67,7 +67,7 @@ impl Graph {
             }
             other => {
                 let mut d: Vec<u64> = Vec::new();
-                for c in other.children() {
+                other.for_each_child(|c| {
                     let cd = &self.deps[c.index()];
                     if cd.len() > d.len() {
                         d.resize(cd.len(), 0);
@@ -75,7 +75,7 @@ impl Graph {
                     for (w, x) in d.iter_mut().zip(cd.iter()) {
                         *w |= x;
                     }
-                }
+                });
                 d.into_boxed_slice()
             }
         };
@@ -86,7 +86,9 @@ impl Graph {
         id
     }
 
-    /// A constant (non-finite values are stored as they are; they never fold).
+    /// A constant. The builders never fold to a NaN or an infinity, but a
+    /// non-finite value given here is stored as it is (it then never folds
+    /// with other constants).
     pub fn constant(&mut self, v: f64) -> Id {
         self.intern(Node::Const(F64::new(v)))
     }
@@ -121,7 +123,8 @@ impl Graph {
         w < d.len() && d[w] & (1 << (v.0 % 64)) != 0
     }
 
-    /// Ids reachable from `roots`, in arena (topological) order.
+    /// Ids reachable from `roots` (leaves included, each once), in arena
+    /// (topological) order.
     pub fn reachable(&self, roots: &[Id]) -> Vec<Id> {
         let mut seen = vec![false; self.nodes.len()];
         let mut stack: Vec<Id> = roots.to_vec();
@@ -129,12 +132,65 @@ impl Graph {
             if std::mem::replace(&mut seen[id.index()], true) {
                 continue;
             }
-            stack.extend(self.node(id).children());
+            self.node(id).for_each_child(|c| stack.push(c));
         }
         seen.iter()
             .enumerate()
             .filter(|(_, s)| **s)
             .map(|(i, _)| Id(i as u32))
             .collect()
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn equal_nodes_are_one_id_and_children_come_first() {
+        let mut g = Graph::new();
+        assert!(g.is_empty());
+        let x = g.var(Var(0));
+        let x2 = g.var(Var(0));
+        assert_eq!(x, x2);
+        let s = g.sin(x);
+        assert_eq!(g.sin(x), s);
+        assert!(s > x);
+        assert_eq!(g.len(), 2);
+        assert_eq!(g.node(s), &Node::Sin(x));
+        let z = g.constant(-0.0);
+        assert_eq!(z, g.constant(0.0));
+        assert!(g.is_zero(z));
+        assert!(!g.is_one(z));
+    }
+
+    #[test]
+    fn dependencies_are_bit_tests_over_many_variables() {
+        let mut g = Graph::new();
+        let a = g.var(Var(3));
+        let b = g.var(Var(130));
+        let p = g.mul(a, b);
+        let s = g.sin(p);
+        for v in [Var(3), Var(130)] {
+            assert!(g.depends_on(s, v));
+        }
+        for v in [Var(0), Var(64), Var(129), Var(131), Var(1000)] {
+            assert!(!g.depends_on(s, v));
+        }
+        let k = g.constant(2.0);
+        assert!(!g.depends_on(k, Var(0)));
+    }
+
+    #[test]
+    fn reachable_is_sorted_and_skips_unused_nodes() {
+        let mut g = Graph::new();
+        let x = g.var(Var(0));
+        let y = g.var(Var(1));
+        let unused = g.cos(y);
+        let s = g.sin(x);
+        let e = g.mul(s, x);
+        let r = g.reachable(&[e, s]);
+        assert_eq!(r, vec![x, s, e]);
+        assert!(!r.contains(&unused));
     }
 }

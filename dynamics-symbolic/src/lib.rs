@@ -4,12 +4,18 @@
 //! - [`Graph`]: a flat arena of [`Node`]s where children come before parents
 //!   (after egg's `RecExpr`), with a hash map so that structurally equal
 //!   nodes are one [`Id`]: common subexpression elimination is free.
-//! - Builders simplify on construction (`build.rs`): constant folding, flat
-//!   sorted sums and products with like terms collected, negation as a
-//!   coefficient, `sin^2 + cos^2 = 1`.
+//! - [`Node`]: a constant, a variable, an n-ary [`Node::Sum`]
+//!   (`c + sum k_i t_i`), an n-ary [`Node::Product`] (`k * prod f_i^e_i`,
+//!   integer exponents, so division and powers are products), or a call
+//!   (sin, cos, tanh, sqrt, abs).
+//! - Builders simplify on construction (`build.rs`): constant folding that
+//!   never makes a NaN or an infinity, flat sorted sums and products with
+//!   like terms collected, negation as a coefficient, `sin^2 + cos^2 = 1`,
+//!   sin/cos parity. Products are not distributed over sums.
 //! - [`Graph::diff`]: exact differentiation; [`Graph::eval`]: numbers;
 //!   [`Graph::to_text`]: a readable dump; [`Graph::count_ops`]: operation
-//!   counts; [`emit()`]: a straight-line `let` chain as Rust tokens.
+//!   counts; [`Graph::expand`]: canonical trigonometric polynomials;
+//!   [`emit()`]: a straight-line `let` chain as Rust tokens.
 //!
 //! ```
 //! use dynamics_symbolic::{Graph, Var};
