@@ -81,3 +81,23 @@ impl<const N: usize> OdeState for JointState<N> {
         }
     }
 }
+
+/// Two states integrated together (e.g. a nominal motion and its perturbation).
+impl<A: OdeState, B: OdeState> OdeState for (A, B) {
+    fn axpy(&self, a: f64, x: &Self) -> Self {
+        (self.0.axpy(a, &x.0), self.1.axpy(a, &x.1))
+    }
+    fn error_norm(e: &Self, y0: &Self, y1: &Self, rtol: f64, atol: f64) -> f64 {
+        let a = A::error_norm(&e.0, &y0.0, &y1.0, rtol, atol);
+        let b = B::error_norm(&e.1, &y0.1, &y1.1, rtol, atol);
+        a.max(b)
+    }
+    fn first_non_finite(&self) -> Option<usize> {
+        self.0
+            .first_non_finite()
+            .or_else(|| self.1.first_non_finite())
+    }
+    fn zero() -> Self {
+        (A::zero(), B::zero())
+    }
+}

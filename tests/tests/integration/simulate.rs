@@ -179,3 +179,65 @@ fn csv_has_the_design_columns() {
     assert!(header.starts_with("t,q_q1,q_q2,q_q3,qd_q1"), "{header}");
     assert_eq!(text.lines().count(), 12);
 }
+
+#[test]
+fn linearised_response_matches_the_nonlinear_one_to_second_order() {
+    use dynamics_runtime::perturbation_response;
+    let r = robots::Arm3r::new(robots::Arm3rParams {
+        m: 2.0,
+        b1: 1.0,
+        b2: 1.0,
+        b3: 1.0,
+    });
+    let tol = Tolerances {
+        rtol: 1e-11,
+        atol: 1e-13,
+        ..Default::default()
+    };
+    let u = |t: f64, _: &Vector3<f64>, _: &Vector3<f64>| {
+        Vector3::new(20.0 + t.sin(), 8.0 * t.cos(), 2.0)
+    };
+    let pulse = |t: f64| {
+        if t < 0.2 {
+            Vector3::new(1.0, -0.5, 0.3)
+        } else {
+            Vector3::zeros()
+        }
+    };
+    let q0 = Vector3::new(0.2, 0.3, -0.4);
+    let zero = JointState {
+        q: Vector3::zeros(),
+        qd: Vector3::zeros(),
+    };
+    let lin = perturbation_response(&r, q0, Vector3::zeros(), u, pulse, zero, 1.0, 0.01, tol)
+        .expect("linear");
+    let err = |eps: f64| {
+        let dist = simulate(
+            &r,
+            q0,
+            Vector3::zeros(),
+            |t, q, qd| u(t, q, qd) + pulse(t) * eps,
+            1.0,
+            0.01,
+            tol,
+        )
+        .expect("nonlinear");
+        dist.q
+            .iter()
+            .zip(&lin.nominal.q)
+            .zip(&lin.dx)
+            .map(|((qd, qn), dx)| (qd - qn - dx * eps).abs().max())
+            .fold(0.0, f64::max)
+    };
+    let (e1, e2, e3) = (err(4e-2), err(2e-2), err(1e-2));
+    let slope = ((e1 / e2).log2() + (e2 / e3).log2()) / 2.0;
+    eprintln!("second-order check: errors {e1:e} {e2:e} {e3:e}, slope {slope}");
+    assert!(
+        (slope - 2.0).abs() < 0.2,
+        "errors {e1:e} {e2:e} {e3:e}: slope {slope}"
+    );
+    assert!(
+        lin.dx.iter().any(|d| d.abs().max() > 1e-3),
+        "the pulse moves the arm"
+    );
+}
