@@ -5,8 +5,8 @@
 
 use nalgebra::SVector;
 
-use crate::ode::{Dopri5, JointState, OdeError, Tolerances};
-use crate::simulate::{SimError, Trajectory};
+use crate::ode::{JointState, Tolerances};
+use crate::simulate::{check_span, sampled, SimError, Trajectory};
 use crate::Robot;
 
 /// The nominal motion and the perturbation at the output times.
@@ -56,11 +56,7 @@ pub fn perturbation_response<R: Robot<N>, const N: usize>(
     dt: f64,
     tol: Tolerances,
 ) -> Result<Perturbed<N>, SimError> {
-    if !(t_end.is_finite() && t_end > 0.0 && dt.is_finite() && dt > 0.0 && dt <= t_end) {
-        return Err(SimError::Span(format!(
-            "t_end = {t_end}, dt = {dt}: need 0 < dt <= t_end"
-        )));
-    }
+    check_span(t_end, dt)?;
     type Pair<const N: usize> = (JointState<N>, JointState<N>);
     let mut eval = |t: f64,
                     x: &Pair<N>|
@@ -88,10 +84,6 @@ pub fn perturbation_response<R: Robot<N>, const N: usize>(
         Ok((qdd, chol.solve(&rhs), u))
     };
     let x0: Pair<N> = (JointState { q: q0, qd: qd0 }, dx0);
-    let mut samples = vec![(0.0, x0)];
-    let n_out = (t_end / dt).round() as usize;
-    let mut next = 1usize;
-    let mut ode = Dopri5::new(0.0, x0, tol);
     let mut rhs = |t: f64, x: &Pair<N>| -> Result<Pair<N>, SimError> {
         let (qdd, dxdd, _) = eval(t, x)?;
         Ok((
@@ -102,23 +94,7 @@ pub fn perturbation_response<R: Robot<N>, const N: usize>(
             },
         ))
     };
-    let run = ode.run(&mut rhs, t_end, |step| {
-        while next <= n_out {
-            let ts = (next as f64 * dt).min(t_end);
-            if ts > step.t0 + step.h + 1e-12 {
-                break;
-            }
-            samples.push((ts, step.at(ts)));
-            next += 1;
-        }
-        true
-    });
-    let failure = match run {
-        Ok(()) => None,
-        Err(OdeError::Rhs(e)) => Some(e),
-        Err(OdeError::StepSizeCollapsed { t, h }) => Some(SimError::StepSizeCollapsed { t, h }),
-        Err(OdeError::TooManySteps { t }) => Some(SimError::TooManySteps { t }),
-    };
+    let (samples, failure) = sampled(&mut rhs, x0, t_end, dt, tol);
     let mut out = Perturbed::default();
     for (t, x) in samples {
         let (qdd, dxdd, u) = eval(t, &x)?;

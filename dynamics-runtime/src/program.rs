@@ -11,8 +11,8 @@
 
 use nalgebra::{SMatrix, SVector};
 
-use crate::ode::{Dopri5, JointState, OdeError, Tolerances};
-use crate::simulate::{SimError, Trajectory};
+use crate::ode::{JointState, Tolerances};
+use crate::simulate::{check_span, sampled, SimError, Trajectory};
 use crate::{Constrained, DynamicsError};
 
 /// A constrained simulation: the motion, the constraint forces and how far
@@ -120,11 +120,7 @@ pub fn simulate_program<R: Constrained<N, M>, const N: usize, const M: usize>(
     tol: Tolerances,
     gains: Baumgarte,
 ) -> Result<ProgramMotion<N, M>, SimError> {
-    if !(t_end.is_finite() && t_end > 0.0 && dt.is_finite() && dt > 0.0 && dt <= t_end) {
-        return Err(SimError::Span(format!(
-            "t_end = {t_end}, dt = {dt}: need 0 < dt <= t_end"
-        )));
-    }
+    check_span(t_end, dt)?;
     let mut eval = |t: f64,
                     x: &JointState<N>|
      -> Result<(SVector<f64, N>, SVector<f64, M>, SVector<f64, N>), SimError> {
@@ -139,31 +135,11 @@ pub fn simulate_program<R: Constrained<N, M>, const N: usize, const M: usize>(
             .map_err(|source| SimError::Dynamics { t, source })?;
         Ok((qdd, lambda, u))
     };
-    let mut samples: Vec<(f64, JointState<N>)> = vec![(0.0, JointState { q: q0, qd: qd0 })];
-    let n_out = (t_end / dt).round() as usize;
-    let mut next = 1usize;
-    let mut ode = Dopri5::new(0.0, JointState { q: q0, qd: qd0 }, tol);
     let mut rhs = |t: f64, x: &JointState<N>| -> Result<JointState<N>, SimError> {
         let (qdd, _, _) = eval(t, x)?;
         Ok(JointState { q: x.qd, qd: qdd })
     };
-    let run = ode.run(&mut rhs, t_end, |step| {
-        while next <= n_out {
-            let ts = (next as f64 * dt).min(t_end);
-            if ts > step.t0 + step.h + 1e-12 {
-                break;
-            }
-            samples.push((ts, step.at(ts)));
-            next += 1;
-        }
-        true
-    });
-    let failure = match run {
-        Ok(()) => None,
-        Err(OdeError::Rhs(e)) => Some(e),
-        Err(OdeError::StepSizeCollapsed { t, h }) => Some(SimError::StepSizeCollapsed { t, h }),
-        Err(OdeError::TooManySteps { t }) => Some(SimError::TooManySteps { t }),
-    };
+    let (samples, failure) = sampled(&mut rhs, JointState { q: q0, qd: qd0 }, t_end, dt, tol);
     let mut out = ProgramMotion::default();
     for (t, x) in samples {
         let (qdd, lambda, u) = eval(t, &x)?;

@@ -5,7 +5,7 @@ use std::io::Write;
 use nalgebra::SVector;
 use thiserror::Error;
 
-use crate::ode::{Dopri5, JointState, OdeError, Tolerances};
+use crate::ode::{Dopri5, JointState, OdeError, OdeState, Tolerances};
 use crate::{DynamicsError, Robot};
 
 /// Why a simulation stopped. Every variant says when.
@@ -117,16 +117,7 @@ pub fn simulate<R: Robot<N>, const N: usize>(
     dt: f64,
     tol: Tolerances,
 ) -> Result<Trajectory<N>, SimError> {
-    if !(t_end.is_finite() && t_end > 0.0) {
-        return Err(SimError::Span(format!(
-            "t_end must be positive and finite, got {t_end}"
-        )));
-    }
-    if !(dt.is_finite() && dt > 0.0 && dt <= t_end) {
-        return Err(SimError::Span(format!(
-            "the output step must be in (0, t_end], got {dt}"
-        )));
-    }
+    check_span(t_end, dt)?;
     let mut accel =
         |t: f64, x: &JointState<N>| -> Result<(SVector<f64, N>, SVector<f64, N>), SimError> {
             let tau = input(t, &x.q, &x.qd);
@@ -160,35 +151,11 @@ pub fn simulate<R: Robot<N>, const N: usize>(
         Ok(())
     };
     let x0 = JointState { q: q0, qd: qd0 };
-    record(0.0, &x0, &mut out, &mut accel)?;
-    let samples = (t_end / dt).round() as usize;
-    let mut next = 1usize;
-    let mut failure: Option<SimError> = None;
-    let mut ode = Dopri5::new(0.0, x0, tol);
     let mut rhs = |t: f64, x: &JointState<N>| -> Result<JointState<N>, SimError> {
         let (qdd, _) = accel(t, x)?;
         Ok(JointState { q: x.qd, qd: qdd })
     };
-    let mut pending: Vec<(f64, JointState<N>)> = Vec::new();
-    let run = ode.run(&mut rhs, t_end, |step| {
-        while next <= samples {
-            let ts = (next as f64 * dt).min(t_end);
-            if ts > step.t0 + step.h + 1e-12 {
-                break;
-            }
-            pending.push((ts, step.at(ts)));
-            next += 1;
-        }
-        true
-    });
-    match run {
-        Ok(()) => {}
-        Err(OdeError::Rhs(e)) => failure = Some(e),
-        Err(OdeError::StepSizeCollapsed { t, h }) => {
-            failure = Some(SimError::StepSizeCollapsed { t, h })
-        }
-        Err(OdeError::TooManySteps { t }) => failure = Some(SimError::TooManySteps { t }),
-    }
+    let (pending, failure) = sampled(&mut rhs, x0, t_end, dt, tol);
     for (t, x) in pending {
         if let Some(i) = [x.q, x.qd]
             .iter()
@@ -209,4 +176,54 @@ pub fn simulate<R: Robot<N>, const N: usize>(
         Some(e) => Err(e),
         None => Ok(out),
     }
+}
+
+/// Fails unless `0 < dt <= t_end < inf`.
+pub(crate) fn check_span(t_end: f64, dt: f64) -> Result<(), SimError> {
+    if !(t_end.is_finite() && t_end > 0.0) {
+        return Err(SimError::Span(format!(
+            "t_end must be positive and finite, got {t_end}"
+        )));
+    }
+    if !(dt.is_finite() && dt > 0.0 && dt <= t_end) {
+        return Err(SimError::Span(format!(
+            "the output step must be in (0, t_end], got {dt}"
+        )));
+    }
+    Ok(())
+}
+
+/// Integrates `rhs` from (0, x0) to `t_end` by Dormand-Prince 5(4) and
+/// returns the dense-output samples at 0, dt, 2 dt, ... reached, with the
+/// error that ended the run early, if any (the samples before it are kept
+/// so that callers can report them).
+pub(crate) fn sampled<S: OdeState>(
+    rhs: &mut impl FnMut(f64, &S) -> Result<S, SimError>,
+    x0: S,
+    t_end: f64,
+    dt: f64,
+    tol: Tolerances,
+) -> (Vec<(f64, S)>, Option<SimError>) {
+    let n_out = (t_end / dt).round() as usize;
+    let mut samples = vec![(0.0, x0)];
+    let mut next = 1usize;
+    let mut ode = Dopri5::new(0.0, x0, tol);
+    let run = ode.run(rhs, t_end, |step| {
+        while next <= n_out {
+            let ts = (next as f64 * dt).min(t_end);
+            if ts > step.t0 + step.h + 1e-12 {
+                break;
+            }
+            samples.push((ts, step.at(ts)));
+            next += 1;
+        }
+        true
+    });
+    let failure = match run {
+        Ok(()) => None,
+        Err(OdeError::Rhs(e)) => Some(e),
+        Err(OdeError::StepSizeCollapsed { t, h }) => Some(SimError::StepSizeCollapsed { t, h }),
+        Err(OdeError::TooManySteps { t }) => Some(SimError::TooManySteps { t }),
+    };
+    (samples, failure)
 }
