@@ -138,7 +138,16 @@ pub fn mass_matrix(model: &Model, vars: Vars, g: &mut Graph) -> Option<Vec<Vec<I
         pc.j = std::array::from_fn(|r| add(g, pc.j[r], c.j[r]));
         pending[parent].extend(pend);
     }
-    Some(super::symmetric(g, &terms))
+    let mut a = vec![vec![zero; n]; n];
+    for i in 0..n {
+        for j in i..n {
+            let s = g.sum(&terms[i][j]);
+            let s = super::smaller_expanded(g, s);
+            a[i][j] = s;
+            a[j][i] = s;
+        }
+    }
+    Some(a)
 }
 
 /// Adds a body (mass, centre, inertia about the centre) given in the

@@ -126,23 +126,6 @@ fn smaller_expanded(g: &mut Graph, e: Id) -> Id {
     }
 }
 
-/// A symmetric matrix from the term lists of its upper triangle, each entry
-/// summed and expanded where that is smaller; the lower triangle shares the
-/// nodes.
-fn symmetric(g: &mut Graph, terms: &[Vec<Vec<Id>>]) -> Vec<Vec<Id>> {
-    let n = terms.len();
-    let mut a = vec![vec![g.constant(0.0); n]; n];
-    for i in 0..n {
-        for j in i..n {
-            let s = g.sum(&terms[i][j]);
-            let s = smaller_expanded(g, s);
-            a[i][j] = s;
-            a[j][i] = s;
-        }
-    }
-    a
-}
-
 /// Derives every output of the model.
 pub fn derive(model: &Model) -> Derived {
     let n = model.joints.iter().filter(|j| j.coord.is_some()).count();
