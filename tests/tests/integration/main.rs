@@ -1,5 +1,6 @@
 //! Integration tests, compiled into one binary (faster on two cores).
 
+mod effects;
 mod oracle;
 mod properties;
 mod simulate;

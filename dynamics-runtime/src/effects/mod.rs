@@ -1,0 +1,17 @@
+//! Unmodelled effects as run-time add-ons to any generated robot (seed 001
+//! sec. 3.2-3.4; the design notes' diagnosis vocabulary): friction laws,
+//! rotor inertia, payload, two-mass elastic joints, backlash with
+//! event-located contact switching, environment resistance at the tip, and
+//! sensor faults applied to what is measured.
+//!
+//! [`Plant`] is a robot with effects attached; [`PlantSim`] integrates it.
+
+mod effect;
+mod kind;
+mod plant;
+mod tip;
+
+pub use effect::{smooth_sign, Effect, SIGN_SMOOTHING};
+pub use kind::{EffectKind, PlaceKind, UnknownEffect};
+pub use plant::{Plant, PlantError, PlantSim, PlantState, Switch};
+pub use tip::Tip;
