@@ -19,6 +19,7 @@
 mod check;
 mod constraint;
 pub mod control;
+pub mod data;
 pub mod effects;
 mod error;
 pub mod ode;
