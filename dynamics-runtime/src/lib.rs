@@ -29,6 +29,7 @@ mod program;
 mod robot;
 mod simulate;
 mod solve;
+pub mod synth;
 pub mod trig;
 
 pub use constraint::Constrained;

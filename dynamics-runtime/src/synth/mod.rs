@@ -1,0 +1,220 @@
+//! Synthetic "measured" data with a withheld effect: the robot with the
+//! effect attached follows an exciting reference under a computed-torque
+//! controller built on the nominal model (which does not know the effect);
+//! positions, velocities and efforts are recorded at a fixed rate with
+//! sensor noise, sensor faults applied to what is measured.
+
+mod draw;
+mod excitation;
+mod rng;
+
+pub use draw::{draw_effect, Scales};
+pub use excitation::{Excitation, ExcitationKind};
+pub use rng::Rng;
+
+use nalgebra::SVector;
+use thiserror::Error;
+
+use crate::control::Reference;
+use crate::data::Measured;
+use crate::effects::{Effect, Plant, PlantError};
+use crate::ode::Tolerances;
+use crate::Robot;
+
+/// Sensor noise (standard deviations).
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct Noise {
+    /// Position noise (rad or m).
+    pub q: f64,
+    /// Velocity noise (rad/s or m/s).
+    pub qd: f64,
+    /// Effort noise as a fraction of each joint's peak nominal effort.
+    pub tau_relative: f64,
+}
+
+impl Default for Noise {
+    /// 2e-5 rad (a 17-18 bit encoder), 2e-3 rad/s, 0.2 % of peak effort.
+    fn default() -> Self {
+        Noise {
+            q: 2e-5,
+            qd: 2e-3,
+            tau_relative: 2e-3,
+        }
+    }
+}
+
+/// How to generate a data set.
+#[derive(Debug, Clone, PartialEq)]
+pub struct SynthOptions<const N: usize> {
+    /// Length of the run, s.
+    pub duration: f64,
+    /// Sample rate, Hz.
+    pub rate: f64,
+    /// Reference motion kind.
+    pub excitation: ExcitationKind,
+    /// Pose the reference moves about.
+    pub home: SVector<f64, N>,
+    /// Amplitude of the reference per joint.
+    pub amplitude: SVector<f64, N>,
+    /// Closed-loop natural frequency of the tracking controller, rad/s.
+    pub bandwidth: f64,
+    /// Sensor noise.
+    pub noise: Noise,
+    /// Random seed (reference and noise).
+    pub seed: u64,
+}
+
+impl<const N: usize> Default for SynthOptions<N> {
+    fn default() -> Self {
+        SynthOptions {
+            duration: 8.0,
+            rate: 1000.0,
+            excitation: ExcitationKind::Sines,
+            home: SVector::zeros(),
+            amplitude: SVector::repeat(0.6),
+            bandwidth: 12.0,
+            noise: Noise::default(),
+            seed: 1,
+        }
+    }
+}
+
+/// Why generation failed.
+#[derive(Debug, Error)]
+pub enum SynthError {
+    /// The plant could not be built or simulated.
+    #[error(transparent)]
+    Plant(#[from] PlantError),
+    /// The options are unusable.
+    #[error("bad option: {0}")]
+    Options(String),
+}
+
+/// Simulates `robot` with `effects` attached and records the measured data.
+///
+/// ```
+/// use dynamics_runtime::effects::Effect;
+/// use dynamics_runtime::synth::{synthesize, SynthOptions};
+/// dynamics_macros::robot! {
+///     pub robot Pendulum;
+///     gravity = [0.0, -9.81, 0.0];
+///     link base;
+///     link rod { mass = 1.0; com = [0.5, 0.0, 0.0]; inertia = [1e-4, 0.02, 0.02]; }
+///     joint j = revolute(base -> rod) { transfer = [rot_z(q)]; }
+/// }
+/// let opts = SynthOptions::<1> { duration: 1.0, ..Default::default() };
+/// let data = synthesize(&Pendulum::default(), &[Effect::CoulombFriction { joint: 0, fc: 0.1 }], &opts).unwrap();
+/// assert_eq!(data.len(), 1001);
+/// ```
+pub fn synthesize<R: Robot<N> + Clone, const N: usize>(
+    robot: &R,
+    effects: &[Effect],
+    opts: &SynthOptions<N>,
+) -> Result<Measured<N>, SynthError> {
+    if !(opts.rate.is_finite()
+        && opts.rate > 0.0
+        && opts.duration.is_finite()
+        && opts.duration > 0.0)
+    {
+        return Err(SynthError::Options(format!(
+            "duration ({}) and rate ({}) must be positive",
+            opts.duration, opts.rate
+        )));
+    }
+    let plant = Plant::new(robot.clone(), effects.to_vec())?;
+    let mut rng = Rng::new(opts.seed);
+    let reference = Excitation::new(
+        opts.excitation,
+        opts.home,
+        opts.amplitude,
+        opts.duration,
+        &mut rng,
+    );
+    let scales = Scales::of(robot, &reference, opts.duration);
+    let dt = 1.0 / opts.rate;
+    let n = (opts.duration * opts.rate).round() as usize + 1;
+    let (mut offset, mut delay) = (SVector::<f64, N>::zeros(), 0.0);
+    for e in effects {
+        match *e {
+            Effect::EncoderOffset { joint, offset: o } => offset[joint] += o,
+            Effect::TimeDelay { delay: d } => delay += d,
+            _ => {}
+        }
+    }
+    let r0 = reference.at(0.0);
+    let mut sim = plant.start(r0.q, r0.qd);
+    let tol = Tolerances {
+        rtol: 1e-9,
+        atol: 1e-11,
+        ..Default::default()
+    };
+    let kp = opts.bandwidth * opts.bandwidth;
+    let kd = 2.0 * opts.bandwidth;
+    let mut truth: Vec<(SVector<f64, N>, SVector<f64, N>)> = Vec::with_capacity(n);
+    let mut out = Measured::<N> {
+        qd_measured: true,
+        ..Default::default()
+    };
+    for k in 0..n {
+        let t = k as f64 * dt;
+        truth.push((sim.state.q, sim.state.qd));
+        // What the sensors report: late by `delay`, shifted by the offsets.
+        let (q_seen, qd_seen) = delayed(&truth, t - delay, dt, &truth[0]);
+        let q_seen = q_seen + offset;
+        let q_meas = q_seen + noise_vec(&mut rng, opts.noise.q);
+        let qd_meas = qd_seen + noise_vec(&mut rng, opts.noise.qd);
+        let r: Reference<N> = reference.at(t);
+        let v = r.qdd + (r.q - q_meas) * kp + (r.qd - qd_meas) * kd;
+        let tau = robot.inverse_dynamics(&q_meas, &qd_meas, &v);
+        let mut tau_meas = tau;
+        for j in 0..N {
+            tau_meas[j] += opts.noise.tau_relative * scales.peak_effort[j] * rng.normal();
+        }
+        out.t.push(t);
+        out.q.push(q_meas);
+        out.qd.push(qd_meas);
+        out.tau.push(tau_meas);
+        if k + 1 < n {
+            sim.advance(&plant, (k + 1) as f64 * dt, &tau, tol)?;
+        }
+    }
+    Ok(out)
+}
+
+fn noise_vec<const N: usize>(rng: &mut Rng, sigma: f64) -> SVector<f64, N> {
+    SVector::from_fn(|_, _| sigma * rng.normal())
+}
+
+/// The true (q, qd) at time `t` from samples every `dt`, by cubic Hermite
+/// interpolation; before the start, the initial state.
+fn delayed<const N: usize>(
+    samples: &[(SVector<f64, N>, SVector<f64, N>)],
+    t: f64,
+    dt: f64,
+    first: &(SVector<f64, N>, SVector<f64, N>),
+) -> (SVector<f64, N>, SVector<f64, N>) {
+    if t <= 0.0 {
+        return *first;
+    }
+    let i = ((t / dt).floor() as usize).min(samples.len() - 1);
+    if i + 1 >= samples.len() {
+        return samples[i];
+    }
+    let s = t / dt - i as f64;
+    let ((p0, v0), (p1, v1)) = (samples[i], samples[i + 1]);
+    let (h00, h10, h01, h11) = (
+        2.0 * s.powi(3) - 3.0 * s * s + 1.0,
+        s.powi(3) - 2.0 * s * s + s,
+        -2.0 * s.powi(3) + 3.0 * s * s,
+        s.powi(3) - s * s,
+    );
+    let p = p0 * h00 + v0 * (h10 * dt) + p1 * h01 + v1 * (h11 * dt);
+    let (d00, d10, d01, d11) = (
+        6.0 * s * s - 6.0 * s,
+        3.0 * s * s - 4.0 * s + 1.0,
+        -6.0 * s * s + 6.0 * s,
+        3.0 * s * s - 2.0 * s,
+    );
+    let v = (p0 * d00 + p1 * d01) / dt + v0 * d10 + v1 * d11;
+    (p, v)
+}
