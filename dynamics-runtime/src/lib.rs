@@ -20,6 +20,7 @@ mod check;
 mod constraint;
 pub mod control;
 pub mod data;
+pub mod diagnose;
 pub mod effects;
 mod error;
 pub mod ode;

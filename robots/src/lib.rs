@@ -12,6 +12,7 @@
 pub mod arm3r;
 pub mod compare;
 pub mod eval;
+pub mod gap;
 pub mod mar;
 pub mod plot;
 pub mod registry;

@@ -72,6 +72,24 @@ pub enum RegistryError {
     States(#[from] StatesError),
 }
 
+/// Runs `$body` with `$r` bound to the concrete robot inside an [`AnyRobot`].
+#[macro_export]
+#[doc(hidden)]
+macro_rules! each_robot {
+    ($self:expr, $r:ident => $body:expr) => {
+        match $self {
+            $crate::registry::AnyRobot::Arm3r($r) => $body,
+            $crate::registry::AnyRobot::Rrp($r) => $body,
+            $crate::registry::AnyRobot::Mar($r) => $body,
+            $crate::registry::AnyRobot::Ur5($r) => $body,
+            $crate::registry::AnyRobot::Panda($r) => $body,
+            $crate::registry::AnyRobot::Arm3rUrdf($r) => $body,
+            $crate::registry::AnyRobot::RrpUrdf($r) => $body,
+            $crate::registry::AnyRobot::MarUrdf($r) => $body,
+        }
+    };
+}
+
 macro_rules! each {
     ($self:expr, $r:ident => $body:expr) => {
         match $self {

@@ -13,8 +13,94 @@ fn tmp(name: &str) -> std::path::PathBuf {
 }
 
 #[test]
-fn default_command_checks_every_seed_robot() {
+fn default_command_diagnoses_the_built_in_case() {
     let out = dynamics().output().expect("runs");
+    let text = String::from_utf8_lossy(&out.stdout);
+    assert!(
+        out.status.success(),
+        "{text}{}",
+        String::from_utf8_lossy(&out.stderr)
+    );
+    assert!(text.contains("verdict: coulomb_friction j2"), "{text}");
+    assert!(
+        text.contains(
+            "truth of the built-in case (read after the verdict): coulomb_friction at j2"
+        ),
+        "{text}"
+    );
+}
+
+#[test]
+fn synth_then_diagnose_from_files_writes_the_json_report() {
+    let train = tmp("synth.csv");
+    let truth = tmp("truth.json");
+    let out = dynamics()
+        .args([
+            "synth",
+            "--robot",
+            "arm3r",
+            "--effect",
+            "viscous_friction",
+            "--joint",
+            "j3",
+            "--magnitude",
+            "0.3",
+            "--duration",
+            "4",
+            "--seed",
+            "5",
+            "--out",
+        ])
+        .arg(&train)
+        .arg("--truth")
+        .arg(&truth)
+        .output()
+        .expect("runs");
+    assert!(
+        out.status.success(),
+        "{}",
+        String::from_utf8_lossy(&out.stderr)
+    );
+    let holdout = train.with_file_name("synth-holdout.csv");
+    let json = tmp("report.json");
+    let out = dynamics()
+        .args(["diagnose", "--robot", "arm3r", "--train"])
+        .arg(&train)
+        .arg("--holdout")
+        .arg(&holdout)
+        .arg("--json")
+        .arg(&json)
+        .output()
+        .expect("runs");
+    assert!(
+        out.status.success(),
+        "{}",
+        String::from_utf8_lossy(&out.stderr)
+    );
+    let report: serde_json::Value =
+        serde_json::from_str(&std::fs::read_to_string(&json).expect("report")).expect("json");
+    assert_eq!(report["which"]["verdict"]["kind"], "viscous_friction");
+    assert_eq!(report["which"]["verdict"]["joint"], "j3");
+    assert!(report["shrink"]["fraction"].as_f64().expect("number") > 0.8);
+    // A file for another robot is refused with the column named.
+    let out = dynamics()
+        .args(["diagnose", "--robot", "rrp", "--train"])
+        .arg(&train)
+        .arg("--holdout")
+        .arg(&holdout)
+        .output()
+        .expect("runs");
+    assert!(!out.status.success());
+    assert!(
+        String::from_utf8_lossy(&out.stderr).contains("q_q1"),
+        "{}",
+        String::from_utf8_lossy(&out.stderr)
+    );
+}
+
+#[test]
+fn check_compares_every_seed_robot() {
+    let out = dynamics().arg("check").output().expect("runs");
     let text = String::from_utf8_lossy(&out.stdout);
     assert!(
         out.status.success(),

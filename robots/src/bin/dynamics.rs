@@ -1,7 +1,10 @@
 //! `dynamics`: the command-line program.
 //!
 //! ```text
-//! dynamics                      # check: every seed robot against the shipped Pinocchio values
+//! dynamics                      # diagnose a built-in case (arm3r with a withheld effect)
+//! dynamics check                # every seed robot against the shipped Pinocchio values
+//! dynamics synth --robot NAME --effect KIND --joint J --out FILE.csv
+//! dynamics diagnose --robot NAME --train A.csv --holdout B.csv [--json OUT.json]
 //! dynamics list                 # the robots it knows
 //! dynamics eval --robot NAME [--states FILE.json] [--out FILE.json] [--set NAME=VALUE]...
 //! ```
@@ -26,7 +29,7 @@ struct Cli {
 
 #[derive(Subcommand)]
 enum Command {
-    /// Compare every seed robot with the Pinocchio reference values shipped with it (the default).
+    /// Compare every seed robot with the Pinocchio reference values shipped with it.
     Check,
     /// List the robots.
     List,
@@ -37,6 +40,64 @@ enum Command {
         /// Output folder (default `out/NAME`).
         #[arg(long)]
         out: Option<PathBuf>,
+    },
+    /// Generate measured data (CSV) of a robot with a withheld effect under a tracking controller.
+    Synth {
+        /// Robot name (see `dynamics list`).
+        #[arg(long)]
+        robot: String,
+        /// Effect kind (coulomb_friction, viscous_friction, stribeck_friction, armature, payload_mass,
+        /// joint_elasticity, backlash, environment_resistance, encoder_offset, time_delay, none);
+        /// omit to draw one at random.
+        #[arg(long)]
+        effect: Option<String>,
+        /// Joint name; omit to draw one.
+        #[arg(long)]
+        joint: Option<String>,
+        /// Main parameter in SI units (Fc, Fv, Fc, rotor inertia, kg, resonance Hz, half-width,
+        /// mu, offset, delay s); omit to draw from the realistic range.
+        #[arg(long)]
+        magnitude: Option<f64>,
+        /// Random seed.
+        #[arg(long, default_value_t = 1)]
+        seed: u64,
+        /// Reference motion: sines, chirp or pick-place.
+        #[arg(long, default_value = "sines")]
+        excitation: String,
+        /// Duration, s.
+        #[arg(long, default_value_t = 8.0)]
+        duration: f64,
+        /// Position noise (rad or m).
+        #[arg(long, default_value_t = 2e-5)]
+        noise_q: f64,
+        /// Velocity noise.
+        #[arg(long, default_value_t = 2e-3)]
+        noise_qd: f64,
+        /// Effort noise as a fraction of each joint's peak effort.
+        #[arg(long, default_value_t = 2e-3)]
+        noise_tau: f64,
+        /// Training CSV to write (the held-out set goes beside it as `<stem>-holdout.csv`).
+        #[arg(long)]
+        out: PathBuf,
+        /// Where to write the truth (JSON); default: none written.
+        #[arg(long)]
+        truth: Option<PathBuf>,
+    },
+    /// Diagnose the gap between a robot's model and measured data: where, which effect, how far it shrinks.
+    /// Without files: a built-in case (arm3r with a withheld effect, generated in memory).
+    Diagnose {
+        /// Robot name.
+        #[arg(long, default_value = "arm3r")]
+        robot: String,
+        /// Training data (CSV or CSV.gz).
+        #[arg(long, requires = "holdout")]
+        train: Option<PathBuf>,
+        /// Held-out data.
+        #[arg(long, requires = "train")]
+        holdout: Option<PathBuf>,
+        /// Write the JSON report here.
+        #[arg(long)]
+        json: Option<PathBuf>,
     },
     /// Evaluate tau, M, g, C, nle, ddq and the energies at given states.
     Eval {
@@ -57,7 +118,12 @@ enum Command {
 
 fn main() -> ExitCode {
     let cli = Cli::parse();
-    let result = match cli.command.unwrap_or(Command::Check) {
+    let result = match cli.command.unwrap_or(Command::Diagnose {
+        robot: "arm3r".into(),
+        train: None,
+        holdout: None,
+        json: None,
+    }) {
         Command::Check => check(),
         Command::List => {
             for (name, what) in ROBOTS {
@@ -66,6 +132,37 @@ fn main() -> ExitCode {
             Ok(())
         }
         Command::Scenario { name, out } => scenario(name, out),
+        Command::Synth {
+            robot,
+            effect,
+            joint,
+            magnitude,
+            seed,
+            excitation,
+            duration,
+            noise_q,
+            noise_qd,
+            noise_tau,
+            out,
+            truth,
+        } => synth_cmd(
+            &robot,
+            effect,
+            joint,
+            magnitude,
+            seed,
+            &excitation,
+            duration,
+            [noise_q, noise_qd, noise_tau],
+            &out,
+            truth,
+        ),
+        Command::Diagnose {
+            robot,
+            train,
+            holdout,
+            json,
+        } => diagnose_cmd(&robot, train, holdout, json),
         Command::Eval {
             robot,
             states,
@@ -172,6 +269,163 @@ fn eval(name: &str, states: Option<PathBuf>, out: Option<PathBuf>, set: &[String
             std::fs::write(&path, json + "\n").map_err(|e| format!("{}: {e}", path.display()))?
         }
         None => println!("{json}"),
+    }
+    Ok(())
+}
+
+#[allow(clippy::too_many_arguments)]
+fn synth_cmd(
+    robot: &str,
+    effect: Option<String>,
+    joint: Option<String>,
+    magnitude: Option<f64>,
+    seed: u64,
+    excitation: &str,
+    duration: f64,
+    noise: [f64; 3],
+    out: &std::path::Path,
+    truth: Option<PathBuf>,
+) -> Res {
+    use dynamics_runtime::synth::Noise;
+    let kind = effect.map(|e| e.parse()).transpose()?;
+    let req = robots::gap::SynthRequest {
+        robot: robot.into(),
+        kind,
+        joint,
+        magnitude,
+        seed,
+        excitation: excitation.parse()?,
+        duration,
+        noise: Noise {
+            q: noise[0],
+            qd: noise[1],
+            tau_relative: noise[2],
+        },
+    };
+    let data = robots::gap::synth(&req)?;
+    let stem = out.file_stem().and_then(|s| s.to_str()).unwrap_or("data");
+    let hold = out.with_file_name(format!("{stem}-holdout.csv"));
+    std::fs::write(out, &data.train).map_err(|e| format!("{}: {e}", out.display()))?;
+    std::fs::write(&hold, &data.holdout).map_err(|e| format!("{}: {e}", hold.display()))?;
+    eprintln!("wrote {} and {}", out.display(), hold.display());
+    if let Some(t) = truth {
+        std::fs::write(&t, serde_json::to_string_pretty(&data.truth)?)
+            .map_err(|e| format!("{}: {e}", t.display()))?;
+        eprintln!("wrote the truth to {}", t.display());
+    }
+    Ok(())
+}
+
+fn diagnose_cmd(
+    robot: &str,
+    train: Option<PathBuf>,
+    holdout: Option<PathBuf>,
+    json: Option<PathBuf>,
+) -> Res {
+    use dynamics_runtime::diagnose::Options;
+    use indicatif::{ProgressBar, ProgressStyle};
+    let (train, holdout, tmp) = match (train, holdout) {
+        (Some(a), Some(b)) => (a, b, None),
+        _ => {
+            // The built-in case: Coulomb friction withheld at arm3r's j2.
+            let dir = std::env::temp_dir().join(format!("dynamics-demo-{}", std::process::id()));
+            std::fs::create_dir_all(&dir)?;
+            let req = robots::gap::SynthRequest {
+                robot: "arm3r".into(),
+                kind: Some("coulomb_friction".parse()?),
+                joint: Some("j2".into()),
+                magnitude: Some(0.3),
+                seed: 7,
+                excitation: "sines".parse()?,
+                duration: 8.0,
+                noise: Default::default(),
+            };
+            eprintln!("built-in case: arm3r following sines, 8 s at 1 kHz, with a withheld effect (not told to the diagnoser)");
+            let data = robots::gap::synth(&req)?;
+            let (a, b) = (dir.join("train.csv"), dir.join("holdout.csv"));
+            std::fs::write(&a, &data.train)?;
+            std::fs::write(&b, &data.holdout)?;
+            (a, b, Some((dir, data.truth)))
+        }
+    };
+    let robot = if tmp.is_some() { "arm3r" } else { robot };
+    let bar = ProgressBar::new(0);
+    bar.set_style(
+        ProgressStyle::with_template("fitting candidates {bar:30} {pos}/{len}")
+            .unwrap_or_else(|_| ProgressStyle::default_bar()),
+    );
+    let progress = |done: usize, total: usize| {
+        bar.set_length(total as u64);
+        bar.set_position(done as u64);
+    };
+    let (report, warnings) =
+        robots::gap::diagnose_files(robot, &train, &holdout, &Options::default(), &progress)?;
+    bar.finish_and_clear();
+    for w in warnings {
+        eprintln!("warning: {w}");
+    }
+    println!("where (training data, nominal model):");
+    for j in &report.where_.joints {
+        println!(
+            "  {:8} torque residual {:.4} = {:.1} x noise; short-horizon position error {:.2e} = {:.1} x noise",
+            j.joint, j.torque_rms, j.torque_ratio, j.prediction_rms, j.prediction_ratio
+        );
+        for w in j.windows.iter().take(2) {
+            println!(
+                "           {:.2}-{:.2} s {} ({:.1} x noise)",
+                w.start, w.end, w.phase, w.ratio
+            );
+        }
+    }
+    println!("which (best first):");
+    for r in report.which.ranked.iter().take(5) {
+        let place = r.joint.clone().or(r.point.clone()).unwrap_or_default();
+        let params: Vec<String> = r
+            .parameters
+            .iter()
+            .map(|p| format!("{} = {:.4e} +- {:.1e}", p.name, p.value, p.std))
+            .collect();
+        println!(
+            "  {:24} {:8} dAICc {:9.1}  explains {:5.1} % (held-out {:5.1} %)  {}",
+            r.kind,
+            place,
+            r.delta_aicc,
+            100.0 * r.share,
+            100.0 * r.holdout_share,
+            params.join(", ")
+        );
+    }
+    let v = &report.which.verdict;
+    println!(
+        "verdict: {} {} ({})",
+        v.kind,
+        v.joint.clone().or(v.point.clone()).unwrap_or_default(),
+        v.status
+    );
+    if let (Some(r), Some(m)) = (&v.rival, &v.separating_motion) {
+        println!(
+            "  rival: {} {}; to separate them: {m}",
+            r.kind,
+            r.joint.clone().or(r.point.clone()).unwrap_or_default()
+        );
+    }
+    println!(
+        "shrink on held-out data: torque gap -{:.1} %, short-horizon simulation error -{:.1} %",
+        100.0 * report.shrink.torque_fraction,
+        100.0 * report.shrink.simulation_fraction
+    );
+    if let Some(path) = json {
+        std::fs::write(&path, serde_json::to_string_pretty(&report)?)
+            .map_err(|e| format!("{}: {e}", path.display()))?;
+        eprintln!("wrote {}", path.display());
+    }
+    if let Some((dir, truth)) = tmp {
+        println!(
+            "truth of the built-in case (read after the verdict): {} at {}",
+            truth.kind,
+            truth.joint.unwrap_or_default()
+        );
+        let _ = std::fs::remove_dir_all(dir);
     }
     Ok(())
 }

@@ -1,0 +1,182 @@
+//! Fitting every candidate to one data set's torque residual and scoring
+//! it against the rigid model alone.
+
+use nalgebra::{DMatrix, DVector, SVector};
+
+use super::basis::Basis;
+use super::candidate::{motor_grid, motor_transmitted, Candidate, MotorGuess};
+use super::fit::{aicc, constrained_least_squares};
+use super::signals::Signals;
+use crate::data::Measured;
+use crate::effects::Effect;
+use crate::{JointKind, Robot};
+
+/// A data set ready for fitting: signals, shared model quantities, and the
+/// (decimated) sample rows the fit uses.
+#[derive(Debug, Clone)]
+pub struct Prepared<const N: usize> {
+    /// Signals.
+    pub sig: Signals<N>,
+    /// Shared quantities.
+    pub basis: Basis<N>,
+    /// Sample indices used as rows (every half-window, away from the edges).
+    pub rows: Vec<usize>,
+}
+
+impl<const N: usize> Prepared<N> {
+    /// Prepares `m` for `robot`.
+    pub fn new<R: Robot<N>>(robot: &R, m: &Measured<N>) -> Self {
+        let sig = Signals::new(robot, m);
+        let basis = Basis::new(robot, &sig);
+        let h = sig.sg.half();
+        let (a, z) = sig.range;
+        let rows = (a + h..z.saturating_sub(h)).step_by(h.max(1)).collect();
+        Prepared { sig, basis, rows }
+    }
+
+    /// Whitened residual sum of squares of `r` over the rows.
+    pub fn sse(&self, r: &[SVector<f64, N>]) -> f64 {
+        self.rows
+            .iter()
+            .map(|&k| {
+                (0..N)
+                    .map(|j| (r[k][j] / self.sig.floor[j]).powi(2))
+                    .sum::<f64>()
+            })
+            .sum()
+    }
+
+    /// Number of scalar rows.
+    pub fn n(&self) -> usize {
+        self.rows.len() * N
+    }
+}
+
+/// A fitted candidate.
+#[derive(Debug, Clone)]
+pub struct Fit {
+    /// The candidate.
+    pub candidate: Candidate,
+    /// Linear parameters (empty for motor-side candidates).
+    pub theta: Vec<f64>,
+    /// Their standard deviations.
+    pub std: Vec<f64>,
+    /// Motor-side parameters of elasticity and backlash.
+    pub motor: Option<MotorGuess>,
+    /// Whitened residual sum of squares on the training rows.
+    pub sse: f64,
+    /// Number of parameters.
+    pub k: usize,
+}
+
+impl Fit {
+    /// The fitted effect.
+    pub fn effect(&self) -> Option<Effect> {
+        match (self.candidate, self.motor) {
+            (Candidate::Elasticity(j), Some(g)) => Some(g.effect(false, j)),
+            (Candidate::Backlash(j), Some(g)) => Some(g.effect(true, j)),
+            (c, _) => c.effect(&self.theta),
+        }
+    }
+
+    /// The smoothed residual of `p` once this effect is added to the model.
+    pub fn corrected<const N: usize>(&self, p: &Prepared<N>) -> Vec<SVector<f64, N>> {
+        let mut r = p.sig.residual.clone();
+        let (a, z) = p.sig.range;
+        match (self.candidate, self.motor) {
+            (Candidate::Elasticity(j), Some(g)) | (Candidate::Backlash(j), Some(g)) => {
+                let backlash = matches!(self.candidate, Candidate::Backlash(_));
+                let t = motor_transmitted(&p.sig, j, &g, backlash);
+                for k in a..z {
+                    if t[k].is_finite() {
+                        r[k][j] = t[k] - p.sig.model[k][j];
+                    }
+                }
+            }
+            (c, _) => {
+                for (k, rk) in r.iter_mut().enumerate().take(z).skip(a) {
+                    let cols = c.columns(&p.sig, &p.basis, k);
+                    for (i, th) in self.theta.iter().enumerate() {
+                        *rk -= cols[i] * *th;
+                    }
+                }
+            }
+        }
+        r
+    }
+
+    /// AICc on `n` rows.
+    pub fn aicc(&self, n: usize) -> f64 {
+        aicc(self.sse, n, self.k)
+    }
+}
+
+/// Fits `c` to the residual of `p`.
+pub fn fit<R: Robot<N>, const N: usize>(c: Candidate, p: &Prepared<N>) -> Fit {
+    let params = c.linear_parameters();
+    if params.is_empty() {
+        return fit_motor::<R, N>(c, p);
+    }
+    let m = params.len();
+    let n = p.n();
+    let mut x = DMatrix::zeros(n, m);
+    let mut y = DVector::zeros(n);
+    for (r, &k) in p.rows.iter().enumerate() {
+        let cols = c.columns(&p.sig, &p.basis, k);
+        for j in 0..N {
+            let w = 1.0 / p.sig.floor[j];
+            y[r * N + j] = p.sig.residual[k][j] * w;
+            for i in 0..m {
+                x[(r * N + j, i)] = cols[i][j] * w;
+            }
+        }
+    }
+    let nonneg: Vec<bool> = params.iter().map(|p| p.1).collect();
+    let f = constrained_least_squares(&x, &y, &nonneg);
+    Fit {
+        candidate: c,
+        theta: f.theta,
+        std: f.std,
+        motor: None,
+        sse: f.sse,
+        k: m,
+    }
+}
+
+fn fit_motor<R: Robot<N>, const N: usize>(c: Candidate, p: &Prepared<N>) -> Fit {
+    let (j, backlash) = match c {
+        Candidate::Backlash(j) => (j, true),
+        Candidate::Elasticity(j) => (j, false),
+        _ => (0, false),
+    };
+    let w = 1.0 / p.sig.floor[j];
+    let base: f64 = p.sse(&p.sig.residual);
+    let own: f64 = p
+        .rows
+        .iter()
+        .map(|&k| (p.sig.residual[k][j] * w).powi(2))
+        .sum();
+    let revolute = R::JOINT_KINDS[j] != JointKind::Prismatic;
+    let mut best = Fit {
+        candidate: c,
+        theta: vec![],
+        std: vec![],
+        motor: None,
+        sse: f64::INFINITY,
+        k: 3,
+    };
+    for g in motor_grid(backlash, p.basis.inertia[j], revolute) {
+        let t = motor_transmitted(&p.sig, j, &g, backlash);
+        let sse_j: f64 = p
+            .rows
+            .iter()
+            .map(|&k| ((t[k] - p.sig.model[k][j]) * w).powi(2))
+            .sum();
+        let sse = base - own + sse_j;
+        if sse.is_finite() && sse < best.sse {
+            best.sse = sse;
+            best.motor = Some(g);
+        }
+    }
+    best
+}

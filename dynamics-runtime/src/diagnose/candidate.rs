@@ -1,0 +1,352 @@
+//! The candidate effects, each with the regressor columns it adds to the
+//! torque residual (linear in its parameters), or, for elasticity and
+//! backlash, a motor-side simulation driven by the measured effort and link
+//! motion whose transmitted effort replaces the rigid joint's.
+
+use std::f64::consts::PI;
+
+use nalgebra::SVector;
+
+use super::basis::Basis;
+use super::signals::Signals;
+use crate::effects::{smooth_sign, Effect, EffectKind};
+
+/// A candidate: kind, place, and the fixed value of a nonlinear parameter
+/// searched on a grid (Stribeck velocity, resistance exponent).
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub enum Candidate {
+    /// Coulomb friction at a joint.
+    Coulomb(usize),
+    /// Viscous friction at a joint.
+    Viscous(usize),
+    /// Stribeck friction at a joint with Stribeck velocity vs.
+    Stribeck(usize, f64),
+    /// Rotor inertia at a joint.
+    Armature(usize),
+    /// Point mass at the tip.
+    Payload,
+    /// Resistance at the tip with exponent alpha.
+    Environment(f64),
+    /// Encoder offset at a joint.
+    EncoderOffset(usize),
+    /// Delay of the measured motion.
+    TimeDelay,
+    /// Two-mass elastic joint.
+    Elasticity(usize),
+    /// Dead zone between motor and link.
+    Backlash(usize),
+}
+
+/// Stribeck velocities searched, rad/s.
+pub const STRIBECK_GRID: [f64; 4] = [0.01, 0.03, 0.1, 0.3];
+/// Resistance exponents searched.
+pub const ALPHA_GRID: [f64; 5] = [1.0, 1.5, 2.0, 2.5, 3.0];
+
+impl Candidate {
+    /// Every candidate for a robot with N joints.
+    pub fn all<const N: usize>(kinds: &[EffectKind]) -> Vec<Candidate> {
+        let mut out = Vec::new();
+        let want = |k: EffectKind| kinds.is_empty() || kinds.contains(&k);
+        for j in 0..N {
+            if want(EffectKind::CoulombFriction) {
+                out.push(Candidate::Coulomb(j));
+            }
+            if want(EffectKind::ViscousFriction) {
+                out.push(Candidate::Viscous(j));
+            }
+            if want(EffectKind::StribeckFriction) {
+                out.extend(STRIBECK_GRID.iter().map(|&v| Candidate::Stribeck(j, v)));
+            }
+            if want(EffectKind::Armature) {
+                out.push(Candidate::Armature(j));
+            }
+            if want(EffectKind::EncoderOffset) {
+                out.push(Candidate::EncoderOffset(j));
+            }
+            if want(EffectKind::JointElasticity) {
+                out.push(Candidate::Elasticity(j));
+            }
+            if want(EffectKind::Backlash) {
+                out.push(Candidate::Backlash(j));
+            }
+        }
+        if want(EffectKind::PayloadMass) {
+            out.push(Candidate::Payload);
+        }
+        if want(EffectKind::EnvironmentResistance) {
+            out.extend(ALPHA_GRID.iter().map(|&a| Candidate::Environment(a)));
+        }
+        if want(EffectKind::TimeDelay) {
+            out.push(Candidate::TimeDelay);
+        }
+        out
+    }
+
+    /// Its kind.
+    pub fn kind(&self) -> EffectKind {
+        match self {
+            Candidate::Coulomb(_) => EffectKind::CoulombFriction,
+            Candidate::Viscous(_) => EffectKind::ViscousFriction,
+            Candidate::Stribeck(..) => EffectKind::StribeckFriction,
+            Candidate::Armature(_) => EffectKind::Armature,
+            Candidate::Payload => EffectKind::PayloadMass,
+            Candidate::Environment(_) => EffectKind::EnvironmentResistance,
+            Candidate::EncoderOffset(_) => EffectKind::EncoderOffset,
+            Candidate::TimeDelay => EffectKind::TimeDelay,
+            Candidate::Elasticity(_) => EffectKind::JointElasticity,
+            Candidate::Backlash(_) => EffectKind::Backlash,
+        }
+    }
+
+    /// Its joint, for joint effects.
+    pub fn joint(&self) -> Option<usize> {
+        match *self {
+            Candidate::Coulomb(j)
+            | Candidate::Viscous(j)
+            | Candidate::Stribeck(j, _)
+            | Candidate::Armature(j)
+            | Candidate::EncoderOffset(j)
+            | Candidate::Elasticity(j)
+            | Candidate::Backlash(j) => Some(j),
+            _ => None,
+        }
+    }
+
+    /// Names of its linear parameters and whether each must be >= 0.
+    pub fn linear_parameters(&self) -> &'static [(&'static str, bool)] {
+        match self {
+            Candidate::Coulomb(_) => &[("fc", true)],
+            Candidate::Viscous(_) => &[("fv", true)],
+            Candidate::Stribeck(..) => &[("fc", true), ("fs_minus_fc", true)],
+            Candidate::Armature(_) => &[("inertia", true)],
+            Candidate::Payload => &[("mass", true)],
+            Candidate::Environment(_) => &[("mu", true)],
+            Candidate::EncoderOffset(_) => &[("offset", false)],
+            Candidate::TimeDelay => &[("delay", true)],
+            Candidate::Elasticity(_) | Candidate::Backlash(_) => &[],
+        }
+    }
+
+    /// Regressor columns at sample `k`: the extra drive effort per unit of
+    /// each linear parameter.
+    pub fn columns<const N: usize>(
+        &self,
+        sig: &Signals<N>,
+        basis: &Basis<N>,
+        k: usize,
+    ) -> [SVector<f64, N>; 2] {
+        let mut c = [SVector::zeros(); 2];
+        let (qd, qdd) = (&sig.qd[k], &sig.qdd[k]);
+        match *self {
+            Candidate::Coulomb(j) => c[0][j] = smooth_sign(qd[j]),
+            Candidate::Viscous(j) => c[0][j] = qd[j],
+            Candidate::Stribeck(j, vs) => {
+                c[0][j] = smooth_sign(qd[j]);
+                c[1][j] = (-(qd[j] / vs).powi(2)).exp() * smooth_sign(qd[j]);
+            }
+            Candidate::Armature(j) => c[0][j] = qdd[j],
+            Candidate::Payload => {
+                c[0] = basis.jac[k].transpose() * (basis.tip_acc[k] - basis.gravity)
+            }
+            Candidate::Environment(alpha) => {
+                let v = basis.jac[k] * qd;
+                let s = v.norm();
+                if s > 0.0 {
+                    c[0] = basis.jac[k].transpose() * (v * s.powf(alpha - 1.0));
+                }
+            }
+            Candidate::EncoderOffset(j) => c[0] = -basis.k[k].column(j),
+            Candidate::TimeDelay => {
+                if sig.model_rate[k].iter().all(|x| x.is_finite()) {
+                    c[0] = sig.model_rate[k];
+                }
+            }
+            Candidate::Elasticity(_) | Candidate::Backlash(_) => {}
+        }
+        c
+    }
+
+    /// The effect with fitted linear parameters `theta`.
+    pub fn effect(&self, theta: &[f64]) -> Option<Effect> {
+        let p = |i: usize| theta.get(i).copied().unwrap_or(0.0);
+        Some(match *self {
+            Candidate::Coulomb(joint) => Effect::CoulombFriction { joint, fc: p(0) },
+            Candidate::Viscous(joint) => Effect::ViscousFriction { joint, fv: p(0) },
+            Candidate::Stribeck(joint, vs) => Effect::StribeckFriction {
+                joint,
+                fc: p(0),
+                fs: p(0) + p(1),
+                vs,
+            },
+            Candidate::Armature(joint) => Effect::Armature {
+                joint,
+                inertia: p(0),
+            },
+            Candidate::Payload => Effect::PayloadMass { mass: p(0) },
+            Candidate::Environment(alpha) => Effect::EnvironmentResistance { mu: p(0), alpha },
+            Candidate::EncoderOffset(joint) => Effect::EncoderOffset {
+                joint,
+                offset: p(0),
+            },
+            Candidate::TimeDelay => Effect::TimeDelay { delay: p(0) },
+            Candidate::Elasticity(_) | Candidate::Backlash(_) => return None,
+        })
+    }
+}
+
+/// Motor-side parameters searched for elasticity and backlash.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct MotorGuess {
+    /// Motor inertia.
+    pub jm: f64,
+    /// Spring (elasticity) or contact (backlash) stiffness.
+    pub stiffness: f64,
+    /// Damping.
+    pub damping: f64,
+    /// Backlash half-width (0 for elasticity).
+    pub half_width: f64,
+}
+
+impl MotorGuess {
+    /// As an effect at `joint`.
+    pub fn effect(&self, backlash: bool, joint: usize) -> Effect {
+        if backlash {
+            Effect::Backlash {
+                joint,
+                half_width: self.half_width,
+                motor_inertia: self.jm,
+                contact_stiffness: self.stiffness,
+                contact_damping: self.damping,
+            }
+        } else {
+            Effect::JointElasticity {
+                joint,
+                stiffness: self.stiffness,
+                damping: self.damping,
+                motor_inertia: self.jm,
+            }
+        }
+    }
+}
+
+/// The grid of motor-side parameters searched at a joint of own inertia
+/// `inertia`.
+pub fn motor_grid(backlash: bool, inertia: f64, revolute: bool) -> Vec<MotorGuess> {
+    let mut out = Vec::new();
+    for ratio in [0.05, 0.1, 0.2, 0.4] {
+        let jm = ratio * inertia;
+        if backlash {
+            let widths: Vec<f64> = (0..12)
+                .map(|i| {
+                    let arcmin = 0.25 * (30.0f64 / 0.25).powf(i as f64 / 11.0);
+                    if revolute {
+                        arcmin / 60.0 * PI / 180.0
+                    } else {
+                        arcmin * 2e-5
+                    }
+                })
+                .collect();
+            for f in [40.0, 80.0] {
+                let w = 2.0 * PI * f;
+                let stiffness = w * w / (1.0 / jm + 1.0 / inertia);
+                for &half_width in &widths {
+                    out.push(MotorGuess {
+                        jm,
+                        stiffness,
+                        damping: 2.0 * 0.1 * (stiffness * jm).sqrt(),
+                        half_width,
+                    });
+                }
+            }
+        } else {
+            for i in 0..10 {
+                let f = 3.0 * (15.0f64).powf(i as f64 / 9.0);
+                let w = 2.0 * PI * f;
+                let stiffness = w * w / (1.0 / jm + 1.0 / inertia);
+                for zeta in [0.05, 0.2] {
+                    out.push(MotorGuess {
+                        jm,
+                        stiffness,
+                        damping: 2.0 * zeta * (stiffness * jm).sqrt(),
+                        half_width: 0.0,
+                    });
+                }
+            }
+        }
+    }
+    out
+}
+
+/// Simulates the motor side of joint `j` driven by the measured effort
+/// (held per sample) and the measured link motion; returns the smoothed
+/// effort it passes to the link at every sample (NaN outside the range).
+pub fn motor_transmitted<const N: usize>(
+    sig: &Signals<N>,
+    j: usize,
+    g: &MotorGuess,
+    backlash: bool,
+) -> Vec<f64> {
+    let n = sig.t.len();
+    let (a, z) = sig.range;
+    let mut out = vec![f64::NAN; n];
+    if z <= a + 1 {
+        return out;
+    }
+    let force = |e: f64, ed: f64| -> f64 {
+        if backlash {
+            if e > g.half_width {
+                (g.stiffness * (e - g.half_width) + g.damping * ed).max(0.0)
+            } else if e < -g.half_width {
+                (g.stiffness * (e + g.half_width) + g.damping * ed).min(0.0)
+            } else {
+                0.0
+            }
+        } else {
+            g.stiffness * e + g.damping * ed
+        }
+    };
+    let load = sig.model[a][j];
+    let mut th = if backlash {
+        sig.q[a][j] + load.signum() * (g.half_width + load.abs() / g.stiffness)
+    } else {
+        sig.q[a][j] + load / g.stiffness
+    };
+    let mut thd = sig.qd[a][j];
+    const SUB: usize = 4;
+    for k in a..z {
+        let (q0, v0) = (sig.q[k][j], sig.qd[k][j]);
+        out[k] = force(th - q0, thd - v0);
+        if k + 1 >= z {
+            break;
+        }
+        let (q1, v1) = (sig.q[k + 1][j], sig.qd[k + 1][j]);
+        let h = (sig.t[k + 1] - sig.t[k]) / SUB as f64;
+        let tau = sig.tau_raw[k][j];
+        let link = |s: f64| (q0 + (q1 - q0) * s, v0 + (v1 - v0) * s);
+        let acc = |th: f64, thd: f64, s: f64| {
+            let (q, v) = link(s);
+            (tau - force(th - q, thd - v)) / g.jm
+        };
+        for i in 0..SUB {
+            let s0 = i as f64 / SUB as f64;
+            let sm = (i as f64 + 0.5) / SUB as f64;
+            let s1 = (i + 1) as f64 / SUB as f64;
+            let k1 = (thd, acc(th, thd, s0));
+            let k2 = (
+                thd + 0.5 * h * k1.1,
+                acc(th + 0.5 * h * k1.0, thd + 0.5 * h * k1.1, sm),
+            );
+            let k3 = (
+                thd + 0.5 * h * k2.1,
+                acc(th + 0.5 * h * k2.0, thd + 0.5 * h * k2.1, sm),
+            );
+            let k4 = (thd + h * k3.1, acc(th + h * k3.0, thd + h * k3.1, s1));
+            th += h / 6.0 * (k1.0 + 2.0 * k2.0 + 2.0 * k3.0 + k4.0);
+            thd += h / 6.0 * (k1.1 + 2.0 * k2.1 + 2.0 * k3.1 + k4.1);
+        }
+        if !th.is_finite() || !thd.is_finite() {
+            return vec![f64::NAN; n];
+        }
+    }
+    sig.sg.apply(&out, 0)
+}

@@ -1,0 +1,196 @@
+//! From measured samples to what the diagnosis works on: smoothed positions,
+//! velocities and accelerations (no double differencing of raw data), the
+//! smoothed efforts, the nominal model's efforts along the measured motion,
+//! their difference (the torque residual) and its noise floor.
+
+use nalgebra::SVector;
+
+use super::filter::SavitzkyGolay;
+use crate::data::Measured;
+use crate::Robot;
+
+/// Smoothing half-width in seconds (15 ms: passes motion and resonances up
+/// to about 40 Hz at 1 kHz).
+pub const SMOOTHING_HALF_WIDTH: f64 = 0.015;
+/// Half-width of the wide smoother that separates the slow part of the
+/// residual (effects) from its noise, s.
+const WIDE_HALF_WIDTH: f64 = 0.1;
+
+/// One data set, prepared.
+#[derive(Debug, Clone)]
+pub struct Signals<const N: usize> {
+    /// Sample interval.
+    pub dt: f64,
+    /// First and one-past-last sample with a full filter window.
+    pub range: (usize, usize),
+    /// Times.
+    pub t: Vec<f64>,
+    /// Smoothed positions.
+    pub q: Vec<SVector<f64, N>>,
+    /// Smoothed velocities.
+    pub qd: Vec<SVector<f64, N>>,
+    /// Accelerations (derivative of the smoothing fit).
+    pub qdd: Vec<SVector<f64, N>>,
+    /// Measured efforts, raw.
+    pub tau_raw: Vec<SVector<f64, N>>,
+    /// Measured efforts, smoothed.
+    pub tau: Vec<SVector<f64, N>>,
+    /// The nominal model's efforts along the smoothed motion.
+    pub model: Vec<SVector<f64, N>>,
+    /// Rate of the model efforts (derivative of their smoothing fit).
+    pub model_rate: Vec<SVector<f64, N>>,
+    /// `tau - model`.
+    pub residual: Vec<SVector<f64, N>>,
+    /// Noise floor of the smoothed residual per joint.
+    pub floor: SVector<f64, N>,
+    /// The filter.
+    pub sg: SavitzkyGolay,
+}
+
+fn column<const N: usize>(v: &[SVector<f64, N>], j: usize) -> Vec<f64> {
+    v.iter().map(|x| x[j]).collect()
+}
+
+fn set_column<const N: usize>(v: &mut [SVector<f64, N>], j: usize, x: &[f64]) {
+    for (a, b) in v.iter_mut().zip(x) {
+        a[j] = *b;
+    }
+}
+
+impl<const N: usize> Signals<N> {
+    /// Prepares `m` for `robot`.
+    pub fn new<R: Robot<N>>(robot: &R, m: &Measured<N>) -> Self {
+        let n = m.len();
+        let dt = m.sample_interval();
+        let half = ((SMOOTHING_HALF_WIDTH / dt).round() as usize).max(3);
+        let sg = SavitzkyGolay::new(half, dt);
+        let zero = vec![SVector::<f64, N>::zeros(); n];
+        let (mut q, mut qd, mut qdd, mut tau) =
+            (zero.clone(), zero.clone(), zero.clone(), zero.clone());
+        for j in 0..N {
+            let qj = column(&m.q, j);
+            // Efforts are held from each sample to the next (zero-order
+            // hold): centred on a sample, the held signal averages this
+            // sample's value and the previous one's (half a sample late
+            // otherwise, a delay the fit would read as an effect).
+            let raw = column(&m.tau, j);
+            let tj: Vec<f64> = (0..n)
+                .map(|k| 0.5 * (raw[k.saturating_sub(1)] + raw[k]))
+                .collect();
+            set_column(&mut q, j, &sg.apply(&qj, 0));
+            if m.qd_measured {
+                let vj = column(&m.qd, j);
+                set_column(&mut qd, j, &sg.apply(&vj, 0));
+                set_column(&mut qdd, j, &sg.apply(&vj, 1));
+            } else {
+                set_column(&mut qd, j, &sg.apply(&qj, 1));
+                set_column(&mut qdd, j, &sg.apply(&qj, 2));
+            }
+            set_column(&mut tau, j, &sg.apply(&tj, 0));
+        }
+        let range = (half, n.saturating_sub(half));
+        let mut model = zero.clone();
+        let mut residual = zero;
+        for k in range.0..range.1 {
+            model[k] = robot.inverse_dynamics(&q[k], &qd[k], &qdd[k]);
+            residual[k] = tau[k] - model[k];
+        }
+        let mut model_rate = vec![SVector::<f64, N>::zeros(); n];
+        for j in 0..N {
+            let mj: Vec<f64> = (0..n)
+                .map(|k| {
+                    if k >= range.0 && k < range.1 {
+                        model[k][j]
+                    } else {
+                        f64::NAN
+                    }
+                })
+                .collect();
+            set_column(&mut model_rate, j, &sg.apply(&mj, 1));
+        }
+        let mut s = Signals {
+            model_rate,
+            dt,
+            range,
+            t: m.t.clone(),
+            q,
+            qd,
+            qdd,
+            tau_raw: m.tau.clone(),
+            tau,
+            model,
+            residual,
+            floor: SVector::zeros(),
+            sg,
+        };
+        s.floor = s.noise_floor();
+        s
+    }
+
+    /// Number of samples with a full window.
+    pub fn valid(&self) -> usize {
+        self.range.1.saturating_sub(self.range.0)
+    }
+
+    /// Per joint: the residual's part above a wide smoother, robust
+    /// standard deviation, scaled to the noise the narrow smoother passes
+    /// (assuming white noise before smoothing).
+    fn noise_floor(&self) -> SVector<f64, N> {
+        let wide_half = ((WIDE_HALF_WIDTH / self.dt).round() as usize).max(self.sg.half() + 2);
+        let wide = SavitzkyGolay::new(wide_half, self.dt);
+        // Gain of (narrow - wide o narrow) against narrow, for white noise.
+        let len = 2 * (wide_half + self.sg.half()) + 1;
+        let mut impulse = vec![0.0; 3 * len];
+        impulse[len + len / 2] = 1.0;
+        let narrow = self
+            .sg
+            .apply(&impulse, 0)
+            .iter()
+            .map(|x| if x.is_nan() { 0.0 } else { *x })
+            .collect::<Vec<_>>();
+        let both = wide.apply(&narrow, 0);
+        let hp: f64 = narrow
+            .iter()
+            .zip(&both)
+            .map(|(a, b)| if b.is_nan() { 0.0 } else { (a - b).powi(2) })
+            .sum::<f64>()
+            .sqrt();
+        let nw: f64 = narrow.iter().map(|a| a * a).sum::<f64>().sqrt();
+        let gain = if hp > 0.0 { nw / hp } else { 1.0 };
+        let mut floor = SVector::zeros();
+        let (a, b) = self.range;
+        for j in 0..N {
+            let r: Vec<f64> = (0..self.t.len())
+                .map(|k| {
+                    if k >= a && k < b {
+                        self.residual[k][j]
+                    } else {
+                        f64::NAN
+                    }
+                })
+                .collect();
+            let slow = wide.apply(&r, 0);
+            let hf: Vec<f64> = r
+                .iter()
+                .zip(&slow)
+                .filter(|(x, y)| x.is_finite() && y.is_finite())
+                .map(|(x, y)| x - y)
+                .collect();
+            floor[j] = (robust_std(&hf) * gain).max(1e-12);
+        }
+        floor
+    }
+}
+
+/// 1.4826 x median absolute deviation from the median.
+pub fn robust_std(x: &[f64]) -> f64 {
+    if x.is_empty() {
+        return 0.0;
+    }
+    let mut v = x.to_vec();
+    v.sort_by(f64::total_cmp);
+    let med = v[v.len() / 2];
+    let mut dev: Vec<f64> = v.iter().map(|a| (a - med).abs()).collect();
+    dev.sort_by(f64::total_cmp);
+    1.4826 * dev[dev.len() / 2]
+}

@@ -1,0 +1,308 @@
+//! Sim-to-real gap work by robot name: synthetic measured data with a
+//! withheld effect (`dynamics synth`) and the diagnosis of data files
+//! (`dynamics diagnose`).
+
+use std::path::Path;
+
+use dynamics_runtime::data::{read_csv, write_csv, DataError, Measured};
+use dynamics_runtime::diagnose::{diagnose, DiagnoseError, Options, Report};
+use dynamics_runtime::effects::{Effect, EffectKind, PlaceKind, Tip};
+use dynamics_runtime::synth::{
+    draw_effect, synthesize, Excitation, ExcitationKind, Noise, Rng, Scales, SynthError,
+    SynthOptions,
+};
+use dynamics_runtime::Robot;
+use nalgebra::SVector;
+use serde::{Deserialize, Serialize};
+use thiserror::Error;
+
+use crate::registry::{AnyRobot, RegistryError};
+
+/// Why a gap command failed.
+#[derive(Debug, Error)]
+pub enum GapError {
+    /// Robot lookup.
+    #[error(transparent)]
+    Registry(#[from] RegistryError),
+    /// Reading data.
+    #[error(transparent)]
+    Data(#[from] DataError),
+    /// Generating data.
+    #[error(transparent)]
+    Synth(#[from] SynthError),
+    /// Diagnosing.
+    #[error(transparent)]
+    Diagnose(#[from] DiagnoseError),
+    /// A bad request.
+    #[error("{0}")]
+    Request(String),
+}
+
+/// What was withheld in a synthetic data set (the truth file).
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
+pub struct Truth {
+    /// Robot name.
+    pub robot: String,
+    /// Effect kind (`none` for a control).
+    pub kind: String,
+    /// Joint name, for joint effects.
+    pub joint: Option<String>,
+    /// Point, for tip effects.
+    pub point: Option<String>,
+    /// The effect's parameters (Rust debug form).
+    pub effect: String,
+    /// Random seed.
+    pub seed: u64,
+    /// Excitation.
+    pub excitation: String,
+}
+
+/// A synthesis request.
+#[derive(Debug, Clone, PartialEq)]
+pub struct SynthRequest {
+    /// Robot name.
+    pub robot: String,
+    /// Effect kind, or `None` to draw one at random.
+    pub kind: Option<EffectKind>,
+    /// Joint name (joint effects), or `None` to draw.
+    pub joint: Option<String>,
+    /// Magnitude in the effect's main unit (see `dynamics synth --help`), or
+    /// `None` to draw from the realistic range.
+    pub magnitude: Option<f64>,
+    /// Seed.
+    pub seed: u64,
+    /// Excitation.
+    pub excitation: ExcitationKind,
+    /// Duration, s.
+    pub duration: f64,
+    /// Noise.
+    pub noise: Noise,
+}
+
+/// Home pose and reference amplitude per robot (the motion stays inside
+/// the joint limits of the URDF arms).
+fn motion(name: &str, n: usize) -> (Vec<f64>, Vec<f64>) {
+    match name {
+        "arm3r" | "arm3r-urdf" => (vec![0.0, 0.4, -0.4], vec![0.6, 0.6, 0.6]),
+        "rrp" | "rrp-rigid" | "rrp-urdf" => (vec![0.0, 0.3, 0.05], vec![0.5, 0.5, 0.04]),
+        "mar" | "mar-drives" | "mar-urdf" => (vec![0.0, 0.3, 0.05], vec![0.4, 0.5, 0.04]),
+        "ur5" => (vec![0.0, -1.2, 1.2, -1.5, -1.5, 0.0], vec![0.4; 6]),
+        "panda" | "panda-damped" => (vec![0.0, -0.4, 0.0, -2.0, 0.0, 1.7, 0.8], vec![0.35; 7]),
+        _ => (vec![0.0; n], vec![0.4; n]),
+    }
+}
+
+fn options<const N: usize>(name: &str, req: &SynthRequest, seed: u64) -> SynthOptions<N> {
+    let (home, amp) = motion(name, N);
+    SynthOptions {
+        duration: req.duration,
+        excitation: req.excitation,
+        home: SVector::from_fn(|i, _| home.get(i).copied().unwrap_or(0.0)),
+        amplitude: SVector::from_fn(|i, _| amp.get(i).copied().unwrap_or(0.4)),
+        noise: req.noise,
+        seed,
+        ..Default::default()
+    }
+}
+
+/// The effect a request asks for (drawn where it leaves things open).
+fn effect_for<R: Robot<N>, const N: usize>(
+    robot: &R,
+    req: &SynthRequest,
+    opts: &SynthOptions<N>,
+    rng: &mut Rng,
+) -> Result<Option<Effect>, GapError> {
+    let kind = match req.kind {
+        Some(k) => k,
+        None => EffectKind::ALL[1 + rng.below(EffectKind::ALL.len() - 1)],
+    };
+    let joint = match &req.joint {
+        Some(name) => R::joint_index(name).ok_or_else(|| {
+            GapError::Request(format!(
+                "robot `{}` has no joint `{name}` (joints: {})",
+                req.robot,
+                R::JOINT_NAMES.join(", ")
+            ))
+        })?,
+        None => {
+            // Angle-based magnitudes (backlash, offsets) go to revolute joints.
+            let revolute: Vec<usize> = (0..N)
+                .filter(|&j| R::JOINT_KINDS[j] == dynamics_runtime::JointKind::Revolute)
+                .collect();
+            let pool: Vec<usize> = if revolute.is_empty() {
+                (0..N).collect()
+            } else {
+                revolute
+            };
+            pool[rng.below(pool.len())]
+        }
+    };
+    let reference = Excitation::new(
+        opts.excitation,
+        opts.home,
+        opts.amplitude,
+        opts.duration,
+        &mut Rng::new(opts.seed),
+    );
+    let scales = Scales::of(robot, &reference, opts.duration);
+    let tip = Tip::of::<R, N>();
+    let tip_speed = (0..=200)
+        .map(|k| {
+            let r = reference.at(opts.duration * k as f64 / 200.0);
+            (tip.position_jacobian(robot, &r.q).1 * r.qd).norm()
+        })
+        .fold(0.0, f64::max);
+    let drawn = draw_effect(kind, joint, &scales, &R::JOINT_KINDS, tip_speed, rng);
+    let Some(m) = req.magnitude else {
+        return Ok(drawn);
+    };
+    if !m.is_finite() {
+        return Err(GapError::Request(format!(
+            "magnitude must be finite, got {m}"
+        )));
+    }
+    Ok(drawn.map(|e| match e {
+        Effect::CoulombFriction { joint, .. } => Effect::CoulombFriction { joint, fc: m },
+        Effect::ViscousFriction { joint, .. } => Effect::ViscousFriction { joint, fv: m },
+        Effect::StribeckFriction { joint, .. } => Effect::StribeckFriction {
+            joint,
+            fc: m,
+            fs: 1.5 * m,
+            vs: 0.05,
+        },
+        Effect::Armature { joint, .. } => Effect::Armature { joint, inertia: m },
+        Effect::PayloadMass { .. } => Effect::PayloadMass { mass: m },
+        Effect::JointElasticity {
+            joint,
+            motor_inertia,
+            ..
+        } => {
+            let inertia = scales.inertia[joint];
+            let w = 2.0 * std::f64::consts::PI * m;
+            let stiffness = w * w / (1.0 / motor_inertia + 1.0 / inertia);
+            Effect::JointElasticity {
+                joint,
+                stiffness,
+                damping: 0.1 * (stiffness * motor_inertia).sqrt(),
+                motor_inertia,
+            }
+        }
+        Effect::Backlash {
+            joint,
+            motor_inertia,
+            contact_stiffness,
+            contact_damping,
+            ..
+        } => Effect::Backlash {
+            joint,
+            half_width: m,
+            motor_inertia,
+            contact_stiffness,
+            contact_damping,
+        },
+        Effect::EnvironmentResistance { .. } => Effect::EnvironmentResistance { mu: m, alpha: 2.0 },
+        Effect::EncoderOffset { joint, .. } => Effect::EncoderOffset { joint, offset: m },
+        Effect::TimeDelay { .. } => Effect::TimeDelay { delay: m },
+    }))
+}
+
+/// A training and a held-out data set (different seeds and references,
+/// same withheld effect) and the truth.
+#[derive(Debug, Clone)]
+pub struct SynthOutput {
+    /// Training CSV text.
+    pub train: String,
+    /// Held-out CSV text.
+    pub holdout: String,
+    /// What was withheld.
+    pub truth: Truth,
+}
+
+/// Generates data for `req` (training with `req.seed`, held-out with the
+/// next seed).
+///
+/// ```
+/// use dynamics_runtime::effects::EffectKind;
+/// use robots::gap::{synth, SynthRequest};
+/// let out = synth(&SynthRequest {
+///     robot: "arm3r".into(), kind: Some(EffectKind::ViscousFriction), joint: Some("j2".into()),
+///     magnitude: Some(0.5), seed: 3, excitation: "sines".parse().unwrap(), duration: 0.5,
+///     noise: Default::default(),
+/// }).unwrap();
+/// assert!(out.train.starts_with("t,q_j1,q_j2,q_j3,qd_j1"));
+/// assert_eq!(out.truth.kind, "viscous_friction");
+/// ```
+pub fn synth(req: &SynthRequest) -> Result<SynthOutput, GapError> {
+    let robot = AnyRobot::by_name(&req.robot)?;
+    crate::each_robot!(&robot, r => synth_for(r, req))
+}
+
+fn synth_for<R: Robot<N> + Clone, const N: usize>(
+    robot: &R,
+    req: &SynthRequest,
+) -> Result<SynthOutput, GapError> {
+    if !(req.duration.is_finite() && req.duration >= 0.5) {
+        return Err(GapError::Request(format!(
+            "duration must be at least 0.5 s, got {}",
+            req.duration
+        )));
+    }
+    let mut rng = Rng::new(req.seed.wrapping_mul(0x9E37_79B9).wrapping_add(17));
+    let train_opts = options::<N>(&req.robot, req, req.seed);
+    let effect = effect_for(robot, req, &train_opts, &mut rng)?;
+    let effects: Vec<Effect> = effect.into_iter().collect();
+    let hold_opts = options::<N>(&req.robot, req, req.seed.wrapping_add(1_000_003));
+    let to_csv = |m: &Measured<N>| -> String {
+        let mut out = Vec::new();
+        let _ = write_csv(&mut out, m, &R::JOINT_NAMES);
+        String::from_utf8(out).unwrap_or_default()
+    };
+    let train = synthesize(robot, &effects, &train_opts)?;
+    let holdout = synthesize(robot, &effects, &hold_opts)?;
+    let kind = effect.map(|e| e.kind()).unwrap_or(EffectKind::None);
+    let tip = Tip::of::<R, N>().name::<R, N>().to_string();
+    Ok(SynthOutput {
+        train: to_csv(&train),
+        holdout: to_csv(&holdout),
+        truth: Truth {
+            robot: req.robot.clone(),
+            kind: kind.name().to_string(),
+            joint: effect
+                .and_then(|e| e.joint())
+                .map(|j| R::JOINT_NAMES[j].to_string()),
+            point: (kind.place() == PlaceKind::Point).then_some(tip),
+            effect: effect
+                .map(|e| format!("{e:?}"))
+                .unwrap_or_else(|| "none".into()),
+            seed: req.seed,
+            excitation: format!("{:?}", req.excitation),
+        },
+    })
+}
+
+/// Diagnoses `train` against `holdout` (CSV files) for robot `name`.
+pub fn diagnose_files(
+    name: &str,
+    train: &Path,
+    holdout: &Path,
+    options: &Options,
+    progress: &(dyn Fn(usize, usize) + Sync),
+) -> Result<(Report, Vec<String>), GapError> {
+    let robot = AnyRobot::by_name(name)?;
+    crate::each_robot!(&robot, r => diagnose_for(r, train, holdout, options, progress))
+}
+
+fn diagnose_for<R: Robot<N> + Clone + Sync, const N: usize>(
+    robot: &R,
+    train: &Path,
+    holdout: &Path,
+    options: &Options,
+    progress: &(dyn Fn(usize, usize) + Sync),
+) -> Result<(Report, Vec<String>), GapError> {
+    let a = read_csv(train, &R::JOINT_NAMES)?;
+    let b = read_csv(holdout, &R::JOINT_NAMES)?;
+    let mut warnings = a.warnings.clone();
+    warnings.extend(b.warnings.iter().cloned());
+    let report = diagnose(robot, &a, &b, options, progress)?;
+    Ok((report, warnings))
+}

@@ -1,0 +1,189 @@
+//! The diagnoser scored on random synthetic cases: robot, effect, joint,
+//! magnitude (realistic ranges), excitation, noise level and seed drawn at
+//! random; the generator writes the CSVs and a truth file; the diagnoser
+//! gets the CSVs only; the truth is read after the verdict.
+
+use std::collections::BTreeMap;
+use std::path::Path;
+
+use dynamics_runtime::diagnose::Options;
+use dynamics_runtime::effects::EffectKind;
+use dynamics_runtime::synth::{ExcitationKind, Noise, Rng};
+use robots::gap::{diagnose_files, synth, SynthRequest, Truth};
+
+const CASES: usize = 44;
+const ROBOTS: [&str; 3] = ["arm3r", "rrp-rigid", "mar"];
+
+struct Outcome {
+    truth: String,
+    truth_joint: Option<String>,
+    said: String,
+    said_joint: Option<String>,
+    identifiable: bool,
+    shrink: f64,
+}
+
+fn run_case(i: usize, dir: &Path) -> Outcome {
+    let mut rng = Rng::new(1000 + i as u64);
+    let robot = ROBOTS[rng.below(ROBOTS.len())];
+    // One case in eleven is a control without any effect.
+    let kind = if i % 11 == 0 {
+        EffectKind::None
+    } else {
+        EffectKind::ALL[1 + rng.below(EffectKind::ALL.len() - 1)]
+    };
+    let excitation = [
+        ExcitationKind::Sines,
+        ExcitationKind::Chirp,
+        ExcitationKind::PickPlace,
+    ][rng.below(3)];
+    let level = rng.uniform(0.5, 2.0);
+    let noise = Noise {
+        q: 2e-5 * level,
+        qd: 2e-3 * level,
+        tau_relative: 2e-3 * level,
+    };
+    let out = synth(&SynthRequest {
+        robot: robot.into(),
+        kind: Some(kind),
+        joint: None,
+        magnitude: None,
+        seed: 77 + i as u64,
+        excitation,
+        duration: 6.0,
+        noise,
+    })
+    .expect("synthesizes");
+    let (train, holdout, truth_file) = (
+        dir.join(format!("{i}-a.csv")),
+        dir.join(format!("{i}-b.csv")),
+        dir.join(format!("{i}-truth.json")),
+    );
+    std::fs::write(&train, &out.train).expect("writes");
+    std::fs::write(&holdout, &out.holdout).expect("writes");
+    std::fs::write(
+        &truth_file,
+        serde_json::to_string(&out.truth).expect("json"),
+    )
+    .expect("writes");
+    drop(out);
+    let (report, _) = diagnose_files(robot, &train, &holdout, &Options::default(), &|_, _| {})
+        .expect("diagnoses");
+    // Only now read the truth.
+    let truth: Truth = serde_json::from_str(&std::fs::read_to_string(&truth_file).expect("reads"))
+        .expect("parses");
+    let gap = report
+        .where_
+        .joints
+        .iter()
+        .map(|j| j.torque_ratio)
+        .fold(0.0, f64::max);
+    let v = &report.which.verdict;
+    let first = report.which.ranked.first();
+    let said = if v.kind == "none" {
+        "none".to_string()
+    } else {
+        first.map(|r| r.kind.clone()).unwrap_or_default()
+    };
+    let said_joint = if v.kind == "none" {
+        None
+    } else {
+        first.and_then(|r| r.joint.clone())
+    };
+    eprintln!(
+        "case {i:2} {robot:9} {:>22} {:>4} -> {:>22} {:>4} {:9} gap {gap:7.1} shrink {:.2} ({}) top {:?}",
+        truth.kind,
+        truth.joint.clone().unwrap_or_default(),
+        said,
+        said_joint.clone().unwrap_or_default(),
+        v.status,
+        report.shrink.fraction,
+        truth.effect,
+        report.which.ranked.iter().take(2).map(|r| (r.kind.as_str(), r.delta_aicc.round(), (r.holdout_share * 100.0).round())).collect::<Vec<_>>()
+    );
+    Outcome {
+        identifiable: truth.kind != "none" && gap >= 2.0,
+        truth: truth.kind,
+        truth_joint: truth.joint,
+        said,
+        said_joint,
+        shrink: report.shrink.fraction,
+    }
+}
+
+#[test]
+fn diagnoser_names_the_withheld_effect() {
+    let dir = std::env::temp_dir().join(format!("dynamics-diagnosis-{}", std::process::id()));
+    std::fs::create_dir_all(&dir).expect("temp dir");
+    let outcomes: Vec<Outcome> = std::thread::scope(|s| {
+        let hs: Vec<_> = (0..2)
+            .map(|t| {
+                let dir = &dir;
+                s.spawn(move || {
+                    (0..CASES)
+                        .filter(|i| i % 2 == t)
+                        .map(|i| run_case(i, dir))
+                        .collect::<Vec<_>>()
+                })
+            })
+            .collect();
+        hs.into_iter()
+            .flat_map(|h| h.join().expect("case thread"))
+            .collect()
+    });
+    let _ = std::fs::remove_dir_all(&dir);
+
+    let mut confusion: BTreeMap<(String, String), usize> = BTreeMap::new();
+    for o in &outcomes {
+        *confusion
+            .entry((o.truth.clone(), o.said.clone()))
+            .or_default() += 1;
+    }
+    eprintln!("\nconfusion (truth -> said: count)");
+    for ((t, s), c) in &confusion {
+        eprintln!("  {t:>22} -> {s:<22} {c}");
+    }
+    let ident: Vec<&Outcome> = outcomes.iter().filter(|o| o.identifiable).collect();
+    let named = ident.iter().filter(|o| o.said == o.truth).count();
+    let joint_cases: Vec<&&Outcome> = ident
+        .iter()
+        .filter(|o| o.truth_joint.is_some() && o.said == o.truth)
+        .collect();
+    let joint_ok = joint_cases
+        .iter()
+        .filter(|o| o.said_joint == o.truth_joint)
+        .count();
+    let controls: Vec<&Outcome> = outcomes.iter().filter(|o| o.truth == "none").collect();
+    let controls_ok = controls.iter().filter(|o| o.said == "none").count();
+    let mut shrinks: Vec<f64> = ident
+        .iter()
+        .filter(|o| o.said == o.truth)
+        .map(|o| o.shrink)
+        .collect();
+    shrinks.sort_by(f64::total_cmp);
+    let median = shrinks.get(shrinks.len() / 2).copied().unwrap_or(0.0);
+    eprintln!(
+        "effect named first: {named}/{} identifiable; joint: {joint_ok}/{}; controls none: {controls_ok}/{}; median held-out shrink {median:.3}; not identifiable: {}",
+        ident.len(),
+        joint_cases.len(),
+        controls.len(),
+        outcomes.len() - ident.len() - controls.len()
+    );
+    assert!(outcomes.len() >= 40);
+    assert!(
+        named as f64 >= 0.9 * ident.len() as f64,
+        "effect named first in {named} of {}",
+        ident.len()
+    );
+    assert!(
+        joint_ok as f64 >= 0.95 * joint_cases.len() as f64,
+        "joint right in {joint_ok} of {}",
+        joint_cases.len()
+    );
+    assert_eq!(
+        controls_ok,
+        controls.len(),
+        "a control was not answered none"
+    );
+    assert!(median >= 0.8, "median held-out shrink {median}");
+}
