@@ -122,12 +122,12 @@ fn check<const N: usize>(m: &Measured<N>, which: &'static str) -> Result<(), Dia
 /// checks the chosen effect on `holdout`; `progress(done, total)` is called
 /// as candidates are fitted.
 ///
-/// ```no_run
-/// use dynamics_runtime::diagnose::{diagnose, Options};
-/// # fn get<R>() -> R { unimplemented!() }
-/// # let (robot, train, holdout): (robots::Arm3r, dynamics_runtime::data::Measured<3>, dynamics_runtime::data::Measured<3>) = (get(), get(), get());
-/// let report = diagnose(&robot, &train, &holdout, &Options::default(), &|_, _| {}).unwrap();
-/// println!("{} at {:?}", report.which.verdict.kind, report.which.verdict.joint);
+/// ```
+/// use dynamics_runtime::diagnose::{diagnose, Options, Report};
+/// use dynamics_runtime::{data::Measured, Robot};
+/// fn run<R: Robot<3> + Clone + Sync>(robot: &R, train: &Measured<3>, holdout: &Measured<3>) -> Report {
+///     diagnose(robot, train, holdout, &Options::default(), &|_, _| {}).expect("enough data")
+/// }
 /// ```
 pub fn diagnose<R: Robot<N> + Clone + Sync, const N: usize>(
     robot: &R,
