@@ -12,6 +12,7 @@ use thiserror::Error;
 use crate::plot::{svg, Series};
 
 mod circle;
+pub mod mar;
 
 /// Scenario names with a line each.
 pub const SCENARIOS: &[(&str, &str)] = &[
@@ -22,6 +23,10 @@ pub const SCENARIOS: &[(&str, &str)] = &[
     (
         "rrp-line",
         "seed 001 sec. 3.1.2: the RRP arm carrying M along the line KL (eq. 3.7/3.14)",
+    ),
+    (
+        "mar-vibration",
+        "seed 000: inertial vibrations of the MAR's links 2 and 3 on the Table 2 path (Figs. 3-8)",
     ),
 ];
 
@@ -42,6 +47,9 @@ pub enum ScenarioError {
         /// The error.
         source: std::io::Error,
     },
+    /// The MAR vibration analysis failed.
+    #[error(transparent)]
+    Mar(#[from] mar::MarError),
 }
 
 /// Runs scenario `name`, writing into `dir`; returns summary lines.
@@ -58,6 +66,7 @@ pub fn run(name: &str, dir: &Path) -> Result<Vec<String>, ScenarioError> {
         "arm3r-free" => arm3r_free(dir),
         "rrp-line" => rrp_line(dir),
         "arm3r-circle" => circle::run(dir),
+        "mar-vibration" => mar::run(dir),
         other => Err(ScenarioError::Unknown(other.to_string())),
     }
 }
