@@ -2,6 +2,8 @@
 
 mod diagnosis;
 mod effects;
+mod mar_eq10;
+mod mar_vibration;
 mod oracle;
 mod properties;
 mod simulate;
