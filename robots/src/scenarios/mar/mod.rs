@@ -88,6 +88,11 @@ pub fn run(dir: &Path) -> Result<Vec<String>, ScenarioError> {
         "linear eq. 9 vs nonlinear elastic-drive simulation: largest difference [{:.1e}, {:.1e}, {:.1e}]",
         worst[0], worst[1], worst[2]
     ));
+    let dev = v.gripper.iter().fold(0.0f64, |m, d| m.max(*d));
+    lines.push(format!(
+        "peak gripper deviation |J x1| = {:.3} mm (J: the gripper's point Jacobian on the nominal motion)",
+        dev * 1e3
+    ));
     let tau_peak = v.driving.iter().fold(Vector3::<f64>::zeros(), |m, t| {
         m.zip_map(t, |a, b| a.max(b.abs()))
     });
@@ -100,7 +105,7 @@ pub fn run(dir: &Path) -> Result<Vec<String>, ScenarioError> {
 
 /// t, beta and the gripper, then x1, x1d, x1dd and tau_n per joint.
 fn perturbation_csv(v: &Vibration) -> String {
-    let mut out = String::from("t,beta_deg,x,y,speed,accel");
+    let mut out = String::from("t,beta_deg,x,y,speed,accel_t,accel_abs,gripper_dev");
     for kind in ["dx", "dxd", "dxdd", "tau_n"] {
         for j in Mar::JOINT_NAMES {
             let _ = write!(out, ",{kind}_{j}");
@@ -112,13 +117,15 @@ fn perturbation_csv(v: &Vibration) -> String {
         let p = &v.path[i];
         let _ = write!(
             out,
-            "{},{},{},{},{},{}",
+            "{},{},{},{},{},{},{},{:e}",
             r.nominal.t[i],
             p.beta.to_degrees(),
             p.p.x,
             p.p.y,
-            p.v.norm(),
-            p.a.norm()
+            p.speed,
+            p.accel,
+            p.a.norm(),
+            v.gripper[i]
         );
         for vec in [&r.dx[i], &r.dxd[i], &r.dxdd[i], &v.driving[i]] {
             for x in vec.iter() {
@@ -169,7 +176,8 @@ fn figures(v: &Vibration, dir: &Path) -> Result<(), ScenarioError> {
                 beta,
                 "[m/s], [m/s^2]",
                 &[
-                    vs_beta(v, "|v| [m/s]", |i| v.path[i].v.norm()),
+                    vs_beta(v, "v [m/s]", |i| v.path[i].speed),
+                    vs_beta(v, "a tangential [m/s^2]", |i| v.path[i].accel),
                     vs_beta(v, "|a| [m/s^2]", |i| v.path[i].a.norm()),
                 ],
                 false,

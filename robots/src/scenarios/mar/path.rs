@@ -136,6 +136,10 @@ pub struct PathPoint {
     pub v: Vector2<f64>,
     /// Acceleration, m/s^2.
     pub a: Vector2<f64>,
+    /// Path speed ds/dt, m/s.
+    pub speed: f64,
+    /// Tangential acceleration d2s/dt2, m/s^2.
+    pub accel: f64,
     /// Index of the segment (0..5) the gripper is on or last finished.
     pub segment: usize,
 }
@@ -208,6 +212,8 @@ pub fn at(t: f64) -> PathPoint {
         p,
         v: tangent * sd,
         a: tangent * sdd + curv * (sd * sd),
+        speed: sd,
+        accel: sdd,
         segment: i,
     }
 }

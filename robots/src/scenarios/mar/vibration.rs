@@ -159,6 +159,9 @@ pub struct Vibration {
     pub path: Vec<PathPoint>,
     /// Rigid inverse dynamics tau_n at the output times (Fig. 5).
     pub driving: Vec<Vector3<f64>>,
+    /// |J x1|: how far the links' perturbation moves the gripper, m (J the
+    /// gripper's point Jacobian on the nominal motion).
+    pub gripper: Vec<f64>,
 }
 
 /// The perturbation at rest at t = 0: the static deflection `K x1 =
@@ -209,10 +212,23 @@ pub fn inertial_vibration(plan: &Plan, drives: &Drives, dt: f64) -> Result<Vibra
         .iter()
         .map(|t| plan.driving(*t))
         .collect();
+    let g = Mar::point_index("gripper").unwrap_or(0);
+    let gripper = response
+        .nominal
+        .q
+        .iter()
+        .zip(&response.dx)
+        .map(|(q, dx)| {
+            model
+                .point_jacobian(g, q)
+                .map_or(f64::NAN, |j| (j * dx).norm())
+        })
+        .collect();
     Ok(Vibration {
         response,
         path,
         driving,
+        gripper,
     })
 }
 
