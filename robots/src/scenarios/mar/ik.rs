@@ -50,6 +50,11 @@ pub struct JointMotion {
 }
 
 /// A path point (local frame X1 Y1 O1) in link 1's frame.
+///
+/// ```
+/// use robots::scenarios::mar::ik::{in_link1, ORIGIN};
+/// assert_eq!(in_link1(&nalgebra::Vector2::zeros()), ORIGIN);
+/// ```
 pub fn in_link1(p: &Vector2<f64>) -> Vector2<f64> {
     ORIGIN + p
 }
@@ -64,7 +69,7 @@ pub fn in_link1(p: &Vector2<f64>) -> Vector2<f64> {
 pub fn joints(q1: f64, pt: &PathPoint) -> Result<JointMotion, IkError> {
     let w = in_link1(&pt.p) - Vector2::new(0.0, L1);
     let rr = w.norm_squared() - L2 * L2;
-    if !(rr > 0.0) {
+    if rr.is_nan() || rr <= 0.0 {
         return Err(IkError::Unreachable {
             x: w.x,
             y: w.y + L1,

@@ -42,7 +42,15 @@ pub enum MarError {
 /// Output step, s.
 const DT: f64 = 1e-3;
 
-/// `dynamics scenario mar-vibration`.
+/// `dynamics scenario mar-vibration`: CSVs, the figures as SVG, and the
+/// summary with the peak perturbation and acceleration per link.
+///
+/// ```
+/// let dir = std::env::temp_dir().join("dynamics-doc-mar-vibration");
+/// let lines = robots::scenarios::mar::run(&dir).unwrap();
+/// assert!(dir.join("fig7-link2.svg").exists() && dir.join("perturbation.csv").exists());
+/// assert!(lines.iter().any(|l| l.starts_with("2     q2")));
+/// ```
 pub fn run(dir: &Path) -> Result<Vec<String>, ScenarioError> {
     let plan = Plan::new(0.0)?;
     let v = inertial_vibration(&plan, &Drives::TABLE1, DT)?;

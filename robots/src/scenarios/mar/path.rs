@@ -173,6 +173,11 @@ pub fn cycle_time() -> f64 {
 }
 
 /// Total path length, m: Q + L + K + pi R.
+///
+/// ```
+/// let l = robots::scenarios::mar::path::length();
+/// assert!((l - (0.05 + 0.35 + 0.05 + std::f64::consts::PI * 0.05)).abs() < 1e-12);
+/// ```
 pub fn length() -> f64 {
     segments().iter().map(Segment::length).sum()
 }

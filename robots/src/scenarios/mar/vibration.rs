@@ -10,10 +10,11 @@
 //! lags behind its motor by the perturbation `x1 = q - q_n`, driven by the
 //! inertial (and gravity) forces the drive must transmit.
 //!
-//! **The perturbation equation.** With `F_r(q, qd, qdd) = A qdd - Q - Qqt1
-//! - Qqt2` the rigid residual, the model reads `F_r(q, qd, qdd) + k (q -
-//! q_n) + c (qd - qd_n) = 0`. Linearised about the nominal motion (where
-//! `F_r(x_n) = tau_n`, the rigid inverse dynamics of Fig. 5):
+//! **The perturbation equation.** With the rigid residual
+//! `F_r(q, qd, qdd) = A qdd - Q - Qqt1 - Qqt2`, the model reads
+//! `F_r(q, qd, qdd) + k (q - q_n) + c (qd - qd_n) = 0`. Linearised about the
+//! nominal motion (where `F_r(x_n) = tau_n`, the rigid inverse dynamics of
+//! Fig. 5):
 //!
 //! ```text
 //! A(x_n) x1dd + (D_r + c) x1d + (K_r + k) x1 = -tau_n(t)        (seed eq. 9)
@@ -93,6 +94,14 @@ impl Drives {
     }
 
     /// The drives' effort on the links, motor side at (`q_m`, `qd_m`).
+    ///
+    /// ```
+    /// use nalgebra::Vector3;
+    /// use robots::scenarios::mar::vibration::Drives;
+    /// let z = Vector3::zeros();
+    /// let u = Drives::TABLE1.effort(&Vector3::new(0.0, 1e-3, 0.0), &z, &z, &z);
+    /// assert!((u[1] - 110.066).abs() < 1e-9);
+    /// ```
     pub fn effort(
         &self,
         q_m: &Vector3<f64>,
@@ -115,6 +124,14 @@ pub struct Plan {
 
 impl Plan {
     /// Checks that the whole path is reachable (every 1 ms) with q1 at `q1`.
+    ///
+    /// ```
+    /// use robots::scenarios::mar::vibration::Plan;
+    /// let plan = Plan::new(0.0).unwrap();
+    /// // At rest the drives hold gravity only: q3's drive carries link 3.
+    /// let tau = plan.driving(0.0);
+    /// assert!(tau[2].abs() > 50.0 && tau[2].abs() < 15.0 * 9.81);
+    /// ```
     pub fn new(q1: f64) -> Result<Plan, MarError> {
         let n = (path::cycle_time() / 1e-3).ceil() as usize;
         for i in 0..=n {
@@ -167,6 +184,15 @@ pub struct Vibration {
 /// The perturbation at rest at t = 0: the static deflection `K x1 =
 /// -tau_n(0)` of the drives under gravity, so that the run starts without a
 /// spurious transient.
+///
+/// ```
+/// use robots::scenarios::mar::vibration::{static_deflection, Drives, Plan};
+/// let plan = Plan::new(0.0).unwrap();
+/// let x = static_deflection(&plan, &Drives::TABLE1).unwrap();
+/// // About tau / k per joint.
+/// let tau = plan.driving(0.0);
+/// assert!((x[2] + tau[2] / Drives::TABLE1.stiffness[2]).abs() < 1e-6);
+/// ```
 pub fn static_deflection(plan: &Plan, drives: &Drives) -> Result<Vector3<f64>, MarError> {
     let m = plan.at(0.0).1;
     let pj = drives.model().perturbation_jacobians(&m.q, &m.qd, &m.qdd);
@@ -177,10 +203,12 @@ pub fn static_deflection(plan: &Plan, drives: &Drives) -> Result<Vector3<f64>, M
 
 /// Integrates seed eq. 9 over one cycle, output every `dt`.
 ///
-/// ```no_run
-/// use robots::scenarios::mar::vibration::{inertial_vibration, Drives, Plan};
-/// let v = inertial_vibration(&Plan::new(0.0).unwrap(), &Drives::TABLE1, 1e-3).unwrap();
-/// assert!(v.response.dx.iter().all(|d| d.norm() < 1e-2));
+/// ```
+/// use robots::scenarios::mar::vibration::{inertial_vibration, peaks, Drives, Plan};
+/// let v = inertial_vibration(&Plan::new(0.0).unwrap(), &Drives::TABLE1, 1e-2).unwrap();
+/// // Links 2 and 3 lag their motors by well under a milliradian / millimetre.
+/// let p = peaks(&v);
+/// assert!(p[1].0 > 1e-5 && p[1].0 < 1e-3 && p[2].0 < 1e-3);
 /// ```
 pub fn inertial_vibration(plan: &Plan, drives: &Drives, dt: f64) -> Result<Vibration, MarError> {
     let model = drives.model();
@@ -235,6 +263,14 @@ pub fn inertial_vibration(plan: &Plan, drives: &Drives, dt: f64) -> Result<Vibra
 /// The nonlinear elastic-drive model: the rigid MAR under the drive efforts
 /// with the motors on the plan, started at `q_n(0) + x0`. Its deviation
 /// `q - q_n(t)` is what eq. 9 approximates.
+///
+/// ```
+/// use robots::scenarios::mar::vibration::{nonlinear, Drives, Plan};
+/// let plan = Plan::new(0.0).unwrap();
+/// let tr = nonlinear(&plan, &Drives::TABLE1, nalgebra::Vector3::zeros(), 0.01).unwrap();
+/// let last = tr.q.len() - 1;
+/// assert!((tr.q[last] - plan.at(tr.t[last]).1.q).norm() < 1e-3);
+/// ```
 pub fn nonlinear(
     plan: &Plan,
     drives: &Drives,
