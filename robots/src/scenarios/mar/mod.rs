@@ -43,10 +43,12 @@ pub enum MarError {
 const DT: f64 = 1e-3;
 
 /// `dynamics scenario mar-vibration`: CSVs, the figures as SVG, and the
-/// summary with the peak perturbation and acceleration per link.
+/// summary with the peak perturbation and acceleration per link, written
+/// into the existing folder `dir`.
 ///
 /// ```
 /// let dir = std::env::temp_dir().join("dynamics-doc-mar-vibration");
+/// std::fs::create_dir_all(&dir).unwrap();
 /// let lines = robots::scenarios::mar::run(&dir).unwrap();
 /// assert!(dir.join("fig7-link2.svg").exists() && dir.join("perturbation.csv").exists());
 /// assert!(lines.iter().any(|l| l.starts_with("2     q2")));
