@@ -21,6 +21,7 @@ mod fit;
 mod horizon;
 mod report;
 mod signals;
+pub mod traces;
 mod windows;
 
 pub use analysis::{Fit, Prepared};
