@@ -1,6 +1,7 @@
-//! Minimal SVG line plots (time series and x-y paths), written by hand: a
-//! plotting crate (plotters) would bring fonts and backends for what is
-//! ~80 lines of text output here.
+//! Minimal SVG plots (time series and x-y paths with shaded bands, and
+//! horizontal bar charts), written by hand: a plotting crate (plotters)
+//! would bring fonts and backends for what is a few lines of text output
+//! here.
 
 use std::fmt::Write as _;
 
@@ -24,10 +25,57 @@ const COLORS: [&str; 6] = [
 /// assert!(s.starts_with("<svg") && s.contains("<polyline"));
 /// ```
 pub fn svg(title: &str, xlabel: &str, ylabel: &str, series: &[Series], equal_axes: bool) -> String {
+    svg_shaded(title, xlabel, ylabel, series, &[], equal_axes)
+}
+
+/// A shaded band behind the lines: `x` and `y` ranges (`None`: the whole
+/// plot along that axis), labelled at its top left.
+pub struct Shade<'a> {
+    /// From and to along x.
+    pub x: Option<(f64, f64)>,
+    /// From and to along y.
+    pub y: Option<(f64, f64)>,
+    /// Label (may be empty).
+    pub label: &'a str,
+}
+
+/// [`svg`] with shaded bands behind the lines (time windows, a noise band);
+/// the y range covers the bands' finite y limits.
+///
+/// ```
+/// use robots::plot::{svg_shaded, Series, Shade};
+/// let line = Series { name: "r", points: vec![(0.0, 0.0), (1.0, 2.0)] };
+/// let s = svg_shaded("r", "t [s]", "r", &[line], &[
+///     Shade { x: Some((0.2, 0.4)), y: None, label: "hold" },
+///     Shade { x: None, y: Some((-3.0, 3.0)), label: "noise" },
+/// ], false);
+/// assert_eq!(s.matches("<rect").count(), 2 + 2);
+/// assert!(s.contains(">hold</text>"));
+/// ```
+pub fn svg_shaded(
+    title: &str,
+    xlabel: &str,
+    ylabel: &str,
+    series: &[Series],
+    shades: &[Shade],
+    equal_axes: bool,
+) -> String {
     let (w, h, m) = (720.0, 420.0, 60.0);
+    let shade_y = shades
+        .iter()
+        .filter_map(|s| s.y)
+        .flat_map(|(a, b)| [a, b])
+        .filter(|v| v.is_finite());
+    let first_x = series
+        .iter()
+        .flat_map(|s| s.points.first())
+        .map(|p| p.0)
+        .find(|x| x.is_finite())
+        .unwrap_or(0.0);
     let pts = series
         .iter()
-        .flat_map(|s| s.points.iter())
+        .flat_map(|s| s.points.iter().copied())
+        .chain(shade_y.map(|y| (first_x, y)))
         .filter(|p| p.0.is_finite() && p.1.is_finite());
     let (mut x0, mut x1, mut y0, mut y1) = (
         f64::INFINITY,
@@ -35,7 +83,7 @@ pub fn svg(title: &str, xlabel: &str, ylabel: &str, series: &[Series], equal_axe
         f64::INFINITY,
         f64::NEG_INFINITY,
     );
-    for &(x, y) in pts {
+    for (x, y) in pts {
         x0 = x0.min(x);
         x1 = x1.max(x);
         y0 = y0.min(y);
@@ -77,6 +125,41 @@ pub fn svg(title: &str, xlabel: &str, ylabel: &str, series: &[Series], equal_axe
         out,
         "<rect x=\"{m}\" y=\"{m}\" width=\"{pw}\" height=\"{ph}\" fill=\"none\" stroke=\"#888\"/>"
     );
+    // Labels go on the first row where they do not overlap another.
+    let mut rows: Vec<f64> = Vec::new();
+    for sh in shades {
+        let (xa, xb) = sh.x.unwrap_or((x0, x1));
+        let (ya, yb) = sh.y.unwrap_or((y0, y1));
+        if ![xa, xb, ya, yb].iter().all(|v| v.is_finite()) {
+            continue;
+        }
+        let (xa, xb) = (px(xa.clamp(x0, x1)), px(xb.clamp(x0, x1)));
+        let (ya, yb) = (py(ya.clamp(y0, y1)), py(yb.clamp(y0, y1)));
+        let fill = if sh.x.is_some() { "#ff7f0e" } else { "#888888" };
+        let _ = write!(
+            out,
+            "<rect x=\"{:.2}\" y=\"{:.2}\" width=\"{:.2}\" height=\"{:.2}\" fill=\"{fill}\" fill-opacity=\"0.18\"/>",
+            xa.min(xb),
+            ya.min(yb),
+            (xb - xa).abs(),
+            (yb - ya).abs()
+        );
+        if !sh.label.is_empty() {
+            let x = xa.min(xb) + 2.0;
+            let row = rows.iter().position(|&end| end < x).unwrap_or(rows.len());
+            let end = x + 6.0 * sh.label.chars().count() as f64;
+            match rows.get_mut(row) {
+                Some(r) => *r = end,
+                None => rows.push(end),
+            }
+            let _ = write!(
+                out,
+                "<text x=\"{x:.2}\" y=\"{:.2}\" font-size=\"10\" fill=\"#555\">{}</text>",
+                ya.min(yb) + 11.0 + 11.0 * row as f64,
+                esc(sh.label)
+            );
+        }
+    }
     for k in 0..=4 {
         let fx = x0 + (x1 - x0) * k as f64 / 4.0;
         let fy = y0 + (y1 - y0) * k as f64 / 4.0;
@@ -132,6 +215,122 @@ pub fn svg(title: &str, xlabel: &str, ylabel: &str, series: &[Series], equal_axe
             esc(s.name)
         );
     }
+    out.push_str("</svg>\n");
+    out
+}
+
+/// A horizontal bar chart: one bar per `(label, value)` from zero (negative
+/// values to the left), the value written at the bar's end, and a dashed
+/// vertical line at `marker` (value, label) if given.
+///
+/// ```
+/// use robots::plot::bars;
+/// let s = bars("ranking", "delta AICc", &[("coulomb j2".into(), 3800.0), ("offset j1".into(), -2.0)], Some((100.0, "threshold")));
+/// assert_eq!(s.matches("<rect").count(), 1 + 2);
+/// assert!(s.contains(">coulomb j2</text>") && s.contains("stroke-dasharray"));
+/// ```
+pub fn bars(
+    title: &str,
+    xlabel: &str,
+    bars: &[(String, f64)],
+    marker: Option<(f64, &str)>,
+) -> String {
+    let (w, left, right, top, row) = (720.0, 200.0, 70.0, 50.0, 22.0);
+    let h = top + row * bars.len().max(1) as f64 + 50.0;
+    let values = bars
+        .iter()
+        .map(|b| b.1)
+        .chain(marker.map(|m| m.0))
+        .filter(|v| v.is_finite());
+    let (mut lo, mut hi) = (0.0f64, 0.0f64);
+    for v in values {
+        lo = lo.min(v);
+        hi = hi.max(v);
+    }
+    if hi - lo < 1e-12 {
+        hi = lo + 1.0;
+    }
+    let pw = w - left - right;
+    let px = |v: f64| left + (v.clamp(lo, hi) - lo) / (hi - lo) * pw;
+    let mut out = String::new();
+    let _ = write!(out, "<svg xmlns=\"http://www.w3.org/2000/svg\" width=\"{w}\" height=\"{h}\" font-family=\"sans-serif\" font-size=\"12\">");
+    let _ = write!(out, "<rect width=\"100%\" height=\"100%\" fill=\"white\"/>");
+    let _ = write!(
+        out,
+        "<text x=\"{}\" y=\"24\" text-anchor=\"middle\" font-size=\"15\">{}</text>",
+        w / 2.0,
+        esc(title)
+    );
+    for (i, (label, v)) in bars.iter().enumerate() {
+        let y = top + row * i as f64;
+        let v = if v.is_finite() { *v } else { 0.0 };
+        let (a, b) = (px(0.0), px(v));
+        let color = if v >= 0.0 { COLORS[0] } else { COLORS[1] };
+        let _ = write!(
+            out,
+            "<rect x=\"{:.2}\" y=\"{:.2}\" width=\"{:.2}\" height=\"{:.2}\" fill=\"{color}\"/>",
+            a.min(b),
+            y + 3.0,
+            (b - a).abs().max(0.5),
+            row - 6.0
+        );
+        let _ = write!(
+            out,
+            "<text x=\"{:.2}\" y=\"{:.2}\" text-anchor=\"end\">{}</text>",
+            left - 8.0,
+            y + row / 2.0 + 4.0,
+            esc(label)
+        );
+        let _ = write!(
+            out,
+            "<text x=\"{:.2}\" y=\"{:.2}\" font-size=\"10\">{}</text>",
+            a.max(b) + 4.0,
+            y + row / 2.0 + 4.0,
+            if v.abs() >= 1e4 {
+                num(v)
+            } else {
+                format!("{v:.1}")
+            }
+        );
+    }
+    let bottom = top + row * bars.len().max(1) as f64;
+    let _ = write!(
+        out,
+        "<line x1=\"{0:.2}\" y1=\"{top}\" x2=\"{0:.2}\" y2=\"{bottom}\" stroke=\"#444\"/>",
+        px(0.0)
+    );
+    if let Some((v, label)) = marker.filter(|m| m.0.is_finite()) {
+        let _ = write!(
+            out,
+            "<line x1=\"{0:.2}\" y1=\"{1}\" x2=\"{0:.2}\" y2=\"{bottom}\" stroke=\"#888\" stroke-dasharray=\"4 3\"/>",
+            px(v),
+            top - 8.0
+        );
+        let _ = write!(
+            out,
+            "<text x=\"{:.2}\" y=\"{:.2}\" font-size=\"10\" fill=\"#555\">{}</text>",
+            px(v) + 3.0,
+            top - 2.0,
+            esc(label)
+        );
+    }
+    for k in 0..=4 {
+        let v = lo + (hi - lo) * k as f64 / 4.0;
+        let _ = write!(
+            out,
+            "<text x=\"{:.2}\" y=\"{:.2}\" text-anchor=\"middle\">{}</text>",
+            px(v),
+            bottom + 16.0,
+            num(v)
+        );
+    }
+    let _ = write!(
+        out,
+        "<text x=\"{:.2}\" y=\"{:.2}\" text-anchor=\"middle\">{}</text>",
+        left + pw / 2.0,
+        bottom + 36.0,
+        esc(xlabel)
+    );
     out.push_str("</svg>\n");
     out
 }
