@@ -393,6 +393,16 @@ fn diagnose_writes_a_readable_report() {
         let ranked = report["which"]["ranked"].as_array().expect("ranked").len();
         let bars = read("ranking.svg").matches("<rect").count() - 1;
         assert_eq!(bars, ranked.min(12));
+        // The prediction error's yardstick is what an exact model shows:
+        // without an effect the ratio is about 1, with one far above.
+        for j in report["where"]["joints"].as_array().expect("joints") {
+            let ratio = j["prediction_ratio"].as_f64().expect("a number");
+            match joint {
+                None => assert!((0.3..2.0).contains(&ratio), "{case}: {j}"),
+                Some(name) if j["joint"] == name => assert!(ratio > 10.0, "{case}: {j}"),
+                Some(_) => {}
+            }
+        }
         // The gap windows of the JSON are the bands of the residual plots.
         for j in report["where"]["joints"].as_array().expect("joints") {
             let name = j["joint"].as_str().expect("a name");

@@ -375,7 +375,7 @@ fn diagnose_cmd(
     println!("where (training data, nominal model):");
     for j in &report.where_.joints {
         println!(
-            "  {:8} torque residual {:.4} = {:.1} x noise; short-horizon position error {:.2e} = {:.1} x noise",
+            "  {:8} torque residual {:.4} = {:.1} x noise; 0.1 s prediction error {:.2e} = {:.1} x an exact model's",
             j.joint, j.torque_rms, j.torque_ratio, j.prediction_rms, j.prediction_ratio
         );
         for w in j.windows.iter().take(2) {
