@@ -416,3 +416,70 @@ fn diagnose_writes_a_readable_report() {
         }
     }
 }
+
+#[test]
+fn report_traces_carry_the_fitted_effect() {
+    use dynamics_runtime::data::read_csv_str;
+    use dynamics_runtime::diagnose::{diagnose, traces::traces, Options};
+    use dynamics_runtime::effects::EffectKind;
+    use dynamics_runtime::Robot;
+    use robots::Arm3r;
+    let data = robots::gap::synth(&robots::gap::SynthRequest {
+        robot: "arm3r".into(),
+        kind: Some(EffectKind::CoulombFriction),
+        joint: Some("j3".into()),
+        magnitude: Some(0.2),
+        seed: 21,
+        excitation: "sines".parse().expect("an excitation"),
+        duration: 4.0,
+        noise: Default::default(),
+    })
+    .expect("synthesised");
+    let read = |text: &str| read_csv_str(text, &Arm3r::JOINT_NAMES, "synth").expect("CSV");
+    let (train, holdout) = (read(&data.train), read(&data.holdout));
+    let robot = Arm3r::default();
+    let report =
+        diagnose(&robot, &train, &holdout, &Options::default(), &|_, _| {}).expect("diagnosed");
+    let top = &report.which.ranked[0];
+    assert_eq!(
+        (top.kind.as_str(), top.joint.as_deref()),
+        ("coulomb_friction", Some("j3"))
+    );
+    let fc = top.parameters[0].value;
+    let t = traces(&robot, &train, &holdout, Some(top)).expect("traces");
+    for data in [&t.train, &t.holdout] {
+        for (j, jt) in data.joints.iter().enumerate() {
+            assert_eq!(jt.measured.len(), data.t.len());
+            for k in 0..data.t.len() {
+                // The definitions: residuals are measured minus each model.
+                assert!((jt.residual[k] - (jt.measured[k] - jt.nominal[k])).abs() < 1e-9);
+                assert!((jt.residual_after[k] - (jt.measured[k] - jt.corrected[k])).abs() < 1e-9);
+                // Coulomb friction at j3 changes j3's effort only, by at most fc.
+                let added = jt.corrected[k] - jt.nominal[k];
+                if j == 2 {
+                    assert!(added.abs() <= fc * (1.0 + 1e-9), "{added} vs fc {fc}");
+                } else {
+                    assert_eq!(added, 0.0);
+                }
+            }
+            if j == 2 {
+                // Moving fast, the added effort is the whole fitted fc.
+                let peak = (0..data.t.len())
+                    .map(|k| (jt.corrected[k] - jt.nominal[k]).abs())
+                    .fold(0.0, f64::max);
+                assert!(peak > 0.98 * fc, "{peak} vs {fc}");
+                let rms =
+                    |v: &[f64]| (v.iter().map(|x| x * x).sum::<f64>() / v.len() as f64).sqrt();
+                assert!(rms(&jt.residual_after) < 0.6 * rms(&jt.residual));
+            }
+        }
+    }
+    // Without an effect, "corrected" is the nominal model.
+    let t = traces(&robot, &train, &holdout, None).expect("traces");
+    assert!(t.holdout.joints.iter().all(|j| j.corrected == j.nominal));
+    // A ranked entry naming a joint the robot lacks is an error, not a panic.
+    let mut wrong = top.clone();
+    wrong.joint = Some("j9".into());
+    let err = traces(&robot, &train, &holdout, Some(&wrong)).expect_err("no j9");
+    assert!(err.to_string().contains("no joint `j9`"), "{err}");
+}
