@@ -160,9 +160,17 @@ pub fn svg_shaded(
             );
         }
     }
+    // On an axis across zero, a tick a hair off zero is written as zero.
+    let snap = |v: f64, a: f64, b: f64| {
+        if a < 0.0 && b > 0.0 && v.abs() < 1e-2 * (b - a) {
+            0.0
+        } else {
+            v
+        }
+    };
     for k in 0..=4 {
-        let fx = x0 + (x1 - x0) * k as f64 / 4.0;
-        let fy = y0 + (y1 - y0) * k as f64 / 4.0;
+        let fx = snap(x0 + (x1 - x0) * k as f64 / 4.0, x0, x1);
+        let fy = snap(y0 + (y1 - y0) * k as f64 / 4.0, y0, y1);
         let _ = write!(
             out,
             "<text x=\"{:.1}\" y=\"{:.1}\" text-anchor=\"middle\">{}</text>",
@@ -235,7 +243,11 @@ pub fn bars(
     bars: &[(String, f64)],
     marker: Option<(f64, &str)>,
 ) -> String {
-    let (w, left, right, top, row) = (720.0, 200.0, 70.0, 50.0, 22.0);
+    // Label column as wide as the longest label (about 7 px a character).
+    let longest = bars.iter().map(|b| b.0.chars().count()).max().unwrap_or(0);
+    let left = (7.0 * longest as f64 + 16.0).max(120.0);
+    let (right, top, row) = (70.0, 50.0, 22.0);
+    let w = left + 450.0 + right;
     let h = top + row * bars.len().max(1) as f64 + 50.0;
     let values = bars
         .iter()
