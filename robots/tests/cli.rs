@@ -474,6 +474,19 @@ fn report_traces_carry_the_fitted_effect() {
             }
         }
     }
+    // Every ranked entry (every kind of the vocabulary, with its grid
+    // parameter) maps back to a candidate whose series are finite.
+    for r in &report.which.ranked {
+        let t = traces(&robot, &train, &holdout, Some(r)).expect("every ranked entry");
+        for jt in t.train.joints.iter().chain(&t.holdout.joints) {
+            assert!(
+                jt.corrected.iter().all(|x| x.is_finite()),
+                "{} {:?}",
+                r.kind,
+                r.joint
+            );
+        }
+    }
     // Without an effect, "corrected" is the nominal model.
     let t = traces(&robot, &train, &holdout, None).expect("traces");
     assert!(t.holdout.joints.iter().all(|j| j.corrected == j.nominal));
