@@ -11,13 +11,16 @@ use super::figures::{place, RANKED_SHOWN};
 /// A joint's residual counts as a gap above this many noise floors.
 pub const GAP_RATIO: f64 = 1.5;
 
+/// A number to four significant digits (scientific when very large or small).
 fn g(v: f64) -> String {
     if v == 0.0 {
         "0".into()
     } else if v.abs() >= 1e4 || v.abs() < 1e-3 {
         format!("{v:.3e}")
     } else {
-        format!("{v:.4}")
+        // Four significant digits.
+        let decimals = (3 - v.abs().log10().floor() as i32).max(0) as usize;
+        format!("{v:.decimals$}")
     }
 }
 
