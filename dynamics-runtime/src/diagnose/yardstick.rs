@@ -30,8 +30,9 @@ use crate::Robot;
 const DRAWS: usize = 2;
 
 /// The floor of the short-horizon prediction error per joint (see the
-/// module notes); the position noise if the model cannot be simulated.
-pub fn prediction_floor<R: Robot<N> + Clone, const N: usize>(
+/// module notes), windows on all cores; the position noise if the model
+/// cannot be simulated.
+pub fn prediction_floor<R: Robot<N> + Clone + Sync, const N: usize>(
     robot: &R,
     m: &Measured<N>,
     p: &Prepared<N>,
@@ -65,7 +66,6 @@ pub fn prediction_floor<R: Robot<N> + Clone, const N: usize>(
     let len = (HORIZON / sig.dt).round() as usize;
     let step = ((SPACING / sig.dt).round() as usize).max(1);
     let seg = len + 2 * h + 1;
-    let mut rng = Rng::new(0x5EED_F100);
     let noise =
         |rng: &mut Rng, s: &SVector<f64, N>| SVector::<f64, N>::from_fn(|j, _| s[j] * rng.normal());
     let smooth = |x: &[SVector<f64, N>], c: usize, d: usize| -> SVector<f64, N> {
@@ -74,10 +74,10 @@ pub fn prediction_floor<R: Robot<N> + Clone, const N: usize>(
             .zip(&x[c - h..=c + h])
             .fold(SVector::zeros(), |acc, (w, v)| acc + v * *w)
     };
-    let mut sum = SVector::<f64, N>::zeros();
-    let mut count = 0usize;
-    let mut s0 = a;
-    while s0 + seg < z {
+    let plant = &plant;
+    // Sum of squared errors and their count over one window from `s0`.
+    let window = |s0: usize| -> Option<(SVector<f64, N>, usize)> {
+        let mut rng = Rng::new(0x5EED_F100 ^ (s0 as u64).wrapping_mul(0x9E37_79B9_7F4A_7C15));
         // The twin: the nominal model under its own held efforts.
         let efforts: Vec<SVector<f64, N>> = (s0..s0 + seg)
             .map(|k| 0.5 * (sig.model[k] + sig.model[(k + 1).min(z - 1)]))
@@ -86,14 +86,12 @@ pub fn prediction_floor<R: Robot<N> + Clone, const N: usize>(
         sim.t = sig.t[s0];
         let mut truth = vec![(sim.state.q, sim.state.qd)];
         for i in 0..seg - 1 {
-            if sim
-                .advance(&plant, sig.t[s0 + i + 1], &efforts[i], tol)
-                .is_err()
-            {
-                return sigma_q;
-            }
+            sim.advance(plant, sig.t[s0 + i + 1], &efforts[i], tol)
+                .ok()?;
             truth.push((sim.state.q, sim.state.qd));
         }
+        let mut sum = SVector::<f64, N>::zeros();
+        let mut count = 0;
         for _ in 0..DRAWS {
             // What its sensors record, and the procedure on that.
             let q: Vec<_> = truth
@@ -116,18 +114,40 @@ pub fn prediction_floor<R: Robot<N> + Clone, const N: usize>(
             let mut pred = plant.start(smooth(&q, h, 0), v0);
             pred.t = sig.t[s0 + h];
             for i in h..h + len {
-                if pred
-                    .advance(&plant, sig.t[s0 + i + 1], &tau[i], tol)
-                    .is_err()
-                {
-                    return sigma_q;
-                }
+                pred.advance(plant, sig.t[s0 + i + 1], &tau[i], tol).ok()?;
                 let e = pred.state.q - smooth(&q, i + 1, 0);
                 sum += e.component_mul(&e);
                 count += 1;
             }
         }
-        s0 += step;
+        Some((sum, count))
+    };
+    // Windows on all cores.
+    let starts: Vec<usize> = (a..).step_by(step).take_while(|s0| s0 + seg < z).collect();
+    let threads = std::thread::available_parallelism().map_or(1, |n| n.get());
+    let chunk = starts.len().div_ceil(threads).max(1);
+    let window = &window;
+    let results: Vec<Option<(SVector<f64, N>, usize)>> = std::thread::scope(|s| {
+        let handles: Vec<_> = starts
+            .chunks(chunk)
+            .map(|c| s.spawn(move || c.iter().map(|&s0| window(s0)).collect::<Vec<_>>()))
+            .collect();
+        handles
+            .into_iter()
+            .flat_map(|h| match h.join() {
+                Ok(v) => v,
+                Err(e) => std::panic::resume_unwind(e),
+            })
+            .collect()
+    });
+    let mut sum = SVector::<f64, N>::zeros();
+    let mut count = 0usize;
+    for r in results {
+        let Some((s, c)) = r else {
+            return sigma_q;
+        };
+        sum += s;
+        count += c;
     }
     if count == 0 {
         return sigma_q;
