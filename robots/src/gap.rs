@@ -313,7 +313,8 @@ fn diagnose_for<R: Robot<N> + Clone + Sync, const N: usize>(
 
 /// The time series behind `report` (the readable report's plots), from the
 /// same CSV files: the chosen effect (none when the verdict is `none`)
-/// refitted on `train` and applied to `holdout`.
+/// refitted on `train` and applied to `holdout`. Example: with
+/// [`crate::report::write`].
 pub fn traces_files(
     name: &str,
     train: &Path,

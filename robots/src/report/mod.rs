@@ -98,6 +98,30 @@ pub fn render(report: &Report, traces: &Traces, options: &Options) -> Vec<(Strin
 
 /// Writes [`render`]'s files and `report.json` into `dir` (created if
 /// missing); returns the paths written.
+///
+/// ```
+/// use dynamics_runtime::diagnose::Options;
+/// use dynamics_runtime::effects::EffectKind;
+/// use robots::gap::{diagnose_files, synth, traces_files, SynthRequest};
+/// let dir = std::env::temp_dir().join(format!("robots-report-doc-{}", std::process::id()));
+/// std::fs::create_dir_all(&dir)?;
+/// let data = synth(&SynthRequest {
+///     robot: "arm3r".into(), kind: Some(EffectKind::ViscousFriction), joint: Some("j2".into()),
+///     magnitude: Some(0.5), seed: 3, excitation: "sines".parse().unwrap(), duration: 2.0,
+///     noise: Default::default(),
+/// })?;
+/// let (train, holdout) = (dir.join("train.csv"), dir.join("holdout.csv"));
+/// std::fs::write(&train, &data.train)?;
+/// std::fs::write(&holdout, &data.holdout)?;
+/// let options = Options::default();
+/// let (report, _warnings) = diagnose_files("arm3r", &train, &holdout, &options, &|_, _| {})?;
+/// let traces = traces_files("arm3r", &train, &holdout, &report)?;
+/// let written = robots::report::write(&dir.join("report"), &report, &traces, &options)?;
+/// assert!(written.iter().any(|p| p.ends_with("report.md")));
+/// assert!(written.iter().any(|p| p.ends_with("residual-j2.svg")));
+/// # std::fs::remove_dir_all(&dir)?;
+/// # Ok::<(), Box<dyn std::error::Error>>(())
+/// ```
 pub fn write(
     dir: &Path,
     report: &Report,
