@@ -5,6 +5,7 @@
 use std::path::Path;
 
 use dynamics_runtime::data::{read_csv, write_csv, DataError, Measured};
+use dynamics_runtime::diagnose::traces::{traces, Traces, TracesError};
 use dynamics_runtime::diagnose::{diagnose, DiagnoseError, Options, Report};
 use dynamics_runtime::effects::{Effect, EffectKind, PlaceKind, Tip};
 use dynamics_runtime::synth::{
@@ -33,6 +34,9 @@ pub enum GapError {
     /// Diagnosing.
     #[error(transparent)]
     Diagnose(#[from] DiagnoseError),
+    /// Time series for the readable report.
+    #[error(transparent)]
+    Traces(#[from] TracesError),
     /// A bad request.
     #[error("{0}")]
     Request(String),
@@ -305,4 +309,32 @@ fn diagnose_for<R: Robot<N> + Clone + Sync, const N: usize>(
     warnings.extend(b.warnings.iter().cloned());
     let report = diagnose(robot, &a, &b, options, progress)?;
     Ok((report, warnings))
+}
+
+/// The time series behind `report` (the readable report's plots), from the
+/// same CSV files: the chosen effect (none when the verdict is `none`)
+/// refitted on `train` and applied to `holdout`. Example: with
+/// [`crate::report::write`].
+pub fn traces_files(
+    name: &str,
+    train: &Path,
+    holdout: &Path,
+    report: &Report,
+) -> Result<Traces, GapError> {
+    let robot = AnyRobot::by_name(name)?;
+    let chosen = (report.which.verdict.kind != "none")
+        .then(|| report.which.ranked.first())
+        .flatten();
+    crate::each_robot!(&robot, r => traces_for(r, train, holdout, chosen))
+}
+
+fn traces_for<R: Robot<N> + Clone, const N: usize>(
+    robot: &R,
+    train: &Path,
+    holdout: &Path,
+    chosen: Option<&dynamics_runtime::diagnose::Ranked>,
+) -> Result<Traces, GapError> {
+    let a = read_csv(train, &R::JOINT_NAMES)?;
+    let b = read_csv(holdout, &R::JOINT_NAMES)?;
+    Ok(traces(robot, &a, &b, chosen)?)
 }

@@ -16,6 +16,7 @@ pub mod gap;
 pub mod mar;
 pub mod plot;
 pub mod registry;
+pub mod report;
 pub mod rrp;
 pub mod scenarios;
 pub mod states;

@@ -260,3 +260,239 @@ fn every_controller_follows_the_circle() {
     assert!(rms("sliding-mode") < 1e-4);
     assert!(dir.join("path.svg").exists() && dir.join("arm3r-circle-sliding-mode.csv").exists());
 }
+
+/// A minimal well-formedness check of an SVG document: it is one `<svg>`
+/// element, every tag opened is closed in order, every polyline's points
+/// are finite numbers, and no NaN or infinity is written anywhere; returns
+/// the number of polylines.
+fn check_svg(name: &str, text: &str) -> usize {
+    assert!(
+        text.starts_with("<svg ") && text.trim_end().ends_with("</svg>"),
+        "{name}"
+    );
+    for bad in ["NaN", "inf"] {
+        assert!(!text.contains(bad), "{name} contains {bad}");
+    }
+    let mut stack: Vec<String> = Vec::new();
+    let mut rest = text;
+    let mut polylines = 0;
+    while let Some(open) = rest.find('<') {
+        let close = rest[open..].find('>').map(|c| open + c);
+        let close = close.unwrap_or_else(|| panic!("{name}: unclosed tag"));
+        let tag = &rest[open + 1..close];
+        assert!(!tag.contains('<'), "{name}: `<` inside a tag: {tag}");
+        if let Some(closing) = tag.strip_prefix('/') {
+            assert_eq!(
+                stack.pop().as_deref(),
+                Some(closing),
+                "{name}: </{closing}>"
+            );
+        } else {
+            let element = tag.split_whitespace().next().unwrap_or("").to_string();
+            if element == "polyline" {
+                polylines += 1;
+                let points = tag
+                    .split("points=\"")
+                    .nth(1)
+                    .and_then(|p| p.split('"').next())
+                    .unwrap_or_else(|| panic!("{name}: a polyline without points"));
+                for pair in points.split_whitespace() {
+                    let (x, y) = pair.split_once(',').expect("x,y");
+                    for v in [x, y] {
+                        let v: f64 = v.parse().unwrap_or_else(|_| panic!("{name}: `{v}`"));
+                        assert!(v.is_finite(), "{name}: {v}");
+                    }
+                }
+            }
+            if !tag.ends_with('/') {
+                stack.push(element);
+            }
+        }
+        rest = &rest[close + 1..];
+    }
+    assert!(stack.is_empty(), "{name}: unclosed {stack:?}");
+    polylines
+}
+
+#[test]
+fn diagnose_writes_a_readable_report() {
+    use dynamics_runtime::effects::EffectKind;
+    for (case, kind, joint) in [
+        ("report-coulomb", EffectKind::CoulombFriction, Some("j1")),
+        ("report-none", EffectKind::None, None),
+    ] {
+        let data = robots::gap::synth(&robots::gap::SynthRequest {
+            robot: "arm3r".into(),
+            kind: Some(kind),
+            joint: joint.map(Into::into),
+            magnitude: Some(0.4),
+            seed: 11,
+            excitation: "sines".parse().expect("an excitation"),
+            duration: 4.0,
+            noise: Default::default(),
+        })
+        .expect("synthesised");
+        let (train, holdout, dir) = (
+            tmp(&format!("{case}.csv")),
+            tmp(&format!("{case}-holdout.csv")),
+            tmp(case),
+        );
+        std::fs::write(&train, &data.train).expect("write");
+        std::fs::write(&holdout, &data.holdout).expect("write");
+        let out = dynamics()
+            .args(["diagnose", "--robot", "arm3r", "--train"])
+            .arg(&train)
+            .arg("--holdout")
+            .arg(&holdout)
+            .arg("--report")
+            .arg(&dir)
+            .output()
+            .expect("runs");
+        assert!(
+            out.status.success(),
+            "{}",
+            String::from_utf8_lossy(&out.stderr)
+        );
+        let read = |f: &str| std::fs::read_to_string(dir.join(f)).expect(f);
+        let report: serde_json::Value = serde_json::from_str(&read("report.json")).expect("json");
+        let verdict = &report["which"]["verdict"];
+        assert_eq!(verdict["kind"], kind.name(), "{case}");
+        let md = read("report.md");
+        match joint {
+            Some(j) => {
+                assert_eq!(verdict["joint"], j);
+                assert!(md.contains(&format!("**{} at {j}**", kind.name())), "{md}");
+                assert!(md.contains(&format!("The gap is at {j} (")), "{md}");
+                let fraction = report["shrink"]["fraction"].as_f64().expect("a number");
+                assert!(
+                    md.contains(&format!("`shrink.fraction` = {fraction:.3}")),
+                    "{md}"
+                );
+            }
+            None => assert!(
+                md.contains("**none**: the nominal model explains the data within noise"),
+                "{md}"
+            ),
+        }
+        // Lines: nominal (+ corrected with an effect); before and after;
+        // measured, nominal, corrected.
+        let mut svgs = vec![("ranking.svg".to_string(), 0)];
+        for j in ["j1", "j2", "j3"] {
+            let corrected = usize::from(joint.is_some());
+            for (what, lines) in [("residual", 1 + corrected), ("shrink", 2), ("effort", 3)] {
+                svgs.push((format!("{what}-{j}.svg"), lines));
+            }
+        }
+        for (f, lines) in &svgs {
+            assert!(
+                md.contains(&format!("]({f})")),
+                "report.md does not show {f}"
+            );
+            assert_eq!(check_svg(f, &read(f)), *lines, "{f}");
+        }
+        let ranked = report["which"]["ranked"].as_array().expect("ranked").len();
+        let bars = read("ranking.svg").matches("<rect").count() - 1;
+        assert_eq!(bars, ranked.min(12));
+        // The prediction error's yardstick is what an exact model shows:
+        // without an effect the ratio is about 1, with one far above.
+        for j in report["where"]["joints"].as_array().expect("joints") {
+            let ratio = j["prediction_ratio"].as_f64().expect("a number");
+            match joint {
+                None => assert!((0.3..2.0).contains(&ratio), "{case}: {j}"),
+                Some(name) if j["joint"] == name => assert!(ratio > 10.0, "{case}: {j}"),
+                Some(_) => {}
+            }
+        }
+        // The gap windows of the JSON are the bands of the residual plots.
+        for j in report["where"]["joints"].as_array().expect("joints") {
+            let name = j["joint"].as_str().expect("a name");
+            let svg = read(&format!("residual-{name}.svg"));
+            let bands = svg.matches("fill=\"#ff7f0e\"").count();
+            assert_eq!(
+                bands,
+                j["windows"].as_array().expect("windows").len(),
+                "{name}"
+            );
+        }
+    }
+}
+
+#[test]
+fn report_traces_carry_the_fitted_effect() {
+    use dynamics_runtime::data::read_csv_str;
+    use dynamics_runtime::diagnose::{diagnose, traces::traces, Options};
+    use dynamics_runtime::effects::EffectKind;
+    use dynamics_runtime::Robot;
+    use robots::Arm3r;
+    let data = robots::gap::synth(&robots::gap::SynthRequest {
+        robot: "arm3r".into(),
+        kind: Some(EffectKind::CoulombFriction),
+        joint: Some("j3".into()),
+        magnitude: Some(0.2),
+        seed: 21,
+        excitation: "sines".parse().expect("an excitation"),
+        duration: 4.0,
+        noise: Default::default(),
+    })
+    .expect("synthesised");
+    let read = |text: &str| read_csv_str(text, &Arm3r::JOINT_NAMES, "synth").expect("CSV");
+    let (train, holdout) = (read(&data.train), read(&data.holdout));
+    let robot = Arm3r::default();
+    let report =
+        diagnose(&robot, &train, &holdout, &Options::default(), &|_, _| {}).expect("diagnosed");
+    let top = &report.which.ranked[0];
+    assert_eq!(
+        (top.kind.as_str(), top.joint.as_deref()),
+        ("coulomb_friction", Some("j3"))
+    );
+    let fc = top.parameters[0].value;
+    let t = traces(&robot, &train, &holdout, Some(top)).expect("traces");
+    for data in [&t.train, &t.holdout] {
+        for (j, jt) in data.joints.iter().enumerate() {
+            assert_eq!(jt.measured.len(), data.t.len());
+            for k in 0..data.t.len() {
+                // The definitions: residuals are measured minus each model.
+                assert!((jt.residual[k] - (jt.measured[k] - jt.nominal[k])).abs() < 1e-9);
+                assert!((jt.residual_after[k] - (jt.measured[k] - jt.corrected[k])).abs() < 1e-9);
+                // Coulomb friction at j3 changes j3's effort only, by at most fc.
+                let added = jt.corrected[k] - jt.nominal[k];
+                if j == 2 {
+                    assert!(added.abs() <= fc * (1.0 + 1e-9), "{added} vs fc {fc}");
+                } else {
+                    assert_eq!(added, 0.0);
+                }
+            }
+            if j == 2 {
+                // Moving fast, the added effort is the whole fitted fc.
+                let peak = (0..data.t.len())
+                    .map(|k| (jt.corrected[k] - jt.nominal[k]).abs())
+                    .fold(0.0, f64::max);
+                assert!(peak > 0.98 * fc, "{peak} vs {fc}");
+                let rms =
+                    |v: &[f64]| (v.iter().map(|x| x * x).sum::<f64>() / v.len() as f64).sqrt();
+                assert!(rms(&jt.residual_after) < 0.6 * rms(&jt.residual));
+            }
+        }
+    }
+    // Every ranked entry (every kind of the vocabulary, with its grid
+    // parameter) maps back to a candidate whose series are finite.
+    for r in &report.which.ranked {
+        let t = traces(&robot, &train, &holdout, Some(r)).expect("every ranked entry");
+        for jt in t.train.joints.iter().chain(&t.holdout.joints) {
+            assert!(
+                jt.corrected.iter().all(|x| x.is_finite()),
+                "{} {:?}",
+                r.kind,
+                r.joint
+            );
+        }
+    }
+    // Without an effect, "corrected" is the nominal model.
+    let t = traces(&robot, &train, &holdout, None).expect("traces");
+    assert!(t.holdout.joints.iter().all(|j| j.corrected == j.nominal));
+    // A ranked entry naming a joint the robot lacks is an error, not a panic.
+    let mut wrong = top.clone();
+    wrong.joint = Some("j9".into());
+    let err = traces(&robot, &train, &holdout, Some(&wrong)).expect_err("no j9");
+    assert!(err.to_string().contains("no joint `j9`"), "{err}");
+}

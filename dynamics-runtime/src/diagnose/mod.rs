@@ -21,7 +21,9 @@ mod fit;
 mod horizon;
 mod report;
 mod signals;
+pub mod traces;
 mod windows;
+mod yardstick;
 
 pub use analysis::{Fit, Prepared};
 pub use candidate::Candidate;
@@ -282,7 +284,7 @@ pub fn diagnose<R: Robot<N> + Clone + Sync, const N: usize>(
 
     // Where (training data, nominal model).
     let pred = horizon::prediction_error(robot, &p, None);
-    let q_noise = position_noise(train, &p);
+    let q_noise = yardstick::prediction_floor(robot, train, &p);
     let joints = (0..N)
         .map(|j| {
             let rms = rms(&p, &p.sig.residual, j);

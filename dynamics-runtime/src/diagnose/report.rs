@@ -40,7 +40,7 @@ pub struct JointGap {
     pub torque_ratio: f64,
     /// RMS short-horizon position prediction error.
     pub prediction_rms: f64,
-    /// Position noise.
+    /// Its yardstick: the same error for an exact model (`yardstick.rs`).
     pub prediction_noise: f64,
     /// `prediction_rms / prediction_noise`.
     pub prediction_ratio: f64,

@@ -4,7 +4,7 @@
 //! dynamics                      # diagnose a built-in case (arm3r with a withheld effect)
 //! dynamics check                # every seed robot against the shipped Pinocchio values
 //! dynamics synth --robot NAME --effect KIND --joint J --out FILE.csv
-//! dynamics diagnose --robot NAME --train A.csv --holdout B.csv [--json OUT.json]
+//! dynamics diagnose --robot NAME --train A.csv --holdout B.csv [--json OUT.json] [--report DIR]
 //! dynamics list                 # the robots it knows
 //! dynamics eval --robot NAME [--states FILE.json] [--out FILE.json] [--set NAME=VALUE]...
 //! ```
@@ -98,6 +98,10 @@ enum Command {
         /// Write the JSON report here.
         #[arg(long)]
         json: Option<PathBuf>,
+        /// Write a readable report here: report.md with SVG plots (residual per joint with the gap
+        /// windows, measured vs nominal vs corrected, the ranking) and report.json.
+        #[arg(long, value_name = "DIR")]
+        report: Option<PathBuf>,
     },
     /// Evaluate tau, M, g, C, nle, ddq and the energies at given states.
     Eval {
@@ -123,6 +127,7 @@ fn main() -> ExitCode {
         train: None,
         holdout: None,
         json: None,
+        report: None,
     }) {
         Command::Check => check(),
         Command::List => {
@@ -162,7 +167,8 @@ fn main() -> ExitCode {
             train,
             holdout,
             json,
-        } => diagnose_cmd(&robot, train, holdout, json),
+            report,
+        } => diagnose_cmd(&robot, train, holdout, json, report),
         Command::Eval {
             robot,
             states,
@@ -321,6 +327,7 @@ fn diagnose_cmd(
     train: Option<PathBuf>,
     holdout: Option<PathBuf>,
     json: Option<PathBuf>,
+    report_dir: Option<PathBuf>,
 ) -> Res {
     use dynamics_runtime::diagnose::Options;
     use indicatif::{ProgressBar, ProgressStyle};
@@ -358,8 +365,9 @@ fn diagnose_cmd(
         bar.set_length(total as u64);
         bar.set_position(done as u64);
     };
+    let options = Options::default();
     let (report, warnings) =
-        robots::gap::diagnose_files(robot, &train, &holdout, &Options::default(), &progress)?;
+        robots::gap::diagnose_files(robot, &train, &holdout, &options, &progress)?;
     bar.finish_and_clear();
     for w in warnings {
         eprintln!("warning: {w}");
@@ -367,7 +375,7 @@ fn diagnose_cmd(
     println!("where (training data, nominal model):");
     for j in &report.where_.joints {
         println!(
-            "  {:8} torque residual {:.4} = {:.1} x noise; short-horizon position error {:.2e} = {:.1} x noise",
+            "  {:8} torque residual {:.4} = {:.1} x noise; 0.1 s prediction error {:.2e} = {:.1} x an exact model's",
             j.joint, j.torque_rms, j.torque_ratio, j.prediction_rms, j.prediction_ratio
         );
         for w in j.windows.iter().take(2) {
@@ -418,6 +426,11 @@ fn diagnose_cmd(
         std::fs::write(&path, serde_json::to_string_pretty(&report)?)
             .map_err(|e| format!("{}: {e}", path.display()))?;
         eprintln!("wrote {}", path.display());
+    }
+    if let Some(dir) = report_dir {
+        let traces = robots::gap::traces_files(robot, &train, &holdout, &report)?;
+        robots::report::write(&dir, &report, &traces, &options)?;
+        eprintln!("wrote the report to {}", dir.join("report.md").display());
     }
     if let Some((dir, truth)) = tmp {
         println!(

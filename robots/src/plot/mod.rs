@@ -1,8 +1,12 @@
-//! Minimal SVG line plots (time series and x-y paths), written by hand: a
-//! plotting crate (plotters) would bring fonts and backends for what is
-//! ~80 lines of text output here.
+//! Minimal SVG plots (time series and x-y paths with shaded bands, and
+//! horizontal bar charts), written by hand: a plotting crate (plotters)
+//! would bring fonts and backends for what is a few lines of text output
+//! here.
 
 use std::fmt::Write as _;
+
+mod bars;
+pub use bars::bars;
 
 /// One named line.
 pub struct Series<'a> {
@@ -24,10 +28,57 @@ const COLORS: [&str; 6] = [
 /// assert!(s.starts_with("<svg") && s.contains("<polyline"));
 /// ```
 pub fn svg(title: &str, xlabel: &str, ylabel: &str, series: &[Series], equal_axes: bool) -> String {
+    svg_shaded(title, xlabel, ylabel, series, &[], equal_axes)
+}
+
+/// A shaded band behind the lines: `x` and `y` ranges (`None`: the whole
+/// plot along that axis), labelled at its top left.
+pub struct Shade<'a> {
+    /// From and to along x.
+    pub x: Option<(f64, f64)>,
+    /// From and to along y.
+    pub y: Option<(f64, f64)>,
+    /// Label (may be empty).
+    pub label: &'a str,
+}
+
+/// [`svg`] with shaded bands behind the lines (time windows, a noise band);
+/// the y range covers the bands' finite y limits.
+///
+/// ```
+/// use robots::plot::{svg_shaded, Series, Shade};
+/// let line = Series { name: "r", points: vec![(0.0, 0.0), (1.0, 2.0)] };
+/// let s = svg_shaded("r", "t [s]", "r", &[line], &[
+///     Shade { x: Some((0.2, 0.4)), y: None, label: "hold" },
+///     Shade { x: None, y: Some((-3.0, 3.0)), label: "noise" },
+/// ], false);
+/// assert_eq!(s.matches("<rect").count(), 2 + 2);
+/// assert!(s.contains(">hold</text>"));
+/// ```
+pub fn svg_shaded(
+    title: &str,
+    xlabel: &str,
+    ylabel: &str,
+    series: &[Series],
+    shades: &[Shade],
+    equal_axes: bool,
+) -> String {
     let (w, h, m) = (720.0, 420.0, 60.0);
+    let shade_y = shades
+        .iter()
+        .filter_map(|s| s.y)
+        .flat_map(|(a, b)| [a, b])
+        .filter(|v| v.is_finite());
+    let first_x = series
+        .iter()
+        .flat_map(|s| s.points.first())
+        .map(|p| p.0)
+        .find(|x| x.is_finite())
+        .unwrap_or(0.0);
     let pts = series
         .iter()
-        .flat_map(|s| s.points.iter())
+        .flat_map(|s| s.points.iter().copied())
+        .chain(shade_y.map(|y| (first_x, y)))
         .filter(|p| p.0.is_finite() && p.1.is_finite());
     let (mut x0, mut x1, mut y0, mut y1) = (
         f64::INFINITY,
@@ -35,7 +86,7 @@ pub fn svg(title: &str, xlabel: &str, ylabel: &str, series: &[Series], equal_axe
         f64::INFINITY,
         f64::NEG_INFINITY,
     );
-    for &(x, y) in pts {
+    for (x, y) in pts {
         x0 = x0.min(x);
         x1 = x1.max(x);
         y0 = y0.min(y);
@@ -77,9 +128,52 @@ pub fn svg(title: &str, xlabel: &str, ylabel: &str, series: &[Series], equal_axe
         out,
         "<rect x=\"{m}\" y=\"{m}\" width=\"{pw}\" height=\"{ph}\" fill=\"none\" stroke=\"#888\"/>"
     );
+    // Labels go on the first row where they do not overlap another.
+    let mut rows: Vec<f64> = Vec::new();
+    for sh in shades {
+        let (xa, xb) = sh.x.unwrap_or((x0, x1));
+        let (ya, yb) = sh.y.unwrap_or((y0, y1));
+        if ![xa, xb, ya, yb].iter().all(|v| v.is_finite()) {
+            continue;
+        }
+        let (xa, xb) = (px(xa.clamp(x0, x1)), px(xb.clamp(x0, x1)));
+        let (ya, yb) = (py(ya.clamp(y0, y1)), py(yb.clamp(y0, y1)));
+        let fill = if sh.x.is_some() { "#ff7f0e" } else { "#888888" };
+        let _ = write!(
+            out,
+            "<rect x=\"{:.2}\" y=\"{:.2}\" width=\"{:.2}\" height=\"{:.2}\" fill=\"{fill}\" fill-opacity=\"0.18\"/>",
+            xa.min(xb),
+            ya.min(yb),
+            (xb - xa).abs(),
+            (yb - ya).abs()
+        );
+        if !sh.label.is_empty() {
+            let x = xa.min(xb) + 2.0;
+            let row = rows.iter().position(|&end| end < x).unwrap_or(rows.len());
+            let end = x + 6.0 * sh.label.chars().count() as f64;
+            match rows.get_mut(row) {
+                Some(r) => *r = end,
+                None => rows.push(end),
+            }
+            let _ = write!(
+                out,
+                "<text x=\"{x:.2}\" y=\"{:.2}\" font-size=\"10\" fill=\"#555\">{}</text>",
+                ya.min(yb) + 11.0 + 11.0 * row as f64,
+                esc(sh.label)
+            );
+        }
+    }
+    // On an axis across zero, a tick a hair off zero is written as zero.
+    let snap = |v: f64, a: f64, b: f64| {
+        if a < 0.0 && b > 0.0 && v.abs() < 1e-2 * (b - a) {
+            0.0
+        } else {
+            v
+        }
+    };
     for k in 0..=4 {
-        let fx = x0 + (x1 - x0) * k as f64 / 4.0;
-        let fy = y0 + (y1 - y0) * k as f64 / 4.0;
+        let fx = snap(x0 + (x1 - x0) * k as f64 / 4.0, x0, x1);
+        let fy = snap(y0 + (y1 - y0) * k as f64 / 4.0, y0, y1);
         let _ = write!(
             out,
             "<text x=\"{:.1}\" y=\"{:.1}\" text-anchor=\"middle\">{}</text>",

@@ -1,0 +1,211 @@
+//! A yardstick for the short-horizon prediction error: the error the
+//! same procedure shows when the model is exactly right and only the
+//! sensors are noisy.
+//!
+//! For each prediction window, a twin of the data is made that the
+//! nominal model explains exactly: the model itself, started from the
+//! smoothed measured state, driven by its own efforts along the measured
+//! motion (held from sample to sample as the recorded ones are). Sensor
+//! noise of the levels estimated from the data (raw minus smoothed
+//! positions, velocities and efforts) is added to what the twin records;
+//! then the twin goes through the procedure of the prediction error
+//! (smoothing, the start state from the smoothed samples, open-loop
+//! simulation under the recorded efforts, comparison with the smoothed
+//! positions). The RMS of that error is the floor: a ratio near 1 means
+//! the model predicts the motion as well as an exact model could on
+//! these data.
+
+use nalgebra::{DMatrix, DVector, SVector};
+
+use super::analysis::Prepared;
+use super::horizon::{HORIZON, SPACING};
+use super::signals::robust_std;
+use crate::data::Measured;
+use crate::effects::Plant;
+use crate::ode::Tolerances;
+use crate::synth::Rng;
+use crate::Robot;
+
+/// Noise draws per window.
+const DRAWS: usize = 2;
+
+/// The floor of the short-horizon prediction error per joint (see the
+/// module notes), windows on all cores; the position noise if the model
+/// cannot be simulated.
+pub fn prediction_floor<R: Robot<N> + Clone + Sync, const N: usize>(
+    robot: &R,
+    m: &Measured<N>,
+    p: &Prepared<N>,
+) -> SVector<f64, N> {
+    let sig = &p.sig;
+    let sg = &sig.sg;
+    let h = sg.half();
+    let (a, z) = sig.range;
+    // Raw minus smoothed has variance sigma^2 (1 - w0) for white noise.
+    let w0 = sg.weights(0)[h];
+    let gain = 1.0 / (1.0 - w0).max(0.25).sqrt();
+    let spread = |d: Vec<f64>| (robust_std(&d) * gain).max(1e-15);
+    let sigma_q: SVector<f64, N> =
+        SVector::from_fn(|j, _| spread((a..z).map(|k| m.q[k][j] - sig.q[k][j]).collect()));
+    let sigma_qd: SVector<f64, N> = SVector::from_fn(|j, _| {
+        if m.qd_measured {
+            spread((a..z).map(|k| m.qd[k][j] - sig.qd[k][j]).collect())
+        } else {
+            0.0
+        }
+    });
+    let sigma_tau = effort_sensor_noise(m, p).map(|s| (s * gain).max(1e-15));
+    let Ok(plant) = Plant::new(robot.clone(), vec![]) else {
+        return sigma_q;
+    };
+    let tol = Tolerances {
+        rtol: 1e-7,
+        atol: 1e-9,
+        ..Default::default()
+    };
+    let len = (HORIZON / sig.dt).round() as usize;
+    let step = ((SPACING / sig.dt).round() as usize).max(1);
+    let seg = len + 2 * h + 1;
+    let noise =
+        |rng: &mut Rng, s: &SVector<f64, N>| SVector::<f64, N>::from_fn(|j, _| s[j] * rng.normal());
+    let smooth = |x: &[SVector<f64, N>], c: usize, d: usize| -> SVector<f64, N> {
+        sg.weights(d)
+            .iter()
+            .zip(&x[c - h..=c + h])
+            .fold(SVector::zeros(), |acc, (w, v)| acc + v * *w)
+    };
+    let plant = &plant;
+    // Sum of squared errors and their count over one window from `s0`.
+    let window = |s0: usize| -> Option<(SVector<f64, N>, usize)> {
+        let mut rng = Rng::new(0x5EED_F100 ^ (s0 as u64).wrapping_mul(0x9E37_79B9_7F4A_7C15));
+        // The twin: the nominal model under its own held efforts.
+        let efforts: Vec<SVector<f64, N>> = (s0..s0 + seg)
+            .map(|k| 0.5 * (sig.model[k] + sig.model[(k + 1).min(z - 1)]))
+            .collect();
+        let mut sim = plant.start(sig.q[s0], sig.qd[s0]);
+        sim.t = sig.t[s0];
+        let mut truth = vec![(sim.state.q, sim.state.qd)];
+        for i in 0..seg - 1 {
+            sim.advance(plant, sig.t[s0 + i + 1], &efforts[i], tol)
+                .ok()?;
+            truth.push((sim.state.q, sim.state.qd));
+        }
+        let mut sum = SVector::<f64, N>::zeros();
+        let mut count = 0;
+        for _ in 0..DRAWS {
+            // What its sensors record, and the procedure on that.
+            let q: Vec<_> = truth
+                .iter()
+                .map(|x| x.0 + noise(&mut rng, &sigma_q))
+                .collect();
+            let qd: Vec<_> = truth
+                .iter()
+                .map(|x| x.1 + noise(&mut rng, &sigma_qd))
+                .collect();
+            let tau: Vec<_> = efforts
+                .iter()
+                .map(|e| e + noise(&mut rng, &sigma_tau))
+                .collect();
+            let v0 = if m.qd_measured {
+                smooth(&qd, h, 0)
+            } else {
+                smooth(&q, h, 1)
+            };
+            let mut pred = plant.start(smooth(&q, h, 0), v0);
+            pred.t = sig.t[s0 + h];
+            for i in h..h + len {
+                pred.advance(plant, sig.t[s0 + i + 1], &tau[i], tol).ok()?;
+                let e = pred.state.q - smooth(&q, i + 1, 0);
+                sum += e.component_mul(&e);
+                count += 1;
+            }
+        }
+        Some((sum, count))
+    };
+    // Windows on all cores.
+    let starts: Vec<usize> = (a..).step_by(step).take_while(|s0| s0 + seg < z).collect();
+    let threads = std::thread::available_parallelism().map_or(1, |n| n.get());
+    let chunk = starts.len().div_ceil(threads).max(1);
+    let window = &window;
+    let results: Vec<Option<(SVector<f64, N>, usize)>> = std::thread::scope(|s| {
+        let handles: Vec<_> = starts
+            .chunks(chunk)
+            .map(|c| s.spawn(move || c.iter().map(|&s0| window(s0)).collect::<Vec<_>>()))
+            .collect();
+        handles
+            .into_iter()
+            .flat_map(|h| match h.join() {
+                Ok(v) => v,
+                Err(e) => std::panic::resume_unwind(e),
+            })
+            .collect()
+    });
+    let mut sum = SVector::<f64, N>::zeros();
+    let mut count = 0usize;
+    for r in results {
+        let Some((s, c)) = r else {
+            return sigma_q;
+        };
+        sum += s;
+        count += c;
+    }
+    if count == 0 {
+        return sigma_q;
+    }
+    (sum / count as f64).map(|x| x.sqrt().max(1e-15))
+}
+
+/// Samples per block of the regression in [`effort_sensor_noise`].
+const BLOCK: usize = 500;
+
+/// Robust spread per joint of the recorded efforts' fast part (raw minus
+/// smoothed) that the fast part of the measured positions and velocities
+/// does not explain. A feedback controller turns the sensors' position and
+/// velocity noise into real effort jitter that moves the robot and belongs
+/// in the prediction; what is left is effort that was recorded but not
+/// applied. Fitted by least squares in blocks of [`BLOCK`] samples (the
+/// controller's gains through the inertia vary with the pose).
+fn effort_sensor_noise<const N: usize>(m: &Measured<N>, p: &Prepared<N>) -> SVector<f64, N> {
+    let sig = &p.sig;
+    let sg = &sig.sg;
+    let (a, z) = sig.range;
+    let fast = |v: &[SVector<f64, N>]| -> Vec<SVector<f64, N>> {
+        let mut out = vec![SVector::<f64, N>::zeros(); v.len()];
+        for j in 0..N {
+            let x: Vec<f64> = v.iter().map(|s| s[j]).collect();
+            for (k, y) in sg.apply(&x, 0).iter().enumerate() {
+                out[k][j] = x[k] - y;
+            }
+        }
+        out
+    };
+    let (eq, eqd, et) = (fast(&m.q), fast(&m.qd), fast(&m.tau));
+    let cols = if m.qd_measured { 2 * N } else { N };
+    let mut left: Vec<Vec<f64>> = vec![Vec::new(); N];
+    let mut k0 = a;
+    while k0 + BLOCK <= z {
+        let x = DMatrix::from_fn(BLOCK, cols, |r, c| {
+            if c < N {
+                eq[k0 + r][c]
+            } else {
+                eqd[k0 + r][c - N]
+            }
+        });
+        let svd = x.clone().svd(true, true);
+        for (j, l) in left.iter_mut().enumerate() {
+            let y = DVector::from_fn(BLOCK, |r, _| et[k0 + r][j]);
+            match svd.solve(&y, 1e-12) {
+                Ok(theta) => l.extend((&y - &x * theta).iter()),
+                Err(_) => l.extend(y.iter()),
+            }
+        }
+        k0 += BLOCK;
+    }
+    SVector::from_fn(|j, _| {
+        if left[j].is_empty() {
+            robust_std(&(a..z).map(|k| et[k][j]).collect::<Vec<_>>())
+        } else {
+            robust_std(&left[j])
+        }
+    })
+}

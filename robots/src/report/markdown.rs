@@ -1,0 +1,294 @@
+//! The report's text (`report.md`): the verdict, then where, which and how
+//! far it shrinks, in words and numbers, with the figures inline.
+
+use std::fmt::Write as _;
+
+use dynamics_runtime::diagnose::traces::Traces;
+use dynamics_runtime::diagnose::{Ranked, Report};
+
+use super::figures::{place, RANKED_SHOWN};
+
+/// A joint's residual counts as a gap above this many noise floors.
+pub const GAP_RATIO: f64 = 1.5;
+
+/// A number to four significant digits (scientific when very large or small).
+fn g(v: f64) -> String {
+    if v == 0.0 {
+        "0".into()
+    } else if v.abs() >= 1e4 || v.abs() < 1e-3 {
+        format!("{v:.3e}")
+    } else {
+        // Four significant digits.
+        let decimals = (3 - v.abs().log10().floor() as i32).max(0) as usize;
+        format!("{v:.decimals$}")
+    }
+}
+
+fn pct(v: f64) -> String {
+    format!("{:.1} %", 100.0 * v)
+}
+
+fn parameters(r: &Ranked) -> String {
+    r.parameters
+        .iter()
+        .map(|p| format!("{} = {} ± {}", p.name, g(p.value), g(p.std)))
+        .collect::<Vec<_>>()
+        .join(", ")
+}
+
+/// The markdown text; `files(joint)` are the per-joint figure names
+/// (residual, shrink, effort).
+pub fn markdown(
+    report: &Report,
+    traces: &Traces,
+    none_margin: f64,
+    files: &dyn Fn(&str) -> [String; 3],
+) -> String {
+    let mut s = String::new();
+    let v = &report.which.verdict;
+    let top = report.which.ranked.first();
+    let chosen = (v.kind != "none").then_some(top).flatten();
+    let unit = |joint: &str| -> (&str, &str) {
+        let u = traces
+            .train
+            .joints
+            .iter()
+            .find(|j| j.joint == joint)
+            .map(|j| j.unit)
+            .unwrap_or("N·m");
+        (u, if u == "N" { "m" } else { "rad" })
+    };
+    let _ = writeln!(s, "# Sim-to-real gap diagnosis: {}\n", report.robot);
+    let _ = writeln!(
+        s,
+        "Training data: {} samples; held-out data: {} samples. \
+         Residual = measured effort minus the nominal model's effort along the measured \
+         motion (both smoothed); noise floor estimated from the data. Prediction error = \
+         positions of 0.1 s open-loop simulations under the recorded efforts against the \
+         measured ones; its yardstick is the same error for an exact model on a twin of \
+         the data with the same sensor noise.\n",
+        report.samples[0], report.samples[1]
+    );
+
+    // Verdict.
+    let _ = writeln!(s, "## Verdict\n");
+    match chosen {
+        Some(r) => {
+            let _ = writeln!(
+                s,
+                "**{}** ({}): {}. It explains {} of the gap above noise on the training data \
+                 and {} on the held-out data; it improves AICc by {:.1} over the nominal model.\n",
+                place(r),
+                v.status,
+                parameters(r),
+                pct(r.share),
+                pct(r.holdout_share),
+                r.delta_aicc
+            );
+            if let (Some(rival), Some(motion)) = (&v.rival, &v.separating_motion) {
+                let _ = writeln!(
+                    s,
+                    "These data cannot tell it apart from **{}** (AICc {:.1} worse only). \
+                     A motion that would separate them: {motion}.\n",
+                    place(rival),
+                    rival.aicc - r.aicc
+                );
+            }
+        }
+        None => {
+            let _ = write!(
+                s,
+                "**none**: the nominal model explains the data within noise"
+            );
+            match top {
+                Some(t) => {
+                    let _ = writeln!(
+                        s,
+                        "; the best candidate, {}, improves AICc by {:.1} (a verdict needs {:.1} \
+                         and a gain on held-out data).\n",
+                        place(t),
+                        t.delta_aicc,
+                        none_margin
+                    );
+                }
+                None => {
+                    let _ = writeln!(s, ".\n");
+                }
+            }
+        }
+    }
+
+    // Where.
+    let _ = writeln!(s, "## Where (training data, nominal model)\n");
+    let mut order: Vec<_> = report.where_.joints.iter().collect();
+    order.sort_by(|a, b| b.torque_ratio.total_cmp(&a.torque_ratio));
+    let gaps: Vec<_> = order
+        .iter()
+        .filter(|j| j.torque_ratio > GAP_RATIO)
+        .collect();
+    if gaps.is_empty() {
+        let _ = writeln!(
+            s,
+            "No joint's torque residual stands above {GAP_RATIO} x its noise floor{}.\n",
+            order
+                .first()
+                .map(|j| format!(" (largest: {} at {:.1} x)", j.joint, j.torque_ratio))
+                .unwrap_or_default()
+        );
+    } else {
+        let list: Vec<String> = gaps
+            .iter()
+            .map(|j| {
+                let (u, _) = unit(&j.joint);
+                format!(
+                    "{} ({} {u} RMS = {:.1} x its noise floor of {} {u})",
+                    j.joint,
+                    g(j.torque_rms),
+                    j.torque_ratio,
+                    g(j.torque_noise)
+                )
+            })
+            .collect();
+        let _ = writeln!(
+            s,
+            "The gap is at {}; the other joints are within {GAP_RATIO} x noise.\n",
+            list.join(", ")
+        );
+        for j in &gaps {
+            if j.windows.is_empty() {
+                continue;
+            }
+            let w: Vec<String> = j
+                .windows
+                .iter()
+                .map(|w| {
+                    format!(
+                        "{:.2}-{:.2} s ({}, {:.1} x noise)",
+                        w.start, w.end, w.phase, w.ratio
+                    )
+                })
+                .collect();
+            let _ = writeln!(s, "At {} it concentrates in {}.\n", j.joint, w.join("; "));
+        }
+    }
+    let _ = writeln!(
+        s,
+        "| joint | torque residual RMS | noise floor | ratio | 0.1 s prediction error RMS | an exact model's | ratio | windows |"
+    );
+    let _ = writeln!(s, "|---|---|---|---|---|---|---|---|");
+    for j in &report.where_.joints {
+        let (u, q) = unit(&j.joint);
+        let _ = writeln!(
+            s,
+            "| {} | {} {u} | {} {u} | {:.1} | {} {q} | {} {q} | {:.1} | {} |",
+            j.joint,
+            g(j.torque_rms),
+            g(j.torque_noise),
+            j.torque_ratio,
+            g(j.prediction_rms),
+            g(j.prediction_noise),
+            j.prediction_ratio,
+            j.windows.len()
+        );
+    }
+    let corrected = match chosen {
+        Some(r) => format!(
+            "\"corrected\" = the model with {} (fitted on the training data, applied unchanged \
+             to the held-out data)",
+            place(r)
+        ),
+        None => "no effect chosen".into(),
+    };
+    let _ = writeln!(
+        s,
+        "\nThe torque residual per joint; orange bands: the windows where it concentrates, \
+         labelled by motion phase; grey band: 3 x the noise floor; {corrected}.\n"
+    );
+    for j in &report.where_.joints {
+        let [residual, _, _] = files(&j.joint);
+        let _ = writeln!(s, "![{} residual]({residual})\n", j.joint);
+    }
+
+    // Which.
+    let _ = writeln!(s, "## Which (candidates ranked, training data)\n");
+    let _ = writeln!(
+        s,
+        "{} candidates fitted; the first {} by AICc (share = part of the gap above noise \
+         explained).\n",
+        report.which.ranked.len(),
+        RANKED_SHOWN.min(report.which.ranked.len())
+    );
+    let _ = writeln!(
+        s,
+        "| rank | effect | parameters | share | held-out share | delta AICc |"
+    );
+    let _ = writeln!(s, "|---|---|---|---|---|---|");
+    for (i, r) in report.which.ranked.iter().take(RANKED_SHOWN).enumerate() {
+        let _ = writeln!(
+            s,
+            "| {} | {} | {} | {} | {} | {:.1} |",
+            i + 1,
+            place(r),
+            parameters(r),
+            pct(r.share),
+            pct(r.holdout_share),
+            r.delta_aicc
+        );
+    }
+    let _ = writeln!(s, "\n![ranking](ranking.svg)\n");
+
+    // Shrink.
+    let sh = &report.shrink;
+    let _ = writeln!(s, "## How far it shrinks (held-out data)\n");
+    match chosen {
+        Some(r) => {
+            let _ = writeln!(
+                s,
+                "Adding {} to the model shrinks the torque gap above noise by {} and the \
+                 0.1 s simulation error by {} (overall figure `shrink.fraction` = {:.3}).\n",
+                place(r),
+                pct(sh.torque_fraction),
+                pct(sh.simulation_fraction),
+                sh.fraction
+            );
+        }
+        None => {
+            let _ = writeln!(
+                s,
+                "No effect was added, so nothing shrinks (`shrink.fraction` = {:.3}).\n",
+                sh.fraction
+            );
+        }
+    }
+    let _ = writeln!(
+        s,
+        "| joint | torque residual before | after | 0.1 s simulation error before | after |"
+    );
+    let _ = writeln!(s, "|---|---|---|---|---|");
+    for j in &sh.joints {
+        let (u, q) = unit(&j.joint);
+        let _ = writeln!(
+            s,
+            "| {} | {} {u} | {} {u} | {} {q} | {} {q} |",
+            j.joint,
+            g(j.torque_before),
+            g(j.torque_after),
+            g(j.simulation_before),
+            g(j.simulation_after)
+        );
+    }
+    let _ = writeln!(
+        s,
+        "\nPer joint: the held-out residual before and after, then measured vs nominal vs \
+         corrected effort over 1 s around the largest residual; {corrected}.\n"
+    );
+    for j in &sh.joints {
+        let [_, shrink, effort] = files(&j.joint);
+        let _ = writeln!(
+            s,
+            "![{0} held-out residual]({shrink})\n\n![{0} effort]({effort})\n",
+            j.joint
+        );
+    }
+    s
+}

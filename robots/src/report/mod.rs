@@ -1,0 +1,148 @@
+//! The readable diagnosis report (`dynamics diagnose --report DIR`):
+//! `report.md` stating where, which and how far it shrinks, with SVG
+//! figures beside it (per joint: the training residual with the gap
+//! windows shaded, the held-out residual before and after the chosen
+//! effect, measured vs nominal vs corrected effort; the ranking), and
+//! `report.json`.
+
+mod figures;
+mod markdown;
+
+use std::path::{Path, PathBuf};
+
+use dynamics_runtime::diagnose::traces::Traces;
+use dynamics_runtime::diagnose::{Options, Report};
+use thiserror::Error;
+
+pub use markdown::GAP_RATIO;
+
+/// Why a report could not be written.
+#[derive(Debug, Error)]
+pub enum ReportError {
+    /// Creating the folder or writing a file.
+    #[error("{path}: {source}")]
+    Io {
+        /// The path.
+        path: String,
+        /// The cause.
+        source: std::io::Error,
+    },
+    /// Serialising the JSON.
+    #[error("report.json: {0}")]
+    Json(#[from] serde_json::Error),
+}
+
+/// A file name made of a joint name (anything but letters, digits, `-`
+/// and `_` becomes `_`).
+fn slug(joint: &str) -> String {
+    joint
+        .chars()
+        .map(|c| {
+            if c.is_ascii_alphanumeric() || c == '-' || c == '_' {
+                c
+            } else {
+                '_'
+            }
+        })
+        .collect()
+}
+
+fn joint_files(joint: &str) -> [String; 3] {
+    let j = slug(joint);
+    [
+        format!("residual-{j}.svg"),
+        format!("shrink-{j}.svg"),
+        format!("effort-{j}.svg"),
+    ]
+}
+
+/// The report's files: `(name, content)`, `report.md` first.
+///
+/// ```no_run
+/// use dynamics_runtime::diagnose::Options;
+/// use std::path::Path;
+/// let options = Options::default();
+/// let (report, _warnings) = robots::gap::diagnose_files(
+///     "arm3r", Path::new("train.csv"), Path::new("holdout.csv"), &options, &|_, _| {})?;
+/// let traces = robots::gap::traces_files(
+///     "arm3r", Path::new("train.csv"), Path::new("holdout.csv"), &report)?;
+/// let files = robots::report::render(&report, &traces, &options);
+/// assert_eq!(files[0].0, "report.md");
+/// # Ok::<(), robots::gap::GapError>(())
+/// ```
+pub fn render(report: &Report, traces: &Traces, options: &Options) -> Vec<(String, String)> {
+    let corrected = report.which.verdict.kind != "none";
+    let mut out = vec![(
+        "report.md".to_string(),
+        markdown::markdown(report, traces, options.none_margin, &joint_files),
+    )];
+    for (j, gap) in report.where_.joints.iter().enumerate() {
+        let (Some(train), Some(hold)) = (traces.train.joints.get(j), traces.holdout.joints.get(j))
+        else {
+            continue;
+        };
+        let [residual, shrink, effort] = joint_files(&gap.joint);
+        out.push((
+            residual,
+            figures::residual(&traces.train, train, gap, corrected),
+        ));
+        out.push((shrink, figures::shrink(&traces.holdout, hold)));
+        out.push((effort, figures::effort(&traces.holdout, hold)));
+    }
+    out.push((
+        "ranking.svg".into(),
+        figures::ranking(report, options.none_margin),
+    ));
+    out
+}
+
+/// Writes [`render`]'s files and `report.json` into `dir` (created if
+/// missing); returns the paths written.
+///
+/// ```
+/// use dynamics_runtime::diagnose::Options;
+/// use dynamics_runtime::effects::EffectKind;
+/// use robots::gap::{diagnose_files, synth, traces_files, SynthRequest};
+/// let dir = std::env::temp_dir().join(format!("robots-report-doc-{}", std::process::id()));
+/// std::fs::create_dir_all(&dir)?;
+/// let data = synth(&SynthRequest {
+///     robot: "arm3r".into(), kind: Some(EffectKind::ViscousFriction), joint: Some("j2".into()),
+///     magnitude: Some(0.5), seed: 3, excitation: "sines".parse().unwrap(), duration: 2.0,
+///     noise: Default::default(),
+/// })?;
+/// let (train, holdout) = (dir.join("train.csv"), dir.join("holdout.csv"));
+/// std::fs::write(&train, &data.train)?;
+/// std::fs::write(&holdout, &data.holdout)?;
+/// let options = Options::default();
+/// let (report, _warnings) = diagnose_files("arm3r", &train, &holdout, &options, &|_, _| {})?;
+/// let traces = traces_files("arm3r", &train, &holdout, &report)?;
+/// let written = robots::report::write(&dir.join("report"), &report, &traces, &options)?;
+/// assert!(written.iter().any(|p| p.ends_with("report.md")));
+/// assert!(written.iter().any(|p| p.ends_with("residual-j2.svg")));
+/// # std::fs::remove_dir_all(&dir)?;
+/// # Ok::<(), Box<dyn std::error::Error>>(())
+/// ```
+pub fn write(
+    dir: &Path,
+    report: &Report,
+    traces: &Traces,
+    options: &Options,
+) -> Result<Vec<PathBuf>, ReportError> {
+    let io = |path: &Path| {
+        let path = path.display().to_string();
+        move |source| ReportError::Io { path, source }
+    };
+    std::fs::create_dir_all(dir).map_err(io(dir))?;
+    let mut files = render(report, traces, options);
+    files.push((
+        "report.json".into(),
+        serde_json::to_string_pretty(report)? + "\n",
+    ));
+    let mut written = Vec::new();
+    for (name, text) in files {
+        let path = dir.join(name);
+        std::fs::write(&path, text).map_err(io(&path))?;
+        written.push(path);
+    }
+    Ok(written)
+}
