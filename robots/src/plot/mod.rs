@@ -6,7 +6,9 @@
 use std::fmt::Write as _;
 
 mod bars;
+mod ticks;
 pub use bars::bars;
+use ticks::ticks;
 
 /// One named line.
 pub struct Series<'a> {
@@ -163,30 +165,24 @@ pub fn svg_shaded(
             );
         }
     }
-    // On an axis across zero, a tick a hair off zero is written as zero.
-    let snap = |v: f64, a: f64, b: f64| {
-        if a < 0.0 && b > 0.0 && v.abs() < 1e-2 * (b - a) {
-            0.0
-        } else {
-            v
-        }
-    };
-    for k in 0..=4 {
-        let fx = snap(x0 + (x1 - x0) * k as f64 / 4.0, x0, x1);
-        let fy = snap(y0 + (y1 - y0) * k as f64 / 4.0, y0, y1);
+    // Round ticks with light grid lines across the plot.
+    for (fx, text) in ticks(x0, x1) {
+        let x = px(fx);
         let _ = write!(
             out,
-            "<text x=\"{:.1}\" y=\"{:.1}\" text-anchor=\"middle\">{}</text>",
-            px(fx),
+            "<line x1=\"{x:.1}\" y1=\"{m}\" x2=\"{x:.1}\" y2=\"{}\" stroke=\"#ddd\"/><text x=\"{x:.1}\" y=\"{:.1}\" text-anchor=\"middle\">{text}</text>",
+            h - m,
             h - m + 16.0,
-            num(fx)
         );
+    }
+    for (fy, text) in ticks(y0, y1) {
+        let y = py(fy);
         let _ = write!(
             out,
-            "<text x=\"{:.1}\" y=\"{:.1}\" text-anchor=\"end\">{}</text>",
+            "<line x1=\"{m}\" y1=\"{y:.1}\" x2=\"{}\" y2=\"{y:.1}\" stroke=\"#ddd\"/><text x=\"{:.1}\" y=\"{:.1}\" text-anchor=\"end\">{text}</text>",
+            w - m,
             m - 6.0,
-            py(fy) + 4.0,
-            num(fy)
+            y + 4.0,
         );
     }
     let _ = write!(
