@@ -8,12 +8,14 @@
 //! | `rrp-rigid` | [`Rrp::rigid`] | the same without spring and drag (Pinocchio's model) |
 //! | `mar` | [`Mar`] | seed 000 Table 1, rigid |
 //! | `mar-drives` | [`Mar::with_drives`] | with Table 1's drive stiffness and damping |
+//! | - | [`Piston`] | seed 001 sec. 3.4, RRP arm whose piston end follows KL |
 
 pub mod arm3r;
 pub mod compare;
 pub mod eval;
 pub mod gap;
 pub mod mar;
+pub mod piston;
 pub mod plot;
 pub mod registry;
 pub mod rrp;
@@ -23,6 +25,7 @@ pub mod urdf_robots;
 
 pub use arm3r::{Arm3r, Arm3rParams};
 pub use mar::{Mar, MarParams};
+pub use piston::{Piston, PistonParams};
 pub use rrp::{Rrp, RrpParams};
 pub use urdf_robots::{
     Arm3rUrdf, MarUrdf, Panda, PandaParams, PandaPayload, RrpUrdf, Ur5, Ur5Params,

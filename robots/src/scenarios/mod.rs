@@ -12,6 +12,7 @@ use thiserror::Error;
 use crate::plot::{svg, Series};
 
 mod circle;
+pub mod environment;
 
 /// Scenario names with a line each.
 pub const SCENARIOS: &[(&str, &str)] = &[
@@ -22,6 +23,10 @@ pub const SCENARIOS: &[(&str, &str)] = &[
     (
         "rrp-line",
         "seed 001 sec. 3.1.2: the RRP arm carrying M along the line KL (eq. 3.7/3.14)",
+    ),
+    (
+        "environment",
+        "seed 001 sec. 3.4: the piston end C on the line KL against F = -mu |v|^(alpha-1) v",
     ),
 ];
 
@@ -34,6 +39,9 @@ pub enum ScenarioError {
     /// The simulation stopped.
     #[error(transparent)]
     Sim(#[from] dynamics_runtime::SimError),
+    /// The scenario's data are unusable.
+    #[error("bad scenario data: {0}")]
+    Data(String),
     /// Writing the outputs failed.
     #[error("{path}: {source}")]
     Io {
@@ -58,6 +66,7 @@ pub fn run(name: &str, dir: &Path) -> Result<Vec<String>, ScenarioError> {
         "arm3r-free" => arm3r_free(dir),
         "rrp-line" => rrp_line(dir),
         "arm3r-circle" => circle::run(dir),
+        "environment" => environment::run(dir),
         other => Err(ScenarioError::Unknown(other.to_string())),
     }
 }

@@ -2,6 +2,7 @@
 
 mod diagnosis;
 mod effects;
+mod environment;
 mod oracle;
 mod properties;
 mod simulate;
