@@ -8,10 +8,12 @@
 //! | `rrp-rigid` | [`Rrp::rigid`] | the same without spring and drag (Pinocchio's model) |
 //! | `mar` | [`Mar`] | seed 000 Table 1, rigid |
 //! | `mar-drives` | [`Mar::with_drives`] | with Table 1's drive stiffness and damping |
+//! | - | [`ElasticGrip`] | seed 001 sec. 3.3, arm with an elastic push rod |
 //! | - | [`Piston`] | seed 001 sec. 3.4, RRP arm whose piston end follows KL |
 
 pub mod arm3r;
 pub mod compare;
+pub mod elastic_grip;
 pub mod eval;
 pub mod gap;
 pub mod mar;
@@ -24,6 +26,7 @@ pub mod states;
 pub mod urdf_robots;
 
 pub use arm3r::{Arm3r, Arm3rParams};
+pub use elastic_grip::{ElasticGrip, ElasticGripParams};
 pub use mar::{Mar, MarParams};
 pub use piston::{Piston, PistonParams};
 pub use rrp::{Rrp, RrpParams};

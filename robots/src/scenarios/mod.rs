@@ -12,7 +12,9 @@ use thiserror::Error;
 use crate::plot::{svg, Series};
 
 mod circle;
+pub mod elastic_grip;
 pub mod environment;
+mod support;
 
 /// Scenario names with a line each.
 pub const SCENARIOS: &[(&str, &str)] = &[
@@ -27,6 +29,10 @@ pub const SCENARIOS: &[(&str, &str)] = &[
     (
         "environment",
         "seed 001 sec. 3.4: the piston end C on the line KL against F = -mu |v|^(alpha-1) v",
+    ),
+    (
+        "elastic-grip",
+        "seed 001 sec. 3.3: arm with an elastic push rod, handle massless or lumped by eq. 3.58",
     ),
 ];
 
@@ -67,6 +73,7 @@ pub fn run(name: &str, dir: &Path) -> Result<Vec<String>, ScenarioError> {
         "rrp-line" => rrp_line(dir),
         "arm3r-circle" => circle::run(dir),
         "environment" => environment::run(dir),
+        "elastic-grip" => elastic_grip::run(dir),
         other => Err(ScenarioError::Unknown(other.to_string())),
     }
 }

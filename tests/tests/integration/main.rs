@@ -2,6 +2,7 @@
 
 mod diagnosis;
 mod effects;
+mod elastic_grip;
 mod environment;
 mod oracle;
 mod properties;
