@@ -12,6 +12,9 @@ use thiserror::Error;
 use crate::plot::{svg, Series};
 
 mod circle;
+pub mod clearance;
+mod clearance_files;
+pub mod clearance_modes;
 pub mod elastic_grip;
 pub mod environment;
 mod support;
@@ -33,6 +36,10 @@ pub const SCENARIOS: &[(&str, &str)] = &[
     (
         "elastic-grip",
         "seed 001 sec. 3.3: arm with an elastic push rod, handle massless or lumped by eq. 3.58",
+    ),
+    (
+        "clearance",
+        "seed 001 sec. 3.2: pin rolling in a ring with clearance, contact loss and re-contact by events",
     ),
 ];
 
@@ -74,6 +81,7 @@ pub fn run(name: &str, dir: &Path) -> Result<Vec<String>, ScenarioError> {
         "arm3r-circle" => circle::run(dir),
         "environment" => environment::run(dir),
         "elastic-grip" => elastic_grip::run(dir),
+        "clearance" => clearance_files::run(dir),
         other => Err(ScenarioError::Unknown(other.to_string())),
     }
 }
