@@ -100,6 +100,11 @@ pub struct Switch {
     pub g_after: f64,
     /// Energy the impact removed (re-contact), J.
     pub impact_loss: f64,
+    /// The state at the switch in the seed's coordinates, before the
+    /// change (velocities before an impact).
+    pub q: Vector4<f64>,
+    /// Its rates.
+    pub qd: Vector4<f64>,
 }
 
 /// One output sample, in the seed's coordinates in every mode.
@@ -461,6 +466,10 @@ pub fn simulate_from(
         };
         let from = active.mode();
         let mut lost = 0.0;
+        let (sq, sqd) = match active {
+            Active::Roll { .. } => (x.0.q, x.0.qd),
+            _ => to_seed(&x.0.q, &x.0.qd, psi_last),
+        };
         (active, x) = match (active, k) {
             (Active::Roll { .. }, _) => {
                 // Leave the seed's coordinates for the Cartesian ones.
@@ -499,6 +508,8 @@ pub fn simulate_from(
             g_before,
             g_after,
             impact_loss: lost,
+            q: sq,
+            qd: sqd,
         });
     }
     Ok(run)

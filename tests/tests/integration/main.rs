@@ -1,5 +1,6 @@
 //! Integration tests, compiled into one binary (faster on two cores).
 
+mod clearance;
 mod diagnosis;
 mod effects;
 mod elastic_grip;
