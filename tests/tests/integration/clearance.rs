@@ -8,7 +8,7 @@
 use dynamics_runtime::ode::Tolerances;
 use dynamics_runtime::Robot;
 use nalgebra::{Vector3, Vector4};
-use robots::scenarios::clearance::{simulate, start, Mode, Start, GAP, MU, R1, R2};
+use robots::scenarios::clearance::{simulate, Mode, Start, GAP, MU, R1, R2};
 use robots::scenarios::clearance_modes::{impact, roll, slide, slip_rate, to_free, to_seed};
 use robots::{ClearanceArm, ClearanceArmFree};
 
