@@ -16,6 +16,10 @@ use super::support::sim_error;
 use super::ScenarioError;
 use crate::{ClearanceArm, ClearanceArmFree};
 
+/// End of a phase: time, state, and the watch that fired with its values
+/// before and after.
+type PhaseEnd = (f64, State, Option<(usize, f64, f64)>);
+
 /// Runs one mode from (t0, x0) until one of its watch functions crosses
 /// from positive to negative, or to `t_end`; records the grid on the way.
 /// Returns the end time, state and the watch that fired with its values
@@ -30,7 +34,7 @@ fn phase(
     x0: State,
     t_end: f64,
     tol: Tolerances,
-) -> Result<(f64, State, Option<(usize, f64, f64)>), SimError> {
+) -> Result<PhaseEnd, SimError> {
     let mut ode = Dopri5::new(t0, x0, tol);
     let mut hit: Option<(f64, State, usize, f64, f64)> = None;
     // A watch fires only once it has been seen positive: a mode entered on

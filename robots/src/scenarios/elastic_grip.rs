@@ -265,7 +265,7 @@ pub fn run(dir: &Path) -> Result<Vec<String>, ScenarioError> {
                 });
         let last = tr.t.len() - 1;
         lines.push(format!(
-            "{label}: mass at D {:.4} kg; u in [{:.4}, {:.4}] m, |y| <= {:.3e} m, y oscillates at {:.2} Hz (rod alone: {:.2} Hz); phi(6 s) = {:.4}, theta(6 s) = {:.4} rad; |E - E0 - W| <= {balance:.1e} J",
+            "{label}: mass at D {:.4} kg; u in [{:.4}, {:.4}] m, |y| <= {:.3e} m, y oscillates at {:.2} Hz (M on the rod alone, arms held: {:.2} Hz; the arms recoil); phi(6 s) = {:.4}, theta(6 s) = {:.4} rad; |E - E0 - W| <= {balance:.1e} J",
             run.mass,
             u_range.0,
             u_range.1,
