@@ -60,7 +60,7 @@ pub const GAP: f64 = R1 - R2;
 pub const M0: f64 = -1.0;
 /// Drive frequency w, rad/s.
 pub const OMEGA: f64 = 2.0;
-/// Friction coefficient pin-ring (chosen; not in the seed).
+/// Friction coefficient pin-ring of the default case (chosen; not in the seed).
 pub const MU: f64 = 0.15;
 /// Time tolerance of the event location, s.
 pub const EVENT_TOL: f64 = 1e-12;
@@ -168,8 +168,9 @@ pub fn drives(t: f64) -> (f64, f64) {
     (M0 * (OMEGA * t).sin(), M0 * (OMEGA * t).cos())
 }
 
-/// Where the motion starts: link angles and rates, the pin on the ring at
-/// the angle `contact` (world frame) from the ring's centre.
+/// A case: where the motion starts (link angles and rates, the pin on the
+/// ring at the angle `contact`, world frame, from the ring's centre) and
+/// the friction between pin and ring.
 #[derive(Debug, Clone, Copy, PartialEq)]
 pub struct Start {
     /// Link 1's angle phi1, rad.
@@ -180,6 +181,8 @@ pub struct Start {
     pub rates: Vector2<f64>,
     /// Direction of the contact point from the ring's centre, world frame, rad.
     pub contact: f64,
+    /// Friction coefficient pin-ring (large: the seed's rolling throughout).
+    pub mu: f64,
 }
 
 impl Default for Start {
@@ -191,6 +194,7 @@ impl Default for Start {
             phi: FRAC_PI_2,
             rates: Vector2::zeros(),
             contact: -FRAC_PI_2,
+            mu: MU,
         }
     }
 }

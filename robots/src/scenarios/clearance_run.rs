@@ -9,7 +9,7 @@ use nalgebra::{Vector2, Vector4};
 
 use super::clearance::{
     drives, Active, ClearanceRun, Mode, Sample, Start, State, Switch, EVENT_CHECK, EVENT_TOL, GAP,
-    MU, R1, R2,
+    R1, R2,
 };
 use super::clearance_modes::{flight, impact, residual, roll, slide, slip_rate, to_free, to_seed};
 use super::support::sim_error;
@@ -94,9 +94,10 @@ fn decide(
     work: Vector2<f64>,
     stopped: bool,
     psi_near: f64,
+    mu: f64,
 ) -> Result<(Active, State), SimError> {
     let free = |a| Ok((a, (JointState { q: *q, qd: *qd }, work)));
-    let slides = |sigma: f64| -> Result<bool, SimError> { Ok(slide(t, q, qd, MU, sigma)?.1 < 0.0) };
+    let slides = |sigma: f64| -> Result<bool, SimError> { Ok(slide(t, q, qd, mu, sigma)?.1 < 0.0) };
     let vs = slip_rate(q, qd);
     if !stopped && vs != 0.0 {
         let sigma = vs.signum();
@@ -110,7 +111,7 @@ fn decide(
     let c0 = R1 * qs[1] + R2 * qs[3];
     let (_, r) = roll(t, &qs, &qds, c0)?;
     let (n, ft) = (-r[2], r[3] / R2);
-    if n > 0.0 && ft.abs() <= MU * n {
+    if n > 0.0 && ft.abs() <= mu * n {
         return Ok((Active::Roll { c0 }, (JointState { q: qs, qd: qds }, work)));
     }
     let sigma = -ft.signum();
@@ -134,9 +135,15 @@ pub fn simulate_from(
     let arm = ClearanceArm::default();
     let free = ClearanceArmFree::default();
     let mut run = ClearanceRun::default();
+    let mu = from.mu;
+    if !(mu.is_finite() && mu >= 0.0) {
+        return Err(ScenarioError::Data(format!(
+            "clearance: the friction coefficient must be finite and >= 0, got {mu}"
+        )));
+    }
     let (q0, qd0) = from.seed();
     let (qf0, qfd0) = to_free(&q0, &qd0);
-    let (mut active, mut x) = decide(0.0, &qf0, &qfd0, Vector2::zeros(), true, q0[1])?;
+    let (mut active, mut x) = decide(0.0, &qf0, &qfd0, Vector2::zeros(), true, q0[1], mu)?;
     let mut grid = (0usize, (t_end / dt).round() as usize, dt);
     let mut loss = 0.0;
     let mut psi_last = q0[1];
@@ -158,7 +165,7 @@ pub fn simulate_from(
                     Ok((JointState { q: x.0.qd, qd: qdd }, Vector2::new(p, 0.0)))
                 };
                 let mut g = |t: f64, x: &State| match roll(t, &x.0.q, &x.0.qd, c0) {
-                    Ok((_, r)) => [-r[2], -MU * r[2] - (r[3] / R2).abs()],
+                    Ok((_, r)) => [-r[2], -mu * r[2] - (r[3] / R2).abs()],
                     Err(_) => [f64::NAN; 2],
                 };
                 let mut record = |ts: f64, x: &State| {
@@ -186,18 +193,18 @@ pub fn simulate_from(
             }
             Active::Slide { sigma } => {
                 let mut rhs = |t: f64, x: &State| -> Result<State, SimError> {
-                    let (qdd, lam) = slide(t, &x.0.q, &x.0.qd, MU, sigma)?;
+                    let (qdd, lam) = slide(t, &x.0.q, &x.0.qd, mu, sigma)?;
                     let (m1, m2) = drives(t);
                     let p = m1 * x.0.qd[0] + m2 * x.0.qd[3];
-                    let pf = MU * sigma * lam * slip_rate(&x.0.q, &x.0.qd);
+                    let pf = mu * sigma * lam * slip_rate(&x.0.q, &x.0.qd);
                     Ok((JointState { q: x.0.qd, qd: qdd }, Vector2::new(p, pf)))
                 };
-                let mut g = |t: f64, x: &State| match slide(t, &x.0.q, &x.0.qd, MU, sigma) {
+                let mut g = |t: f64, x: &State| match slide(t, &x.0.q, &x.0.qd, mu, sigma) {
                     Ok((_, lam)) => [-lam, sigma * slip_rate(&x.0.q, &x.0.qd)],
                     Err(_) => [f64::NAN; 2],
                 };
                 let mut record = |ts: f64, x: &State| {
-                    let lam = slide(ts, &x.0.q, &x.0.qd, MU, sigma).map_or(f64::NAN, |r| r.1);
+                    let lam = slide(ts, &x.0.q, &x.0.qd, mu, sigma).map_or(f64::NAN, |r| r.1);
                     let (q, qd) = to_seed(&x.0.q, &x.0.qd, *psi);
                     *psi = q[1];
                     samples.push(Sample {
@@ -207,7 +214,7 @@ pub fn simulate_from(
                         qd,
                         pin: Vector2::new(x.0.q[1], x.0.q[2]),
                         ru: lam,
-                        ft: MU * sigma * lam,
+                        ft: mu * sigma * lam,
                         slip: slip_rate(&x.0.q, &x.0.qd),
                         residual: Vector2::new(q[2] - GAP, 0.0),
                         energy: free.total_energy(&x.0.q, &x.0.qd),
@@ -275,7 +282,7 @@ pub fn simulate_from(
                 (next, (JointState { q, qd }, x.1))
             }
             (Active::Slide { .. }, 0) => (Active::Flight, x),
-            (Active::Slide { .. }, _) => decide(t, &x.0.q, &x.0.qd, x.1, true, psi_last)?,
+            (Active::Slide { .. }, _) => decide(t, &x.0.q, &x.0.qd, x.1, true, psi_last, mu)?,
             (Active::Flight, _) => {
                 let mut q = x.0.q;
                 let scale = GAP / q[1].hypot(q[2]);
@@ -284,7 +291,7 @@ pub fn simulate_from(
                 let (qd, l) = impact(&q, &x.0.qd)?;
                 lost = l;
                 loss += l;
-                decide(t, &q, &qd, x.1, false, psi_last)?
+                decide(t, &q, &qd, x.1, false, psi_last, mu)?
             }
         };
         if let Active::Roll { .. } = active {

@@ -202,6 +202,7 @@ fn sliding_at_the_friction_limit_moves_as_rolling_and_impacts_dissipate() {
         phi: 1.0,
         rates: nalgebra::Vector2::new(0.5, -0.7),
         contact: -1.2,
+        mu: MU,
     }
     .seed();
     let (qdd, r) = roll(0.3, &q, &qd, R1 * q[1] + R2 * q[3]).expect("roll");
