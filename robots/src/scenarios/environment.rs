@@ -63,6 +63,22 @@ impl EnvironmentRun {
 /// assert!(run.max_orbit_error() < 1e-7);
 /// ```
 pub fn simulate(mu: f64, alpha: f64, t_end: f64, dt: f64) -> Result<EnvironmentRun, ScenarioError> {
+    let tol = Tolerances {
+        rtol: 1e-11,
+        atol: 1e-12,
+        ..Default::default()
+    };
+    simulate_with(mu, alpha, t_end, dt, tol)
+}
+
+/// [`simulate`] with the integrator's tolerances given.
+pub fn simulate_with(
+    mu: f64,
+    alpha: f64,
+    t_end: f64,
+    dt: f64,
+    tol: Tolerances,
+) -> Result<EnvironmentRun, ScenarioError> {
     let arm = Piston::default();
     let env = Effect::EnvironmentResistance { mu, alpha };
     env.validate().map_err(ScenarioError::Data)?;
@@ -72,11 +88,6 @@ pub fn simulate(mu: f64, alpha: f64, t_end: f64, dt: f64) -> Result<EnvironmentR
         let (_, jac) = tip.position_jacobian(&arm, q);
         let f = env.resistance(&(jac * qd));
         (f, jac.transpose() * f)
-    };
-    let tol = Tolerances {
-        rtol: 1e-11,
-        atol: 1e-12,
-        ..Default::default()
     };
     let motion = simulate_program(
         &arm,
@@ -111,6 +122,13 @@ pub fn run(dir: &Path) -> Result<Vec<String>, ScenarioError> {
     let dt = 1e-3;
     let with = simulate(MU, ALPHA, DURATION, dt)?;
     let without = simulate(0.0, ALPHA, DURATION, dt)?;
+    // Matlab's ode45 default tolerances (the seed computed with Matlab).
+    let loose = Tolerances {
+        rtol: 1e-3,
+        atol: 1e-6,
+        ..Default::default()
+    };
+    let coarse = simulate_with(MU, ALPHA, DURATION, dt, loose)?;
     let arm = Piston::default();
     let tr = &with.motion.trajectory;
     outputs(&arm, "environment", tr, 0, dir)?;
@@ -200,6 +218,10 @@ pub fn run(dir: &Path) -> Result<Vec<String>, ScenarioError> {
         format!(
             "orbit error (largest distance of C from KL): {:.2e} m (seed: about 1e-7)",
             with.max_orbit_error()
+        ),
+        format!(
+            "with ode45's default tolerances (rtol 1e-3, atol 1e-6) and the same drift control: {:.2e} m",
+            coarse.max_orbit_error()
         ),
         format!("work of the resistance mu = {MU}, alpha = {ALPHA}: {work:.4} J"),
         format!(
