@@ -2,10 +2,11 @@
 //! link 2 (radius r2) rolls inside the ring of link 1 (radius r1) while the
 //! ring pushes it; when the contact reaction Ru reaches zero the pin leaves
 //! the ring and flies freely inside the clearance until it hits the ring
-//! again. Both switches are located as events on the dense output
-//! (Illinois regula falsi, to 1e-12 s), never by stepping over them.
+//! again. Every switch (loss of contact, re-contact, stick and slip) is
+//! located as an event on the dense output (Illinois regula falsi, to
+//! 1e-12 s), never by stepping over it.
 //!
-//! In contact (coordinates `(phi1, psi, u, phi2)` of [`ClearanceArm`]) the
+//! In contact (coordinates `(phi1, psi, u, phi2)` of [`crate::ClearanceArm`]) the
 //! constraints (3.25) hold. The OCR prints `f1 = u - (r1 - r2)` and
 //! `f2 = r1 psi - r2 phi2`, the second with its sign garbled; derived again:
 //! the pin's material point at the contact moves with
@@ -25,6 +26,9 @@
 //! without this the model is inconsistent where Ru -> 0, because the
 //! no-slip force would stay finite while the normal force vanishes. Not in
 //! the seed, chosen here: mu = 0.15 (dry steel on steel, lubricated 0.1).
+//! (A very large mu, near the seed's rolling throughout, runs into
+//! Painleve's paradox while sliding: the normal force of the sliding
+//! equations changes sign and the integration stops with an error.)
 //!
 //! In slide and flight the Cartesian model [`crate::ClearanceArmFree`]
 //! integrates (see [`super::clearance_modes`]). A pin that reaches the ring
