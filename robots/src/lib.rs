@@ -8,12 +8,18 @@
 //! | `rrp-rigid` | [`Rrp::rigid`] | the same without spring and drag (Pinocchio's model) |
 //! | `mar` | [`Mar`] | seed 000 Table 1, rigid |
 //! | `mar-drives` | [`Mar::with_drives`] | with Table 1's drive stiffness and damping |
+//! | - | [`ClearanceArm`], [`ClearanceArmFree`] | seed 001 sec. 3.2, two links with joint clearance |
+//! | - | [`ElasticGrip`] | seed 001 sec. 3.3, arm with an elastic push rod |
+//! | - | [`Piston`] | seed 001 sec. 3.4, RRP arm whose piston end follows KL |
 
 pub mod arm3r;
+pub mod clearance_arm;
 pub mod compare;
+pub mod elastic_grip;
 pub mod eval;
 pub mod gap;
 pub mod mar;
+pub mod piston;
 pub mod plot;
 pub mod registry;
 pub mod report;
@@ -23,7 +29,10 @@ pub mod states;
 pub mod urdf_robots;
 
 pub use arm3r::{Arm3r, Arm3rParams};
+pub use clearance_arm::{ClearanceArm, ClearanceArmFree};
+pub use elastic_grip::{ElasticGrip, ElasticGripParams};
 pub use mar::{Mar, MarParams};
+pub use piston::{Piston, PistonParams};
 pub use rrp::{Rrp, RrpParams};
 pub use urdf_robots::{
     Arm3rUrdf, MarUrdf, Panda, PandaParams, PandaPayload, RrpUrdf, Ur5, Ur5Params,

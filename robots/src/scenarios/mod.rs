@@ -12,7 +12,14 @@ use thiserror::Error;
 use crate::plot::{svg, Series};
 
 mod circle;
+pub mod clearance;
+mod clearance_files;
+pub mod clearance_modes;
+mod clearance_run;
+pub mod elastic_grip;
+pub mod environment;
 pub mod mar;
+mod support;
 
 /// Scenario names with a line each.
 pub const SCENARIOS: &[(&str, &str)] = &[
@@ -25,8 +32,24 @@ pub const SCENARIOS: &[(&str, &str)] = &[
         "seed 001 sec. 3.1.2: the RRP arm carrying M along the line KL (eq. 3.7/3.14)",
     ),
     (
+        "arm3r-circle",
+        "seed 001 ch. 4: the 3R arm's tool on a circle under PD + gravity, computed torque and sliding mode",
+    ),
+    (
         "mar-vibration",
         "seed 000: inertial vibrations of the MAR's links 2 and 3 on the Table 2 path (Figs. 3-8)",
+    ),
+    (
+        "environment",
+        "seed 001 sec. 3.4: the piston end C on the line KL against F = -mu |v|^(alpha-1) v",
+    ),
+    (
+        "elastic-grip",
+        "seed 001 sec. 3.3: arm with an elastic push rod, handle massless or lumped by eq. 3.58",
+    ),
+    (
+        "clearance",
+        "seed 001 sec. 3.2: pin rolling in a ring with clearance, contact loss and re-contact by events",
     ),
 ];
 
@@ -39,6 +62,9 @@ pub enum ScenarioError {
     /// The simulation stopped.
     #[error(transparent)]
     Sim(#[from] dynamics_runtime::SimError),
+    /// The scenario's data are unusable.
+    #[error("bad scenario data: {0}")]
+    Data(String),
     /// Writing the outputs failed.
     #[error("{path}: {source}")]
     Io {
@@ -67,6 +93,9 @@ pub fn run(name: &str, dir: &Path) -> Result<Vec<String>, ScenarioError> {
         "rrp-line" => rrp_line(dir),
         "arm3r-circle" => circle::run(dir),
         "mar-vibration" => mar::run(dir),
+        "environment" => environment::run(dir),
+        "elastic-grip" => elastic_grip::run(dir),
+        "clearance" => clearance_files::run(dir),
         other => Err(ScenarioError::Unknown(other.to_string())),
     }
 }

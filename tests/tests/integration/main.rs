@@ -1,7 +1,10 @@
 //! Integration tests, compiled into one binary (faster on two cores).
 
+mod clearance;
 mod diagnosis;
 mod effects;
+mod elastic_grip;
+mod environment;
 mod mar_eq10;
 mod mar_vibration;
 mod oracle;
