@@ -9,7 +9,7 @@ use nalgebra::SVector;
 
 use super::basis::Basis;
 use super::signals::Signals;
-use crate::effects::{smooth_sign, Effect, EffectKind};
+use crate::effects::{Effect, EffectKind};
 
 /// A candidate: kind, place, and the fixed value of a nonlinear parameter
 /// searched on a grid (Stribeck velocity, resistance exponent).
@@ -138,11 +138,12 @@ impl Candidate {
         let mut c = [SVector::zeros(); 2];
         let (qd, qdd) = (&sig.qd[k], &sig.qdd[k]);
         match *self {
-            Candidate::Coulomb(j) => c[0][j] = smooth_sign(qd[j]),
+            Candidate::Coulomb(j) => c[0][j] = basis.sign[k][j],
             Candidate::Viscous(j) => c[0][j] = qd[j],
             Candidate::Stribeck(j, vs) => {
-                c[0][j] = smooth_sign(qd[j]);
-                c[1][j] = (-(qd[j] / vs).powi(2)).exp() * smooth_sign(qd[j]);
+                c[0][j] = basis.sign[k][j];
+                let i = STRIBECK_GRID.iter().position(|&g| g == vs).unwrap_or(0);
+                c[1][j] = basis.stribeck[i][k][j];
             }
             Candidate::Armature(j) => c[0][j] = qdd[j],
             Candidate::Payload => {

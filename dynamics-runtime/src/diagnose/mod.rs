@@ -49,8 +49,9 @@ pub struct Options {
     pub none_margin: f64,
     /// AICc difference under which two candidates are `ambiguous`.
     pub ambiguity_margin: f64,
-    /// Share of the total AICc improvement a richer nested model must add
-    /// over the simpler one it contains to be preferred.
+    /// AICc improvement a richer nested model must add over the simpler one
+    /// it contains to be preferred (10: "strong evidence" on the usual
+    /// scale of AIC differences).
     pub nesting_margin: f64,
     /// Threads (0: all cores).
     pub threads: usize,
@@ -62,7 +63,7 @@ impl Default for Options {
             kinds: vec![],
             none_margin: 100.0,
             ambiguity_margin: 10.0,
-            nesting_margin: 0.05,
+            nesting_margin: 10.0,
             threads: 0,
         }
     }
@@ -216,8 +217,7 @@ pub fn diagnose<R: Robot<N> + Clone + Sync, const N: usize>(
         if let Some(s) = simpler {
             if let Some(i) = best.iter().position(|f| f.candidate == s) {
                 let gain = best[i].aicc(n) - best[0].aicc(n);
-                let total = aicc0 - best[0].aicc(n);
-                if gain < options.nesting_margin * total.max(0.0) {
+                if gain < options.nesting_margin {
                     let f = best.remove(i);
                     best.insert(0, f);
                 }
