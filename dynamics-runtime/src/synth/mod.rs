@@ -88,6 +88,17 @@ pub enum SynthError {
     /// The options are unusable.
     #[error("bad option: {0}")]
     Options(String),
+    /// The closed loop went unstable (e.g. a soft elastic joint under a
+    /// controller that only sees the link side): the data would be useless.
+    #[error("at t = {t:.3} s joint {joint} is {error:.3e} off its reference: the closed loop went unstable")]
+    Unstable {
+        /// Time.
+        t: f64,
+        /// Joint index.
+        joint: usize,
+        /// Tracking error.
+        error: f64,
+    },
 }
 
 /// Simulates `robot` with `effects` attached and records the measured data.
@@ -285,6 +296,12 @@ impl<'a, R: Robot<N> + Clone, const N: usize> Run<'a, R, N> {
             let mut tau_meas = tau;
             for j in 0..N {
                 tau_meas[j] += noise.tau_relative * self.scales.peak_effort[j] * rng.normal();
+            }
+            for j in 0..N {
+                let error = (sim.state.q[j] - r.q[j]).abs();
+                if !(error <= 5.0 * opts.amplitude[j].abs() + 1e-3) {
+                    return Err(SynthError::Unstable { t, joint: j, error });
+                }
             }
             out.t.push(t);
             out.q.push(q_meas);
