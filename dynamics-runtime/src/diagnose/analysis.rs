@@ -4,8 +4,11 @@
 use nalgebra::{DMatrix, DVector, SVector};
 
 use super::basis::Basis;
-use super::candidate::{motor_grid, motor_transmitted, Candidate, MotorGuess};
+use super::candidate::{
+    motor_grid, motor_transmitted, motor_transmitted_raw, Candidate, MotorGuess,
+};
 use super::fit::{aicc, constrained_least_squares};
+use super::refine::refine;
 use super::signals::Signals;
 use crate::data::Measured;
 use crate::effects::Effect;
@@ -157,26 +160,42 @@ fn fit_motor<R: Robot<N>, const N: usize>(c: Candidate, p: &Prepared<N>) -> Fit 
         .map(|&k| (p.sig.residual[k][j] * w).powi(2))
         .sum();
     let revolute = R::JOINT_KINDS[j] != JointKind::Prismatic;
-    let mut best = Fit {
-        candidate: c,
-        theta: vec![],
-        std: vec![],
-        motor: None,
-        sse: f64::INFINITY,
-        k: 3,
-    };
-    for g in motor_grid(backlash, p.basis.inertia[j], revolute) {
-        let t = motor_transmitted(&p.sig, j, &g, backlash);
+    // Whitened SSE with the motor side `g` at joint j (smoothing only the
+    // rows' windows of the transmitted effort).
+    let cost = |g: &MotorGuess| -> f64 {
+        let t = motor_transmitted_raw(&p.sig, j, g, backlash);
         let sse_j: f64 = p
             .rows
             .iter()
-            .map(|&k| ((t[k] - p.sig.model[k][j]) * w).powi(2))
+            .map(|&k| ((p.sig.sg.at(&t, 0, k) - p.sig.model[k][j]) * w).powi(2))
             .sum();
         let sse = base - own + sse_j;
-        if sse.is_finite() && sse < best.sse {
-            best.sse = sse;
-            best.motor = Some(g);
+        if sse.is_finite() {
+            sse
+        } else {
+            f64::INFINITY
+        }
+    };
+    let mut start: Option<(MotorGuess, f64)> = None;
+    for g in motor_grid(backlash, p.basis.inertia[j], revolute) {
+        let sse = cost(&g);
+        if sse < start.map_or(f64::INFINITY, |s| s.1) {
+            start = Some((g, sse));
         }
     }
-    best
+    let (motor, sse) = match start {
+        Some((g, sse)) => {
+            let (g, sse) = refine(g, sse, backlash, cost);
+            (Some(g), sse)
+        }
+        None => (None, f64::INFINITY),
+    };
+    Fit {
+        candidate: c,
+        theta: vec![],
+        std: vec![],
+        motor,
+        sse,
+        k: if backlash { 4 } else { 3 },
+    }
 }

@@ -287,6 +287,17 @@ pub fn motor_transmitted<const N: usize>(
     g: &MotorGuess,
     backlash: bool,
 ) -> Vec<f64> {
+    sig.sg.apply(&motor_transmitted_raw(sig, j, g, backlash), 0)
+}
+
+/// [`motor_transmitted`] before smoothing (NaN outside the range, and
+/// everywhere when the simulation diverged).
+pub fn motor_transmitted_raw<const N: usize>(
+    sig: &Signals<N>,
+    j: usize,
+    g: &MotorGuess,
+    backlash: bool,
+) -> Vec<f64> {
     let n = sig.t.len();
     let (a, z) = sig.range;
     let mut out = vec![f64::NAN; n];
@@ -349,5 +360,5 @@ pub fn motor_transmitted<const N: usize>(
             return vec![f64::NAN; n];
         }
     }
-    sig.sg.apply(&out, 0)
+    out
 }

@@ -19,6 +19,7 @@ mod candidate;
 mod filter;
 mod fit;
 mod horizon;
+mod refine;
 mod report;
 mod signals;
 mod windows;
