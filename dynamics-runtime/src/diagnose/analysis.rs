@@ -5,7 +5,7 @@ use nalgebra::{DMatrix, DVector, SVector};
 
 use super::basis::Basis;
 use super::candidate::{
-    motor_grid, motor_transmitted, motor_transmitted_raw, Candidate, MotorGuess,
+    motor_feasible, motor_grid, motor_transmitted, motor_transmitted_raw, Candidate, MotorGuess,
 };
 use super::fit::{aicc, constrained_least_squares};
 use super::refine::refine;
@@ -162,7 +162,11 @@ fn fit_motor<R: Robot<N>, const N: usize>(c: Candidate, p: &Prepared<N>) -> Fit 
     let revolute = R::JOINT_KINDS[j] != JointKind::Prismatic;
     // Whitened SSE with the motor side `g` at joint j (smoothing only the
     // rows' windows of the transmitted effort).
+    let inertia = p.basis.inertia[j];
     let cost = |g: &MotorGuess| -> f64 {
+        if !motor_feasible(g, backlash, inertia, revolute) {
+            return f64::INFINITY;
+        }
         let t = motor_transmitted_raw(&p.sig, j, g, backlash);
         let sse_j: f64 = p
             .rows
@@ -177,7 +181,7 @@ fn fit_motor<R: Robot<N>, const N: usize>(c: Candidate, p: &Prepared<N>) -> Fit 
         }
     };
     let mut start: Option<(MotorGuess, f64)> = None;
-    for g in motor_grid(backlash, p.basis.inertia[j], revolute) {
+    for g in motor_grid(backlash, inertia, revolute) {
         let sse = cost(&g);
         if sse < start.map_or(f64::INFINITY, |s| s.1) {
             start = Some((g, sse));

@@ -26,6 +26,10 @@ pub struct Basis<const N: usize> {
     pub gravity: Vector3<f64>,
     /// The tip used.
     pub tip: Tip,
+    /// Accelerations smoothed once more (the rotor-inertia column): the
+    /// acceleration estimate's own noise, which the nominal model's
+    /// residual already carries, is not added a second time by a column.
+    pub qdd: Vec<SVector<f64, N>>,
     /// Per joint, the smoothed sign of the (lightly smoothed) velocity:
     /// the Coulomb column, smoothed like the efforts it is compared with.
     pub sign: Vec<SVector<f64, N>>,
@@ -54,6 +58,22 @@ fn smoothed_column<const N: usize>(
     out
 }
 
+/// Smooths every entry of `v` over `range` (zero where the window does not
+/// fit).
+fn smooth_in_place<const R: usize, const C: usize>(
+    sg: &super::filter::SavitzkyGolay,
+    v: &mut [SMatrix<f64, R, C>],
+    (a, z): (usize, usize),
+) {
+    for i in 0..R * C {
+        let x: Vec<f64> = (a..z).map(|k| v[k].as_slice()[i]).collect();
+        let y = sg.apply(&x, 0);
+        for (k, y) in (a..z).zip(y) {
+            v[k].as_mut_slice()[i] = if y.is_finite() { y } else { 0.0 };
+        }
+    }
+}
+
 impl<const N: usize> Basis<N> {
     /// Evaluates the shared quantities along `sig`.
     pub fn new<R: Robot<N>>(robot: &R, sig: &Signals<N>) -> Self {
@@ -66,6 +86,7 @@ impl<const N: usize> Basis<N> {
             inertia: SVector::zeros(),
             gravity: Vector3::from(R::GRAVITY),
             tip,
+            qdd: sig.qdd.clone(),
             sign: smoothed_column(sig, smooth_sign),
             stribeck: STRIBECK_GRID
                 .iter()
@@ -85,6 +106,11 @@ impl<const N: usize> Basis<N> {
             }
         }
         b.inertia /= (z - a).max(1) as f64;
+        // Columns built from the acceleration estimate are smoothed once
+        // more, like the acceleration itself.
+        smooth_in_place(&sig.sg, &mut b.qdd, (a, z));
+        smooth_in_place(&sig.sg, &mut b.tip_acc, (a, z));
+        smooth_in_place(&sig.sg, &mut b.k, (a, z));
         b
     }
 }

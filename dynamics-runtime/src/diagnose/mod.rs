@@ -5,13 +5,23 @@
 //! the gap shrinks on held-out data once that effect is added.
 //!
 //! Method: the torque residual `tau - ID(q, qd, qdd)` along the measured
-//! motion, every signal smoothed by one Savitzky-Golay filter (accelerations
-//! from its derivative, never from double differencing), rows whitened by a
-//! noise floor estimated from the data. Effects linear in their parameters
-//! (friction, rotor inertia, payload, resistance, encoder offset through the
-//! emitted perturbation Jacobian K, delay through the model effort's rate)
-//! are fitted by sign-constrained least squares; elasticity and backlash by
-//! a grid search on a motor-side simulation driven by the measured effort.
+//! motion, every signal smoothed by one Savitzky-Golay filter (40 ms
+//! half-width; accelerations from its derivative, never from double
+//! differencing), rows whitened by a noise floor estimated from the data.
+//! Effects linear in their parameters (friction, rotor inertia, payload,
+//! resistance, encoder offset through the emitted perturbation Jacobian K,
+//! delay through the model effort's rate) are fitted by sign-constrained
+//! least squares on columns filtered like the efforts: friction laws are
+//! evaluated on a lightly smoothed velocity and then smoothed (the sign of
+//! a smoothed velocity switches sharply where the smoothed effort does
+//! not); columns built from the acceleration estimate are smoothed once
+//! more, so that they do not add its noise a second time (rotor inertia
+//! was otherwise taken for a stiff elastic joint). Elasticity and backlash
+//! are fitted by a grid search on a motor-side simulation driven by the
+//! measured effort, refined by a compass search on the logarithms of their
+//! parameters. Candidates are ranked by AICc; a richer model nesting a
+//! simpler one at the same joint (Stribeck over Coulomb, elasticity or
+//! backlash over rotor inertia) must win by [`Options::nesting_margin`].
 
 mod analysis;
 mod basis;
