@@ -1,7 +1,12 @@
 //! The diagnoser scored on random synthetic cases: robot, effect, joint,
 //! magnitude (realistic ranges), excitation, noise level and seed drawn at
 //! random; the generator writes the CSVs and a truth file; the diagnoser
-//! gets the CSVs only; the truth is read after the verdict.
+//! gets the CSVs only; the truth is read after the verdict. Whether a case
+//! is identifiable at all is decided from the truth side too (the
+//! generator's `snr`, see [`IDENTIFIABLE_SNR`]), never by the diagnoser's
+//! own gap estimate. Targets (issue 7): effect named first in >= 90 % of
+//! identifiable cases, joint right in >= 95 % of those, every control
+//! answered `none`, median held-out shrink >= 80 %.
 
 use std::collections::BTreeMap;
 use std::path::Path;
@@ -203,7 +208,7 @@ fn diagnoser_names_the_withheld_effect() {
     );
     assert!(outcomes.len() >= 40);
     assert!(
-        named as f64 >= 0.85 * ident.len() as f64,
+        named as f64 >= 0.90 * ident.len() as f64,
         "effect named first in {named} of {}",
         ident.len()
     );
