@@ -299,7 +299,8 @@ impl<'a, R: Robot<N> + Clone, const N: usize> Run<'a, R, N> {
             }
             for j in 0..N {
                 let error = (sim.state.q[j] - r.q[j]).abs();
-                if !(error <= 5.0 * opts.amplitude[j].abs() + 1e-3) {
+                // (NaN counts as off too.)
+                if error.is_nan() || error > 5.0 * opts.amplitude[j].abs() + 1e-3 {
                     return Err(SynthError::Unstable { t, joint: j, error });
                 }
             }
