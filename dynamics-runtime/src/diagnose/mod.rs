@@ -19,7 +19,10 @@
 //! was otherwise taken for a stiff elastic joint). Elasticity and backlash
 //! are fitted by a grid search on a motor-side simulation driven by the
 //! measured effort, refined by a compass search on the logarithms of their
-//! parameters. Candidates are ranked by AICc; a richer model nesting a
+//! parameters. Rotor inertia is fitted both ways (its acceleration column,
+//! and a rotor on a very stiff coupling simulated like the motor-side
+//! models, which see the effort's fast content the same way) and keeps the
+//! better. Candidates are ranked by AICc; a richer model nesting a
 //! simpler one at the same joint (Stribeck over Coulomb, elasticity or
 //! backlash over rotor inertia) must win by [`Options::nesting_margin`].
 
@@ -400,7 +403,7 @@ fn ranked_entry<R: Robot<N>, const N: usize>(
         }),
         _ => {}
     }
-    if let Some(g) = f.motor {
+    if let (Some(g), false) = (f.motor, matches!(c, Candidate::Armature(_))) {
         let mut push = |name: &str, value: f64, rel: f64| {
             parameters.push(Parameter {
                 name: name.into(),
