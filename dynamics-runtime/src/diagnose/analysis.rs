@@ -147,7 +147,7 @@ pub fn fit<R: Robot<N>, const N: usize>(c: Candidate, p: &Prepared<N>) -> Fit {
         k: m,
     };
     match c {
-        Candidate::Armature(j) => stiff_rotor::<R, N>(linear, j, p),
+        Candidate::Armature(j) => stiff_rotor(linear, j, p),
         _ => linear,
     }
 }
@@ -163,7 +163,7 @@ const STIFF_ROTOR: (f64, f64) = (250.0, 0.7);
 /// the acceleration column misses it, a motor-side model does not, and
 /// would otherwise win for that reason alone. Keeps the better of the
 /// two fits of the one parameter.
-fn stiff_rotor<R: Robot<N>, const N: usize>(linear: Fit, j: usize, p: &Prepared<N>) -> Fit {
+fn stiff_rotor<const N: usize>(linear: Fit, j: usize, p: &Prepared<N>) -> Fit {
     let w = 1.0 / p.sig.floor[j];
     let base: f64 = p.sse(&p.sig.residual);
     let own: f64 = p
