@@ -9,8 +9,8 @@ use dynamics_runtime::diagnose::traces::{traces, Traces, TracesError};
 use dynamics_runtime::diagnose::{diagnose, DiagnoseError, Options, Report};
 use dynamics_runtime::effects::{Effect, EffectKind, PlaceKind, Tip};
 use dynamics_runtime::synth::{
-    draw_effect, synthesize, Excitation, ExcitationKind, Noise, Rng, Scales, SynthError,
-    SynthOptions,
+    draw_effect, synthesize, synthesize_with_size, Excitation, ExcitationKind, Noise, Rng, Scales,
+    SynthError, SynthOptions,
 };
 use dynamics_runtime::Robot;
 use nalgebra::SVector;
@@ -59,6 +59,14 @@ pub struct Truth {
     pub seed: u64,
     /// Excitation.
     pub excitation: String,
+    /// How large the withheld effect is against the effort noise, from the
+    /// truth side (computed by the generator, never by the diagnoser): the
+    /// largest over the joints of the RMS, along the recorded training
+    /// motion, of the effort the nominal model misses on noise-free data,
+    /// over the standard deviation of one sample's effort noise.
+    /// `synth::Synthesized::snr`; about 0 for a control.
+    #[serde(default)]
+    pub snr: f64,
 }
 
 /// A synthesis request.
@@ -261,7 +269,9 @@ fn synth_for<R: Robot<N> + Clone, const N: usize>(
         let _ = write_csv(&mut out, m, &R::JOINT_NAMES);
         String::from_utf8(out).unwrap_or_default()
     };
-    let train = synthesize(robot, &effects, &train_opts)?;
+    let sized = synthesize_with_size(robot, &effects, &train_opts)?;
+    let snr = sized.snr();
+    let train = sized.data;
     let holdout = synthesize(robot, &effects, &hold_opts)?;
     let kind = effect.map(|e| e.kind()).unwrap_or(EffectKind::None);
     let tip = Tip::of::<R, N>().name::<R, N>().to_string();
@@ -280,6 +290,7 @@ fn synth_for<R: Robot<N> + Clone, const N: usize>(
                 .unwrap_or_else(|| "none".into()),
             seed: req.seed,
             excitation: format!("{:?}", req.excitation),
+            snr,
         },
     })
 }

@@ -9,7 +9,7 @@ use nalgebra::SVector;
 
 use super::basis::Basis;
 use super::signals::Signals;
-use crate::effects::{smooth_sign, Effect, EffectKind};
+use crate::effects::{Effect, EffectKind};
 
 /// A candidate: kind, place, and the fixed value of a nonlinear parameter
 /// searched on a grid (Stribeck velocity, resistance exponent).
@@ -136,15 +136,16 @@ impl Candidate {
         k: usize,
     ) -> [SVector<f64, N>; 2] {
         let mut c = [SVector::zeros(); 2];
-        let (qd, qdd) = (&sig.qd[k], &sig.qdd[k]);
+        let qd = &sig.qd[k];
         match *self {
-            Candidate::Coulomb(j) => c[0][j] = smooth_sign(qd[j]),
+            Candidate::Coulomb(j) => c[0][j] = basis.sign[k][j],
             Candidate::Viscous(j) => c[0][j] = qd[j],
             Candidate::Stribeck(j, vs) => {
-                c[0][j] = smooth_sign(qd[j]);
-                c[1][j] = (-(qd[j] / vs).powi(2)).exp() * smooth_sign(qd[j]);
+                c[0][j] = basis.sign[k][j];
+                let i = STRIBECK_GRID.iter().position(|&g| g == vs).unwrap_or(0);
+                c[1][j] = basis.stribeck[i][k][j];
             }
-            Candidate::Armature(j) => c[0][j] = qdd[j],
+            Candidate::Armature(j) => c[0][j] = basis.qdd[k][j],
             Candidate::Payload => {
                 c[0] = basis.jac[k].transpose() * (basis.tip_acc[k] - basis.gravity)
             }
@@ -277,10 +278,40 @@ pub fn motor_grid(backlash: bool, inertia: f64, revolute: bool) -> Vec<MotorGues
     out
 }
 
+/// Whether `g` lies in the physical box the grid of [`motor_grid`] spans
+/// (its refinement may not leave it): motor inertia 5-40 % of the joint's,
+/// resonance 3-45 Hz (elasticity) or contact 20-160 Hz (backlash), damping
+/// ratio 0.02-0.3 (a resonance the data can show is lightly damped; a
+/// heavily damped "spring" is only a filter on the effort), half-width
+/// 0.25-30 arcmin (revolute) or 5-600 um.
+pub fn motor_feasible(g: &MotorGuess, backlash: bool, inertia: f64, revolute: bool) -> bool {
+    let ratio = g.jm / inertia;
+    let f = (g.stiffness * (1.0 / g.jm + 1.0 / inertia)).sqrt() / (2.0 * PI);
+    let zeta = g.damping / (2.0 * (g.stiffness * g.jm).sqrt());
+    let (f_lo, f_hi) = if backlash { (20.0, 160.0) } else { (3.0, 45.0) };
+    let unit = if revolute { PI / 180.0 / 60.0 } else { 2e-5 };
+    let width_ok = !backlash || (0.249 * unit..=30.01 * unit).contains(&g.half_width);
+    (0.0499..=0.4001).contains(&ratio)
+        && (f_lo..=f_hi).contains(&f)
+        && (0.02..=0.3).contains(&zeta)
+        && width_ok
+}
+
 /// Simulates the motor side of joint `j` driven by the measured effort
 /// (held per sample) and the measured link motion; returns the smoothed
 /// effort it passes to the link at every sample (NaN outside the range).
 pub fn motor_transmitted<const N: usize>(
+    sig: &Signals<N>,
+    j: usize,
+    g: &MotorGuess,
+    backlash: bool,
+) -> Vec<f64> {
+    sig.sg.apply(&motor_transmitted_raw(sig, j, g, backlash), 0)
+}
+
+/// [`motor_transmitted`] before smoothing (NaN outside the range, and
+/// everywhere when the simulation diverged).
+pub fn motor_transmitted_raw<const N: usize>(
     sig: &Signals<N>,
     j: usize,
     g: &MotorGuess,
@@ -348,5 +379,5 @@ pub fn motor_transmitted<const N: usize>(
             return vec![f64::NAN; n];
         }
     }
-    sig.sg.apply(&out, 0)
+    out
 }

@@ -52,6 +52,19 @@ impl SavitzkyGolay {
         &self.weights[d.min(2)]
     }
 
+    /// Derivative `d` (0, 1, 2) of `x` at sample `k` alone; NaN where the
+    /// window does not fit.
+    pub fn at(&self, x: &[f64], d: usize, k: usize) -> f64 {
+        if k < self.half || k + self.half >= x.len() {
+            return f64::NAN;
+        }
+        self.weights[d.min(2)]
+            .iter()
+            .zip(&x[k - self.half..=k + self.half])
+            .map(|(a, b)| a * b)
+            .sum()
+    }
+
     /// Derivative `d` (0, 1, 2) of `x`; NaN where the window does not fit.
     pub fn apply(&self, x: &[f64], d: usize) -> Vec<f64> {
         let w = &self.weights[d.min(2)];

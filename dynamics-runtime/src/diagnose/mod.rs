@@ -5,13 +5,26 @@
 //! the gap shrinks on held-out data once that effect is added.
 //!
 //! Method: the torque residual `tau - ID(q, qd, qdd)` along the measured
-//! motion, every signal smoothed by one Savitzky-Golay filter (accelerations
-//! from its derivative, never from double differencing), rows whitened by a
-//! noise floor estimated from the data. Effects linear in their parameters
-//! (friction, rotor inertia, payload, resistance, encoder offset through the
-//! emitted perturbation Jacobian K, delay through the model effort's rate)
-//! are fitted by sign-constrained least squares; elasticity and backlash by
-//! a grid search on a motor-side simulation driven by the measured effort.
+//! motion, every signal smoothed by one Savitzky-Golay filter (40 ms
+//! half-width; accelerations from its derivative, never from double
+//! differencing), rows whitened by a noise floor estimated from the data.
+//! Effects linear in their parameters (friction, rotor inertia, payload,
+//! resistance, encoder offset through the emitted perturbation Jacobian K,
+//! delay through the model effort's rate) are fitted by sign-constrained
+//! least squares on columns filtered like the efforts: friction laws are
+//! evaluated on a lightly smoothed velocity and then smoothed (the sign of
+//! a smoothed velocity switches sharply where the smoothed effort does
+//! not); columns built from the acceleration estimate are smoothed once
+//! more, so that they do not add its noise a second time (rotor inertia
+//! was otherwise taken for a stiff elastic joint). Elasticity and backlash
+//! are fitted by a grid search on a motor-side simulation driven by the
+//! measured effort, refined by a compass search on the logarithms of their
+//! parameters. Rotor inertia is fitted both ways (its acceleration column,
+//! and a rotor on a very stiff coupling simulated like the motor-side
+//! models, which see the effort's fast content the same way) and keeps the
+//! better. Candidates are ranked by AICc; a richer model nesting a
+//! simpler one at the same joint (Stribeck over Coulomb, elasticity or
+//! backlash over rotor inertia) must win by [`Options::nesting_margin`].
 
 mod analysis;
 mod basis;
@@ -19,6 +32,7 @@ mod candidate;
 mod filter;
 mod fit;
 mod horizon;
+mod refine;
 mod report;
 mod signals;
 pub mod traces;
@@ -51,8 +65,9 @@ pub struct Options {
     pub none_margin: f64,
     /// AICc difference under which two candidates are `ambiguous`.
     pub ambiguity_margin: f64,
-    /// Share of the total AICc improvement a richer nested model must add
-    /// over the simpler one it contains to be preferred.
+    /// AICc improvement a richer nested model must add over the simpler one
+    /// it contains to be preferred (10: "strong evidence" on the usual
+    /// scale of AIC differences).
     pub nesting_margin: f64,
     /// Threads (0: all cores).
     pub threads: usize,
@@ -64,7 +79,7 @@ impl Default for Options {
             kinds: vec![],
             none_margin: 100.0,
             ambiguity_margin: 10.0,
-            nesting_margin: 0.05,
+            nesting_margin: 10.0,
             threads: 0,
         }
     }
@@ -218,8 +233,7 @@ pub fn diagnose<R: Robot<N> + Clone + Sync, const N: usize>(
         if let Some(s) = simpler {
             if let Some(i) = best.iter().position(|f| f.candidate == s) {
                 let gain = best[i].aicc(n) - best[0].aicc(n);
-                let total = aicc0 - best[0].aicc(n);
-                if gain < options.nesting_margin * total.max(0.0) {
+                if gain < options.nesting_margin {
                     let f = best.remove(i);
                     best.insert(0, f);
                 }
@@ -391,7 +405,7 @@ fn ranked_entry<R: Robot<N>, const N: usize>(
         }),
         _ => {}
     }
-    if let Some(g) = f.motor {
+    if let (Some(g), false) = (f.motor, matches!(c, Candidate::Armature(_))) {
         let mut push = |name: &str, value: f64, rel: f64| {
             parameters.push(Parameter {
                 name: name.into(),

@@ -88,6 +88,17 @@ pub enum SynthError {
     /// The options are unusable.
     #[error("bad option: {0}")]
     Options(String),
+    /// The closed loop went unstable (e.g. a soft elastic joint under a
+    /// controller that only sees the link side): the data would be useless.
+    #[error("at t = {t:.3} s joint {joint} is {error:.3e} off its reference: the closed loop went unstable")]
+    Unstable {
+        /// Time.
+        t: f64,
+        /// Joint index.
+        joint: usize,
+        /// Tracking error.
+        error: f64,
+    },
 }
 
 /// Simulates `robot` with `effects` attached and records the measured data.
@@ -111,74 +122,210 @@ pub fn synthesize<R: Robot<N> + Clone, const N: usize>(
     effects: &[Effect],
     opts: &SynthOptions<N>,
 ) -> Result<Measured<N>, SynthError> {
-    if !(opts.rate.is_finite()
-        && opts.rate > 0.0
-        && opts.duration.is_finite()
-        && opts.duration > 0.0)
-    {
-        return Err(SynthError::Options(format!(
-            "duration ({}) and rate ({}) must be positive",
-            opts.duration, opts.rate
-        )));
+    let run = Run::new(robot, effects, opts)?;
+    Ok(run.record(opts.noise, &mut run.rng.clone())?.0)
+}
+
+/// Measured data and, from the truth side, how large the withheld effects
+/// are against the effort noise.
+#[derive(Debug, Clone)]
+pub struct Synthesized<const N: usize> {
+    /// What the sensors recorded.
+    pub data: Measured<N>,
+    /// Per joint, the RMS of the effort the nominal model misses, along the
+    /// same experiment run without sensor noise: the applied effort minus
+    /// the nominal inverse dynamics of the motion the sensors report. Zero
+    /// (to the integrator's rounding) without effects. (Without noise, so
+    /// that the controller's reaction to sensor noise, which no sensor
+    /// resolves in the motion, does not count as part of a delay.)
+    pub effect_rms: SVector<f64, N>,
+    /// Per joint, the standard deviation of the effort noise of one sample.
+    pub noise_sigma: SVector<f64, N>,
+}
+
+impl<const N: usize> Synthesized<N> {
+    /// The signal-to-noise ratio of the withheld effects: the largest over
+    /// the joints of `effect_rms / noise_sigma`.
+    pub fn snr(&self) -> f64 {
+        (0..N)
+            .map(|j| self.effect_rms[j] / self.noise_sigma[j].max(1e-300))
+            .fold(0.0, f64::max)
     }
-    let plant = Plant::new(robot.clone(), effects.to_vec())?;
-    let mut rng = Rng::new(opts.seed);
-    let reference = Excitation::new(
-        opts.excitation,
-        opts.home,
-        opts.amplitude,
-        opts.duration,
-        &mut rng,
-    );
-    let scales = Scales::of(robot, &reference, opts.duration);
-    let dt = 1.0 / opts.rate;
-    let n = (opts.duration * opts.rate).round() as usize + 1;
-    let (mut offset, mut delay) = (SVector::<f64, N>::zeros(), 0.0);
-    for e in effects {
-        match *e {
-            Effect::EncoderOffset { joint, offset: o } => offset[joint] += o,
-            Effect::TimeDelay { delay: d } => delay += d,
-            _ => {}
-        }
-    }
-    let r0 = reference.at(0.0);
-    let mut sim = plant.start(r0.q, r0.qd);
-    let tol = Tolerances {
-        rtol: 1e-9,
-        atol: 1e-11,
-        ..Default::default()
+}
+
+/// [`synthesize`], also measuring the size of the withheld effects against
+/// the effort noise (see [`Synthesized`]): the truth a scoring can use to
+/// decide whether a case is identifiable at all, without asking the
+/// diagnoser. Costs a second, noise-free run.
+///
+/// ```
+/// use dynamics_runtime::effects::Effect;
+/// use dynamics_runtime::synth::{synthesize_with_size, SynthOptions};
+/// dynamics_macros::robot! {
+///     pub robot Pendulum;
+///     gravity = [0.0, -9.81, 0.0];
+///     link base;
+///     link rod { mass = 1.0; com = [0.5, 0.0, 0.0]; inertia = [1e-4, 0.02, 0.02]; }
+///     joint j = revolute(base -> rod) { transfer = [rot_z(q)]; }
+/// }
+/// let opts = SynthOptions::<1> { duration: 1.0, ..Default::default() };
+/// let robot = Pendulum::default();
+/// let none = synthesize_with_size(&robot, &[], &opts).unwrap();
+/// let fc = synthesize_with_size(&robot, &[Effect::CoulombFriction { joint: 0, fc: 0.1 }], &opts).unwrap();
+/// assert!(none.snr() < 1e-3 && fc.effect_rms[0] > 0.05 && fc.effect_rms[0] <= 0.1);
+/// ```
+pub fn synthesize_with_size<R: Robot<N> + Clone, const N: usize>(
+    robot: &R,
+    effects: &[Effect],
+    opts: &SynthOptions<N>,
+) -> Result<Synthesized<N>, SynthError> {
+    let run = Run::new(robot, effects, opts)?;
+    let (data, _) = run.record(opts.noise, &mut run.rng.clone())?;
+    let quiet = Noise {
+        q: 0.0,
+        qd: 0.0,
+        tau_relative: 0.0,
     };
-    let kp = opts.bandwidth * opts.bandwidth;
-    let kd = 2.0 * opts.bandwidth;
-    let mut truth: Vec<(SVector<f64, N>, SVector<f64, N>)> = Vec::with_capacity(n);
-    let mut out = Measured::<N> {
-        qd_measured: true,
-        ..Default::default()
-    };
-    for k in 0..n {
-        let t = k as f64 * dt;
-        truth.push((sim.state.q, sim.state.qd));
-        // What the sensors report: late by `delay`, shifted by the offsets.
-        let (q_seen, qd_seen) = delayed(&truth, t - delay, dt, &truth[0]);
-        let q_seen = q_seen + offset;
-        let q_meas = q_seen + noise_vec(&mut rng, opts.noise.q);
-        let qd_meas = qd_seen + noise_vec(&mut rng, opts.noise.qd);
-        let r: Reference<N> = reference.at(t);
-        let v = r.qdd + (r.q - q_meas) * kp + (r.qd - qd_meas) * kd;
-        let tau = robot.inverse_dynamics(&q_meas, &qd_meas, &v);
-        let mut tau_meas = tau;
-        for j in 0..N {
-            tau_meas[j] += opts.noise.tau_relative * scales.peak_effort[j] * rng.normal();
+    let (_, effect_rms) = run.record(quiet, &mut run.rng.clone())?;
+    Ok(Synthesized {
+        data,
+        effect_rms,
+        noise_sigma: run.scales.peak_effort * opts.noise.tau_relative,
+    })
+}
+
+/// One experiment: the plant, the reference, the controller, the sensors.
+struct Run<'a, R, const N: usize> {
+    robot: &'a R,
+    plant: Plant<R, N>,
+    reference: Excitation<N>,
+    scales: Scales<N>,
+    opts: &'a SynthOptions<N>,
+    offset: SVector<f64, N>,
+    delay: f64,
+    /// The random stream after the reference was drawn (sensor noise).
+    rng: Rng,
+}
+
+impl<'a, R: Robot<N> + Clone, const N: usize> Run<'a, R, N> {
+    fn new(
+        robot: &'a R,
+        effects: &[Effect],
+        opts: &'a SynthOptions<N>,
+    ) -> Result<Self, SynthError> {
+        if !(opts.rate.is_finite()
+            && opts.rate > 0.0
+            && opts.duration.is_finite()
+            && opts.duration > 0.0)
+        {
+            return Err(SynthError::Options(format!(
+                "duration ({}) and rate ({}) must be positive",
+                opts.duration, opts.rate
+            )));
         }
-        out.t.push(t);
-        out.q.push(q_meas);
-        out.qd.push(qd_meas);
-        out.tau.push(tau_meas);
-        if k + 1 < n {
-            sim.advance(&plant, (k + 1) as f64 * dt, &tau, tol)?;
+        let plant = Plant::new(robot.clone(), effects.to_vec())?;
+        let mut rng = Rng::new(opts.seed);
+        let reference = Excitation::new(
+            opts.excitation,
+            opts.home,
+            opts.amplitude,
+            opts.duration,
+            &mut rng,
+        );
+        let scales = Scales::of(robot, &reference, opts.duration);
+        let (mut offset, mut delay) = (SVector::<f64, N>::zeros(), 0.0);
+        for e in effects {
+            match *e {
+                Effect::EncoderOffset { joint, offset: o } => offset[joint] += o,
+                Effect::TimeDelay { delay: d } => delay += d,
+                _ => {}
+            }
         }
+        Ok(Run {
+            robot,
+            plant,
+            reference,
+            scales,
+            opts,
+            offset,
+            delay,
+            rng,
+        })
     }
-    Ok(out)
+
+    /// Runs the experiment with sensor noise `noise`; returns what the
+    /// sensors recorded and, per joint, the RMS of the applied effort minus
+    /// the nominal inverse dynamics of the noise-free sensor readings.
+    fn record(
+        &self,
+        noise: Noise,
+        rng: &mut Rng,
+    ) -> Result<(Measured<N>, SVector<f64, N>), SynthError> {
+        let (robot, opts) = (self.robot, self.opts);
+        let dt = 1.0 / opts.rate;
+        let n = (opts.duration * opts.rate).round() as usize + 1;
+        let r0 = self.reference.at(0.0);
+        let mut sim = self.plant.start(r0.q, r0.qd);
+        let tol = Tolerances {
+            rtol: 1e-9,
+            atol: 1e-11,
+            ..Default::default()
+        };
+        let kp = opts.bandwidth * opts.bandwidth;
+        let kd = 2.0 * opts.bandwidth;
+        let mut truth: Vec<(SVector<f64, N>, SVector<f64, N>)> = Vec::with_capacity(n);
+        // Noise-free sensor readings and applied efforts, for the effect size.
+        let mut seen: Vec<(SVector<f64, N>, SVector<f64, N>)> = Vec::with_capacity(n);
+        let mut applied: Vec<SVector<f64, N>> = Vec::with_capacity(n);
+        let mut out = Measured::<N> {
+            qd_measured: true,
+            ..Default::default()
+        };
+        for k in 0..n {
+            let t = k as f64 * dt;
+            truth.push((sim.state.q, sim.state.qd));
+            // What the sensors report: late by `delay`, shifted by the offsets.
+            let (q_seen, qd_seen) = delayed(&truth, t - self.delay, dt, &truth[0]);
+            let q_seen = q_seen + self.offset;
+            seen.push((q_seen, qd_seen));
+            let q_meas = q_seen + noise_vec(rng, noise.q);
+            let qd_meas = qd_seen + noise_vec(rng, noise.qd);
+            let r: Reference<N> = self.reference.at(t);
+            let v = r.qdd + (r.q - q_meas) * kp + (r.qd - qd_meas) * kd;
+            let tau = robot.inverse_dynamics(&q_meas, &qd_meas, &v);
+            let mut tau_meas = tau;
+            for j in 0..N {
+                tau_meas[j] += noise.tau_relative * self.scales.peak_effort[j] * rng.normal();
+            }
+            for j in 0..N {
+                let error = (sim.state.q[j] - r.q[j]).abs();
+                // (NaN counts as off too.)
+                if error.is_nan() || error > 5.0 * opts.amplitude[j].abs() + 1e-3 {
+                    return Err(SynthError::Unstable { t, joint: j, error });
+                }
+            }
+            out.t.push(t);
+            out.q.push(q_meas);
+            out.qd.push(qd_meas);
+            out.tau.push(tau_meas);
+            applied.push(tau);
+            if k + 1 < n {
+                sim.advance(&self.plant, (k + 1) as f64 * dt, &tau, tol)?;
+            }
+        }
+        // The effort is held over each sample interval: around sample k the
+        // motion's mean acceleration (central difference of the velocity)
+        // answers the mean of the efforts held before and after it.
+        let mut sum = SVector::<f64, N>::zeros();
+        for k in 1..n.saturating_sub(1) {
+            let qdd = (seen[k + 1].1 - seen[k - 1].1) / (2.0 * dt);
+            let held = (applied[k - 1] + applied[k]) * 0.5;
+            let gap = held - robot.inverse_dynamics(&seen[k].0, &seen[k].1, &qdd);
+            sum += gap.component_mul(&gap);
+        }
+        let count = n.saturating_sub(2).max(1) as f64;
+        Ok((out, (sum / count).map(f64::sqrt)))
+    }
 }
 
 fn noise_vec<const N: usize>(rng: &mut Rng, sigma: f64) -> SVector<f64, N> {

@@ -1,7 +1,12 @@
 //! The diagnoser scored on random synthetic cases: robot, effect, joint,
 //! magnitude (realistic ranges), excitation, noise level and seed drawn at
 //! random; the generator writes the CSVs and a truth file; the diagnoser
-//! gets the CSVs only; the truth is read after the verdict.
+//! gets the CSVs only; the truth is read after the verdict. Whether a case
+//! is identifiable at all is decided from the truth side too (the
+//! generator's `snr`, see [`IDENTIFIABLE_SNR`]), never by the diagnoser's
+//! own gap estimate. Targets (issue 7): effect named first in >= 90 % of
+//! identifiable cases, joint right in >= 95 % of those, every control
+//! answered `none`, median held-out shrink >= 80 %.
 
 use std::collections::BTreeMap;
 use std::path::Path;
@@ -12,6 +17,19 @@ use dynamics_runtime::synth::{ExcitationKind, Noise, Rng};
 use robots::gap::{diagnose_files, synth, SynthRequest, Truth};
 
 const CASES: usize = 44;
+/// A case is identifiable when the withheld effect's effort, RMS along the
+/// recorded motion, is at least this many times the effort noise of one
+/// sample (`Truth::snr`, computed by the generator from the truth side).
+const IDENTIFIABLE_SNR: f64 = 2.0;
+
+/// Seed base: `DIAGNOSIS_SEED_BASE` (default 0) shifts every draw, to check
+/// that the scores are not a property of one set of seeds.
+fn seed_base() -> u64 {
+    std::env::var("DIAGNOSIS_SEED_BASE")
+        .ok()
+        .and_then(|s| s.parse().ok())
+        .unwrap_or(0)
+}
 const ROBOTS: [&str; 3] = ["arm3r", "rrp-rigid", "mar"];
 
 struct Outcome {
@@ -24,7 +42,8 @@ struct Outcome {
 }
 
 fn run_case(i: usize, dir: &Path) -> Outcome {
-    let mut rng = Rng::new(1000 + i as u64);
+    let base = seed_base();
+    let mut rng = Rng::new(1000 + base + i as u64);
     let robot = ROBOTS[rng.below(ROBOTS.len())];
     // One case in eleven is a control without any effect.
     let kind = if i % 11 == 0 {
@@ -43,17 +62,34 @@ fn run_case(i: usize, dir: &Path) -> Outcome {
         qd: 2e-3 * level,
         tau_relative: 2e-3 * level,
     };
-    let out = synth(&SynthRequest {
-        robot: robot.into(),
-        kind: Some(kind),
-        joint: None,
-        magnitude: None,
-        seed: 77 + i as u64,
-        excitation,
-        duration: 6.0,
-        noise,
-    })
-    .expect("synthesizes");
+    // A draw the generator cannot run (the closed loop goes unstable) is
+    // drawn again with another seed and the next excitation.
+    let mut seed = 77 + base + i as u64;
+    let mut excitation = excitation;
+    let out = loop {
+        match synth(&SynthRequest {
+            robot: robot.into(),
+            kind: Some(kind),
+            joint: None,
+            magnitude: None,
+            seed,
+            excitation,
+            duration: 6.0,
+            noise,
+        }) {
+            Ok(out) => break out,
+            Err(e) if seed < 77 + base + i as u64 + 5 * 100_000 => {
+                eprintln!("case {i}: {robot} {kind:?} {excitation:?} seed {seed} redrawn: {e}");
+                seed += 100_000;
+                excitation = match excitation {
+                    ExcitationKind::Sines => ExcitationKind::Chirp,
+                    ExcitationKind::Chirp => ExcitationKind::PickPlace,
+                    ExcitationKind::PickPlace => ExcitationKind::Sines,
+                };
+            }
+            Err(e) => panic!("case {i}: {robot} {kind:?} {excitation:?} seed {seed}: {e}"),
+        }
+    };
     let (train, holdout, truth_file) = (
         dir.join(format!("{i}-a.csv")),
         dir.join(format!("{i}-b.csv")),
@@ -91,18 +127,19 @@ fn run_case(i: usize, dir: &Path) -> Outcome {
         first.and_then(|r| r.joint.clone())
     };
     eprintln!(
-        "case {i:2} {robot:9} {:>22} {:>4} -> {:>22} {:>4} {:9} gap {gap:7.1} shrink {:.2} ({}) top {:?}",
+        "case {i:2} {robot:9} {:>22} {:>4} -> {:>22} {:>4} {:9} snr {:7.2} gap {gap:7.1} shrink {:.2} ({}) top {:?}",
         truth.kind,
         truth.joint.clone().unwrap_or_default(),
         said,
         said_joint.clone().unwrap_or_default(),
         v.status,
+        truth.snr,
         report.shrink.fraction,
         truth.effect,
         report.which.ranked.iter().take(2).map(|r| (r.kind.as_str(), r.delta_aicc.round(), (r.holdout_share * 100.0).round())).collect::<Vec<_>>()
     );
     Outcome {
-        identifiable: truth.kind != "none" && gap >= 2.0,
+        identifiable: truth.kind != "none" && truth.snr >= IDENTIFIABLE_SNR,
         truth: truth.kind,
         truth_joint: truth.joint,
         said,
@@ -171,7 +208,7 @@ fn diagnoser_names_the_withheld_effect() {
     );
     assert!(outcomes.len() >= 40);
     assert!(
-        named as f64 >= 0.85 * ident.len() as f64,
+        named as f64 >= 0.90 * ident.len() as f64,
         "effect named first in {named} of {}",
         ident.len()
     );
