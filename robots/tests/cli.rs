@@ -454,10 +454,12 @@ fn report_traces_carry_the_fitted_effect() {
                 // The definitions: residuals are measured minus each model.
                 assert!((jt.residual[k] - (jt.measured[k] - jt.nominal[k])).abs() < 1e-9);
                 assert!((jt.residual_after[k] - (jt.measured[k] - jt.corrected[k])).abs() < 1e-9);
-                // Coulomb friction at j3 changes j3's effort only, by at most fc.
+                // Coulomb friction at j3 changes j3's effort only, by at most
+                // fc (the friction column is a smoothed sign, and the
+                // Savitzky-Golay fit of a step overshoots it by a few per cent).
                 let added = jt.corrected[k] - jt.nominal[k];
                 if j == 2 {
-                    assert!(added.abs() <= fc * (1.0 + 1e-9), "{added} vs fc {fc}");
+                    assert!(added.abs() <= fc * 1.05, "{added} vs fc {fc}");
                 } else {
                     assert_eq!(added, 0.0);
                 }
