@@ -344,6 +344,8 @@ pub fn motor_transmitted_raw<const N: usize>(
     };
     let mut thd = sig.qd[a][j];
     const SUB: usize = 4;
+    // A multiply, not a divide, on the integration's dependent chain.
+    let inv_jm = 1.0 / g.jm;
     for k in a..z {
         let (q0, v0) = (sig.q[k][j], sig.qd[k][j]);
         out[k] = force(th - q0, thd - v0);
@@ -356,7 +358,7 @@ pub fn motor_transmitted_raw<const N: usize>(
         let link = |s: f64| (q0 + (q1 - q0) * s, v0 + (v1 - v0) * s);
         let acc = |th: f64, thd: f64, s: f64| {
             let (q, v) = link(s);
-            (tau - force(th - q, thd - v)) / g.jm
+            (tau - force(th - q, thd - v)) * inv_jm
         };
         for i in 0..SUB {
             let s0 = i as f64 / SUB as f64;
