@@ -248,6 +248,7 @@ pub fn build(input: Input, complete: bool, base_dir: &Path, cx: &mut Ctxt) -> Op
         joints,
     };
     super::merge::weld_fixed(&mut model);
+    super::normalize::chains(&mut model);
     Some(model)
 }
 
