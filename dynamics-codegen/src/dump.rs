@@ -41,6 +41,14 @@ pub fn outputs(d: &Derived) -> Vec<(&'static str, Vec<Id>)> {
                 .copied()
                 .collect(),
         ),
+        (
+            "  K = dF/dq alone",
+            d.perturbation.k.iter().flatten().copied().collect(),
+        ),
+        (
+            "  D = dF/dqd alone",
+            d.perturbation.d.iter().flatten().copied().collect(),
+        ),
         ("kinetic_energy", vec![d.kinetic]),
         ("potential_energy", vec![d.potential]),
     ]

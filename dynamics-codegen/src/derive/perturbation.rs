@@ -20,16 +20,50 @@ pub struct Perturbation {
 }
 
 /// Differentiates the inverse dynamics `tau` (one entry per coordinate).
-pub fn jacobians(tau: &[Id], n_params: usize, vars: Vars, g: &mut Graph) -> Perturbation {
+///
+/// D has a second form: the velocity terms `-(Qqt1 + Qqt2) = C qd` are a
+/// quadratic form `c_i = sum_jk Gamma_ijk qd_j qd_k` with Christoffel
+/// symbols symmetric in j, k, so `dc_i/dqd_j = 2 sum_k Gamma_ijk qd_k =
+/// 2 C_ij`: `D = 2 C - d(extras)/dqd`, `extras` being the damping, friction
+/// and spring forces of Q(0) (diagonal in qd). Whichever form takes fewer
+/// operations (beside K) is kept.
+pub fn jacobians(
+    tau: &[Id],
+    coriolis: &[Vec<Id>],
+    extras: &[Id],
+    n_params: usize,
+    vars: Vars,
+    g: &mut Graph,
+) -> Perturbation {
     let n = vars.n;
-    let k = tau
+    let k: Vec<Vec<Id>> = tau
         .iter()
         .map(|&t| (0..n).map(|j| g.diff(t, vars.q(j))).collect())
         .collect();
-    let d = tau
+    let by_diff: Vec<Vec<Id>> = tau
         .iter()
         .map(|&t| (0..n).map(|j| g.diff(t, vars.qd(j))).collect())
         .collect();
+    let by_coriolis: Vec<Vec<Id>> = (0..n)
+        .map(|i| {
+            (0..n)
+                .map(|j| {
+                    let twice = g.scale(coriolis[i][j], 2.0);
+                    let de = g.diff(extras[i], vars.qd(j));
+                    g.sub(twice, de)
+                })
+                .collect()
+        })
+        .collect();
+    let with_k = |g: &Graph, d: &[Vec<Id>]| {
+        let roots: Vec<Id> = k.iter().chain(d).flatten().copied().collect();
+        g.count_ops(&roots).total()
+    };
+    let d = if with_k(g, &by_coriolis) < with_k(g, &by_diff) {
+        by_coriolis
+    } else {
+        by_diff
+    };
     let dp = (0..n_params)
         .map(|p| tau.iter().map(|&t| g.diff(t, vars.param(p))).collect())
         .collect();
