@@ -9,6 +9,7 @@ use std::hint::black_box;
 use criterion::{criterion_group, criterion_main, Criterion};
 use dynamics_codegen::{expand, Options};
 
+#[path = "support/robots_src.rs"]
 mod robots_src;
 
 fn expansion(c: &mut Criterion) {

@@ -2,7 +2,7 @@
 //! expression DAG of each) for the robots of the `robots` crate without
 //! compiling them: `cargo run --release -p dynamics-codegen --example ir -- /tmp/ir`.
 
-#[path = "../benches/robots_src.rs"]
+#[path = "../benches/support/robots_src.rs"]
 mod robots_src;
 
 fn main() {
