@@ -58,8 +58,16 @@ pub fn sin_cos(x: f64) -> (f64, f64) {
     let quadrant = shifted.to_bits() & 3;
     let r = ((x - n * PIO2_1) - n * PIO2_2) - n * PIO2_3;
     let z = r * r;
-    let s = r + r * z * (S1 + z * (S2 + z * (S3 + z * (S4 + z * (S5 + z * S6)))));
-    let poly = z * (C1 + z * (C2 + z * (C3 + z * (C4 + z * (C5 + z * C6)))));
+    // The kernels' polynomials in Estrin's form (pairs, then z^2 and z^4),
+    // whose chain of dependent operations is half of Horner's: joint angles
+    // are the first values of the generated code, so their latency is on
+    // its critical path.
+    let z2 = z * z;
+    let z4 = z2 * z2;
+    let ps = (S1 + z * S2) + z2 * (S3 + z * S4) + z4 * (S5 + z * S6);
+    let pc = (C1 + z * C2) + z2 * (C3 + z * C4) + z4 * (C5 + z * C6);
+    let s = r + r * z * ps;
+    let poly = z * pc;
     let hz = 0.5 * z;
     let w = 1.0 - hz;
     let c = w + (((1.0 - w) - hz) + z * poly);
