@@ -43,8 +43,8 @@ pub fn chain(elems: Vec<Elem>) -> Vec<Elem> {
 fn sum(a: Scalar, b: Scalar) -> Scalar {
     match (a.as_number(), b.as_number()) {
         (Some(x), Some(y)) => Scalar::Num(x + y),
-        (Some(x), None) if x == 0.0 => b,
-        (None, Some(y)) if y == 0.0 => a,
+        (Some(0.0), None) => b,
+        (None, Some(0.0)) => a,
         _ => Scalar::Bin(BinOp::Add, Box::new(a), Box::new(b)),
     }
 }
@@ -57,6 +57,8 @@ mod tests {
     const Z: [f64; 3] = [0.0, 0.0, 1.0];
 
     #[test]
+    // The UR5 file's literal, deliberately not pi/2.
+    #[allow(clippy::approx_constant)]
     fn same_axis_rotations_become_one() {
         let c = 1.57079632679;
         let out = chain(vec![
