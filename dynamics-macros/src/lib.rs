@@ -1,18 +1,9 @@
 //! `robot!`: a declarative robot description turned, at compile time, into
 //! straight-line Rust for the robot's equations of motion.
 //!
-//! The pipeline is one module per stage: [`parse`](crate) -> `model`
-//! (validated kinematic tree) -> `derive` (expression DAG of the dynamics,
-//! built with `dynamics-symbolic`) -> `emit` (tokens). See [`robot!`].
-
-mod ctxt;
-mod derive;
-mod dump;
-mod emit;
-mod expand;
-mod model;
-mod parse;
-mod urdf;
+//! The pipeline (parse -> model -> derive -> emit) lives in the plain
+//! library `dynamics-codegen`; this crate is its proc-macro entry point and
+//! the user-facing documentation of the grammar. See [`robot!`].
 
 use proc_macro::TokenStream;
 
@@ -107,5 +98,16 @@ use proc_macro::TokenStream;
 /// ```
 #[proc_macro]
 pub fn robot(input: TokenStream) -> TokenStream {
-    expand::robot(input.into()).into()
+    dynamics_codegen::expand(input.into(), &options()).into()
+}
+
+/// URDF paths relative to the using crate; the IR dump where
+/// `DYNAMICS_IR_DIR` says.
+fn options() -> dynamics_codegen::Options {
+    dynamics_codegen::Options {
+        base_dir: std::env::var_os("CARGO_MANIFEST_DIR")
+            .map(Into::into)
+            .unwrap_or_default(),
+        ir_dir: std::env::var_os("DYNAMICS_IR_DIR").map(Into::into),
+    }
 }

@@ -31,6 +31,9 @@ const C4: f64 = -2.755_731_435_139_066_330_35e-07;
 const C5: f64 = 2.087_572_321_298_174_827_90e-09;
 const C6: f64 = -1.135_964_755_778_819_482_65e-11;
 
+/// 1.5 * 2^52: adding it rounds any |y| < 2^51 to an integer.
+const ROUNDER: f64 = 6_755_399_441_055_744.0;
+
 /// Largest |x| reduced here; beyond it `std` is used.
 const REDUCE_LIMIT: f64 = 1_647_099.0; // 2^20 * pi/2
 
@@ -46,20 +49,41 @@ pub fn sin_cos(x: f64) -> (f64, f64) {
     if !(x.abs() < REDUCE_LIMIT) {
         return x.sin_cos();
     }
-    let n = (x * FRAC_2_PI).round();
+    // Round x 2/pi to the nearest integer n by adding 1.5 * 2^52: the sum's
+    // last mantissa bits are n itself (two's complement), so neither a libm
+    // `round` call (baseline x86-64 has no rounding instruction) nor an
+    // integer conversion is needed.
+    let shifted = x * FRAC_2_PI + ROUNDER;
+    let n = shifted - ROUNDER;
+    let quadrant = shifted.to_bits() & 3;
     let r = ((x - n * PIO2_1) - n * PIO2_2) - n * PIO2_3;
     let z = r * r;
-    let s = r + r * z * (S1 + z * (S2 + z * (S3 + z * (S4 + z * (S5 + z * S6)))));
-    let poly = z * (C1 + z * (C2 + z * (C3 + z * (C4 + z * (C5 + z * C6)))));
+    // The kernels' polynomials in Estrin's form (pairs, then z^2 and z^4),
+    // whose chain of dependent operations is half of Horner's: joint angles
+    // are the first values of the generated code, so their latency is on
+    // its critical path.
+    let z2 = z * z;
+    let z4 = z2 * z2;
+    let ps = (S1 + z * S2) + z2 * (S3 + z * S4) + z4 * (S5 + z * S6);
+    let pc = (C1 + z * C2) + z2 * (C3 + z * C4) + z4 * (C5 + z * C6);
+    let s = r + r * z * ps;
+    let poly = z * pc;
     let hz = 0.5 * z;
     let w = 1.0 - hz;
     let c = w + (((1.0 - w) - hz) + z * poly);
-    match (n as i64) & 3 {
-        0 => (s, c),
-        1 => (c, -s),
-        2 => (-s, -c),
-        _ => (-c, s),
-    }
+    // Quadrant 0..3: (s, c), (c, -s), (-s, -c), (-c, s), chosen with bit
+    // masks rather than a jump: the quadrant of a joint angle is random, and
+    // a mispredicted jump per call costs more than the masks.
+    let swap = 0u64.wrapping_sub(quadrant & 1);
+    let (sb, cb) = (s.to_bits(), c.to_bits());
+    let sin_bits = (cb & swap) | (sb & !swap);
+    let cos_bits = (sb & swap) | (cb & !swap);
+    let sin_sign = ((quadrant >> 1) & 1) << 63;
+    let cos_sign = (((quadrant + 1) >> 1) & 1) << 63;
+    (
+        f64::from_bits(sin_bits ^ sin_sign),
+        f64::from_bits(cos_bits ^ cos_sign),
+    )
 }
 
 #[cfg(test)]

@@ -2,12 +2,15 @@
 //!
 //! Every used non-leaf node N is bound once to `tN: f64`; leaves are inlined
 //! (a variable as the caller's tokens, a constant as a suffixed literal).
-//! Bindings are grouped by depth in the DAG: all nodes of one depth (at
-//! most [`MAX_TUPLE`] at a time) are bound by one tuple `let`, e.g.
+//! Bindings are grouped by level in the DAG, each node at the last level
+//! before its first user: all nodes of one level (at most [`MAX_TUPLE`] at
+//! a time) are bound by one tuple `let`, e.g.
 //! `let (t4, (t5, t6)): (f64, (f64, f64)) = (x * y, x.sin_cos());`. A chain
 //! of tens of thousands of single `let`s nests one scope per binding, and
 //! rustc's debug-info pass overflowed its stack on a 7-DOF arm; the depth
-//! of these DAGs is small. Sums are `k + a - 2.5 * b`, products
+//! of these DAGs is small. Operands of sums and products are written in
+//! the order their values become ready (the code is latency-bound).
+//! Sums are `k + a - 2.5 * b`, products
 //! `-3.0 * a * b * b / (c * d.powi(4))` (powers 2 and 3 as repeated
 //! multiplies, `x^-1` as `1.0 / x`), no allocation anywhere.
 
@@ -118,6 +121,62 @@ struct Item {
     expr: TokenStream,
 }
 
+/// Estimated cycle at which each node's value is ready (latencies of a
+/// current x86-64 core: add and multiply 3, divide 13, sin/cos 40, other
+/// calls 20), each sum and product evaluated left to right as emitted.
+fn ready_times(graph: &Graph, reach: &[Id]) -> Vec<u32> {
+    const ADD: u32 = 3;
+    const MUL: u32 = 3;
+    let mut ready = vec![0u32; graph.len()];
+    for &id in reach {
+        let chain = |parts: Vec<u32>, step: u32| -> u32 {
+            let mut sorted = parts;
+            sorted.sort_unstable();
+            let mut it = sorted.into_iter();
+            let first = it.next().unwrap_or(0);
+            it.fold(first, |acc, t| acc.max(t) + step)
+        };
+        ready[id.index()] = match graph.node(id) {
+            Node::Const(_) | Node::Var(_) => 0,
+            Node::Sum { terms, .. } => chain(
+                terms
+                    .iter()
+                    .map(|(t, c)| ready[t.index()] + if c.get().abs() == 1.0 { 0 } else { MUL })
+                    .collect(),
+                ADD,
+            ),
+            Node::Product { factors, .. } => {
+                chain(
+                    factors
+                        .iter()
+                        .map(|(f, e)| ready[f.index()] + if e.unsigned_abs() > 1 { MUL } else { 0 })
+                        .collect(),
+                    MUL,
+                ) + if factors.iter().any(|f| f.1 < 0) {
+                    13
+                } else {
+                    0
+                }
+            }
+            Node::Sin(a) | Node::Cos(a) => ready[a.index()] + 40,
+            Node::Tanh(a) | Node::Sqrt(a) | Node::Abs(a) => ready[a.index()] + 20,
+        };
+    }
+    ready
+}
+
+/// Operands in the order they become ready (stable: ties keep the graph's
+/// order), so that a left-to-right sum or product adds the last-computed
+/// operand last and its chain of operations waits on it only once: the
+/// emitted code is latency-bound (a Newton-Euler pass is a chain from the
+/// base to the tip and back), and floating-point operations are never
+/// reordered by the compiler.
+fn by_ready<T: Copy>(operands: impl Iterator<Item = (Id, T)>, ready: &[u32]) -> Vec<(Id, T)> {
+    let mut v: Vec<(Id, T)> = operands.collect();
+    v.sort_by_key(|(id, _)| ready[id.index()]);
+    v
+}
+
 fn emit_impl(
     graph: &Graph,
     roots: &[Id],
@@ -164,6 +223,21 @@ fn emit_impl(
             .for_each_child(|c| l = l.max(level[c.index()] + 1));
         level[id.index()] = l;
     }
+    // Then as late as possible: each node one level before its earliest
+    // user (roots at the last level). Nodes of one level still do not
+    // depend on each other, and a value is computed close to where it is
+    // used, which keeps fewer values alive at once (fewer spills).
+    let last = reach.iter().map(|id| level[id.index()]).max().unwrap_or(0);
+    for &id in &reach {
+        level[id.index()] = last;
+    }
+    for &id in reach.iter().rev() {
+        let l = level[id.index()];
+        graph.node(id).for_each_child(|c| {
+            level[c.index()] = level[c.index()].min(l.saturating_sub(1));
+        });
+    }
+    let ready = ready_times(graph, &reach);
     let mut items: Vec<Item> = Vec::new();
     for &id in &reach {
         let name = ident(id);
@@ -183,8 +257,8 @@ fn emit_impl(
                     });
                     first = false;
                 }
-                for (t, c) in terms.iter() {
-                    let (c, x) = (c.get(), operand(*t));
+                for (t, c) in by_ready(terms.iter().map(|(t, c)| (*t, *c)), &ready) {
+                    let (c, x) = (c.get(), operand(t));
                     let mag = c.abs();
                     let term = if mag == 1.0 {
                         x
@@ -211,10 +285,10 @@ fn emit_impl(
                     num.push(float(c.abs()));
                 }
                 num.extend(
-                    factors
-                        .iter()
+                    by_ready(factors.iter().copied(), &ready)
+                        .into_iter()
                         .filter(|f| !in_den(f.1))
-                        .map(|&(f, e)| power(f, e).0),
+                        .map(|(f, e)| power(f, e).0),
                 );
                 let den: Vec<(TokenStream, bool)> = factors
                     .iter()
@@ -239,13 +313,14 @@ fn emit_impl(
                 match trig[a] {
                     (Some(s), Some(c)) => {
                         if id == s.min(c) {
+                            let pair_level = level[s.index()].min(level[c.index()]);
                             let (si, ci) = (ident(s), ident(c));
                             let expr = match trig_fn {
                                 Trig::Method => quote!(#x.sin_cos()),
                                 Trig::Path(p) => quote!(#p(#x)),
                             };
                             items.push(Item {
-                                level: level[id.index()],
+                                level: pair_level,
                                 pat: quote!((#si, #ci)),
                                 ty: quote!((f64, f64)),
                                 expr,
@@ -340,9 +415,11 @@ mod tests {
         let out = emit(&g, &[e, t, x, k], &names);
         assert_eq!(
             out.lets.to_string(),
-            "let ((t2 , t3) , t12) : ((f64 , f64) , f64) = (x . sin_cos () , y . tanh ()) ; \
+            // Each value as late as its first use allows: tanh(y) beside
+            // the last sum.
+            "let (t2 , t3) : (f64 , f64) = x . sin_cos () ; \
              let t10 : f64 = t2 * t3 * t3 / (y * y * y) ; \
-             let t11 : f64 = 1f64 + y - 0.5f64 * t10 ;"
+             let (t11 , t12) : (f64 , f64) = (1f64 + y - 0.5f64 * t10 , y . tanh ()) ;"
         );
         let roots: Vec<String> = out.roots.iter().map(|r| r.to_string()).collect();
         assert_eq!(roots, ["t11", "t12", "x", "(- 0.5f64)"]);
@@ -350,6 +427,7 @@ mod tests {
 
     #[test]
     fn lone_trig_powers_and_signs() {
+        // The cosine (slowest to compute) is added last.
         let mut g = Graph::new();
         let (x, y) = (g.var(Var(0)), g.var(Var(1)));
         let c = g.cos(x);
@@ -365,9 +443,9 @@ mod tests {
         let out = emit(&g, &[sum, x5, sq, ab], &names);
         assert_eq!(
             out.lets.to_string(),
-            "let (t2 , t3 , t6 , t8 , t10) : (f64 , f64 , f64 , f64 , f64) = \
-             (x . cos () , 1f64 / y , x . powi (5i32) , 2f64 * x , y . abs ()) ; \
-             let (t9 , t12) : (f64 , f64) = (t8 . sqrt () , - 1.5f64 + t2 - t3) ;"
+            "let (t2 , t3 , t8) : (f64 , f64 , f64) = (x . cos () , 1f64 / y , 2f64 * x) ; \
+             let (t6 , t9 , t10 , t12) : (f64 , f64 , f64 , f64) = \
+             (x . powi (5i32) , t8 . sqrt () , y . abs () , - 1.5f64 - t3 + t2) ;"
         );
     }
 

@@ -1,10 +1,13 @@
 //! Time per call of the generated dynamics of the seed robots and the two
 //! industrial arms, cycling over
 //! 1000 pseudo-random states as the Pinocchio anchor does
-//! (shared/anchors/pinocchio/bench.cpp). Run: `cargo bench -p robots`.
+//! (shared/anchors/pinocchio/bench.cpp), in thread CPU time as the anchors
+//! measure (`support/cpu_time.rs`). Run: `cargo bench -p robots --bench dynamics`
+//! (pinned like the anchors: `taskset -c 1 cargo bench ...`).
 
 use std::hint::black_box;
 
+use criterion::measurement::Measurement;
 use criterion::{criterion_group, criterion_main, Criterion};
 use dynamics_runtime::Robot;
 use nalgebra::SVector;
@@ -31,7 +34,14 @@ fn states<const N: usize>() -> Vec<[SVector<f64, N>; 3]> {
         .collect()
 }
 
-fn bench_robot<R: Robot<N>, const N: usize>(c: &mut Criterion, name: &str, r: &R) {
+#[path = "support/cpu_time.rs"]
+mod cpu_time;
+
+fn bench_robot<R: Robot<N>, const N: usize, M: Measurement>(
+    c: &mut Criterion<M>,
+    name: &str,
+    r: &R,
+) {
     let s = states::<N>();
     let mut group = c.benchmark_group(name);
     let mut k = 0usize;
@@ -90,7 +100,7 @@ fn bench_robot<R: Robot<N>, const N: usize>(c: &mut Criterion, name: &str, r: &R
     group.finish();
 }
 
-fn seed_robots(c: &mut Criterion) {
+fn seed_robots(c: &mut Criterion<cpu_time::ThreadCpuTime>) {
     bench_robot(c, "arm3r", &robots::Arm3r::default());
     bench_robot(c, "rrp", &robots::Rrp::rigid());
     bench_robot(c, "mar", &robots::Mar::default());
@@ -98,5 +108,9 @@ fn seed_robots(c: &mut Criterion) {
     bench_robot(c, "panda", &robots::Panda::rigid());
 }
 
-criterion_group!(benches, seed_robots);
+criterion_group! {
+    name = benches;
+    config = Criterion::default().with_measurement(cpu_time::ThreadCpuTime);
+    targets = seed_robots
+}
 criterion_main!(benches);

@@ -1,7 +1,7 @@
 //! Reading a URDF file into `robot!` items.
 
 use std::collections::{HashMap, HashSet};
-use std::path::PathBuf;
+use std::path::{Path, PathBuf};
 
 use proc_macro2::{Literal, Span, TokenStream};
 use quote::quote_spanned;
@@ -37,13 +37,12 @@ pub struct Loaded {
     pub limits: HashMap<String, Limits>,
 }
 
-/// Reads `lit`'s file; every problem goes to `cx`, naming file and element.
-pub fn load(lit: &LitStr, cx: &mut Ctxt) -> Option<Loaded> {
+/// Reads `lit`'s file, relative to `base_dir` (the using crate's
+/// `CARGO_MANIFEST_DIR` when called by the macro); every problem goes to
+/// `cx`, naming file and element.
+pub fn load(lit: &LitStr, base_dir: &Path, cx: &mut Ctxt) -> Option<Loaded> {
     let rel = lit.value();
-    let base = std::env::var_os("CARGO_MANIFEST_DIR")
-        .map(PathBuf::from)
-        .unwrap_or_default();
-    let path = base.join(&rel);
+    let path = base_dir.join(&rel);
     let text = match std::fs::read_to_string(&path) {
         Ok(t) => t,
         Err(e) => {

@@ -10,7 +10,7 @@ use crate::{derive, model, parse};
 fn derived(tokens: proc_macro2::TokenStream) -> derive::Derived {
     let mut cx = Ctxt::default();
     let ast = parse::parse(tokens, &mut cx);
-    let m = model::build(ast, true, &mut cx).expect("valid model");
+    let m = model::build(ast, true, std::path::Path::new("."), &mut cx).expect("valid model");
     assert!(cx.check().is_ok());
     derive::derive(&m)
 }

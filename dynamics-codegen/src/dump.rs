@@ -1,7 +1,8 @@
 //! The derived expression DAG as readable text, for debugging and for
-//! counting operations: when the environment variable `DYNAMICS_IR_DIR` is
-//! set at compile time, `robot!` writes `<DIR>/<Robot>.ir.txt` with the
-//! operation count of every output and the DAG of each.
+//! counting operations: when [`Options::ir_dir`](crate::Options) is set
+//! (by `robot!`: the environment variable `DYNAMICS_IR_DIR` at compile time),
+//! the expansion writes `<DIR>/<Robot>.ir.txt` with the operation count of
+//! every output and the DAG of each.
 
 use std::fmt::Write as _;
 
@@ -39,6 +40,14 @@ pub fn outputs(d: &Derived) -> Vec<(&'static str, Vec<Id>)> {
                 .flatten()
                 .copied()
                 .collect(),
+        ),
+        (
+            "  K = dF/dq alone",
+            d.perturbation.k.iter().flatten().copied().collect(),
+        ),
+        (
+            "  D = dF/dqd alone",
+            d.perturbation.d.iter().flatten().copied().collect(),
         ),
         ("kinetic_energy", vec![d.kinetic]),
         ("potential_energy", vec![d.potential]),
@@ -78,12 +87,10 @@ pub fn text(model: &Model, d: &Derived) -> String {
     out
 }
 
-/// Writes the dump when `DYNAMICS_IR_DIR` is set; errors are ignored (a dump
-/// is a debugging aid and must never break a build).
-pub fn maybe_write(model: &Model, d: &Derived) {
-    if let Some(dir) = std::env::var_os("DYNAMICS_IR_DIR") {
-        let path = std::path::Path::new(&dir).join(format!("{}.ir.txt", model.name));
-        let _ = std::fs::create_dir_all(&dir);
-        let _ = std::fs::write(path, text(model, d));
-    }
+/// Writes the dump into `dir`; errors are ignored (a dump is a debugging aid
+/// and must never break a build).
+pub fn write(dir: &std::path::Path, model: &Model, d: &Derived) {
+    let path = dir.join(format!("{}.ir.txt", model.name));
+    let _ = std::fs::create_dir_all(dir);
+    let _ = std::fs::write(path, text(model, d));
 }

@@ -209,7 +209,14 @@ pub fn derive(model: &Model) -> Derived {
         }
         None => qqt_sum,
     };
-    let perturbation = perturbation::jacobians(&tau, model.params.len(), vars, &mut g);
+    let perturbation = perturbation::jacobians(
+        &tau,
+        &dyn_terms.coriolis,
+        &extras,
+        model.params.len(),
+        vars,
+        &mut g,
+    );
     let mut ke_terms = Vec::new();
     for i in 0..n {
         let qdi = g.var(vars.qd(i));

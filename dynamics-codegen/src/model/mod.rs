@@ -8,6 +8,7 @@
 mod build;
 mod inertia;
 pub mod merge;
+mod normalize;
 pub mod scalar;
 mod transfer;
 mod tree;

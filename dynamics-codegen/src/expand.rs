@@ -9,12 +9,12 @@ use quote::quote;
 
 use crate::ctxt::Ctxt;
 use crate::parse::ast::Item;
-use crate::{derive, dump, emit, model, parse};
+use crate::{derive, dump, emit, model, parse, Options};
 
 /// Expands `robot! { ... }`. Never panics: an internal failure becomes a
 /// compile error.
-pub fn robot(input: TokenStream) -> TokenStream {
-    match catch_unwind(AssertUnwindSafe(|| expand(input))) {
+pub fn robot(input: TokenStream, options: &Options) -> TokenStream {
+    match catch_unwind(AssertUnwindSafe(|| expand(input, options))) {
         Ok(tokens) => tokens,
         Err(_) => quote! {
             ::core::compile_error!("internal error in `robot!` (a bug: please report it with this input)");
@@ -22,7 +22,7 @@ pub fn robot(input: TokenStream) -> TokenStream {
     }
 }
 
-pub(crate) fn expand(input: TokenStream) -> TokenStream {
+pub(crate) fn expand(input: TokenStream, options: &Options) -> TokenStream {
     let mut cx = Ctxt::default();
     let ast = parse::parse(input, &mut cx);
     let complete = cx.is_ok();
@@ -30,11 +30,13 @@ pub(crate) fn expand(input: TokenStream) -> TokenStream {
         Item::Header(h) => Some((h.vis.clone(), h.name.clone())),
         _ => None,
     });
-    let model = model::build(ast, complete, &mut cx);
+    let model = model::build(ast, complete, &options.base_dir, &mut cx);
     match (cx.check(), model) {
         (Ok(()), Some(model)) => {
             let derived = derive::derive(&model);
-            dump::maybe_write(&model, &derived);
+            if let Some(dir) = &options.ir_dir {
+                dump::write(dir, &model, &derived);
+            }
             emit::emit(&model, &derived)
         }
         (Err(err), _) => {
@@ -97,7 +99,7 @@ mod tests {
         fn never_panics(picks in prop::collection::vec(0..FRAGMENTS.len(), 0..14)) {
             let text: String = picks.iter().map(|&i| FRAGMENTS[i]).collect::<Vec<_>>().join(" ");
             if let Ok(tokens) = text.parse::<proc_macro2::TokenStream>() {
-                let out = super::expand(tokens);
+                let out = super::expand(tokens, &crate::Options::default());
                 prop_assert!(!out.is_empty());
             }
         }

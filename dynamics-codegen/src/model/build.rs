@@ -2,6 +2,7 @@
 //! then check the tree (see `tree.rs`).
 
 use std::collections::HashMap;
+use std::path::Path;
 
 use proc_macro2::Span;
 use syn::{Expr, Ident};
@@ -18,7 +19,8 @@ use crate::parse::ast::{Header, Input, Item, JointDecl, LinkDecl, Prop};
 /// `complete` is false when the parse stage lost items: checks that need
 /// every item (a missing header or gravity, unknown links, the tree) are then
 /// skipped, so that one syntax error does not cascade into follow-on ones.
-pub fn build(input: Input, complete: bool, cx: &mut Ctxt) -> Option<Model> {
+/// `urdf = "..."` paths are relative to `base_dir`.
+pub fn build(input: Input, complete: bool, base_dir: &Path, cx: &mut Ctxt) -> Option<Model> {
     let mut header: Option<Header> = None;
     let mut gravity: Option<(Ident, Expr)> = None;
     let mut consts: Vec<(String, f64)> = Vec::new();
@@ -40,7 +42,7 @@ pub fn build(input: Input, complete: bool, cx: &mut Ctxt) -> Option<Model> {
                     cx.error_spanned_by(&kw, "`urdf` is given twice");
                     continue;
                 }
-                match crate::urdf::load(&path, cx) {
+                match crate::urdf::load(&path, base_dir, cx) {
                     Some(l) => {
                         items.extend(l.params.into_iter().map(Item::Param));
                         urdf_links = l.links;
@@ -246,6 +248,7 @@ pub fn build(input: Input, complete: bool, cx: &mut Ctxt) -> Option<Model> {
         joints,
     };
     super::merge::weld_fixed(&mut model);
+    super::normalize::chains(&mut model);
     Some(model)
 }
 

@@ -1,0 +1,71 @@
+//! Perturbation Jacobians of the residual (seed 000, eqs. 4-6):
+//! `F(q, qd, qdd) = A qdd - Q(0) - Qqt1 - Qqt2 - U`. Linearised about a
+//! nominal motion, `A dxdd + D dxd + K dx = dU` with `K = dF/dq` and
+//! `D = dF/dqd`; with U held fixed these are the derivatives of the inverse
+//! dynamics U(q, qd, qdd). Also `dF/dp` for the run-time parameters (the
+//! regressor column of a parameter that enters linearly).
+
+use dynamics_symbolic::{Graph, Id};
+
+use super::Vars;
+
+/// K, D and the parameter sensitivities, as roots in the graph.
+pub struct Perturbation {
+    /// `k[i][j] = dU_i/dq_j`.
+    pub k: Vec<Vec<Id>>,
+    /// `d[i][j] = dU_i/dqd_j`.
+    pub d: Vec<Vec<Id>>,
+    /// `dp[p][i] = dU_i/dparam_p`.
+    pub dp: Vec<Vec<Id>>,
+}
+
+/// Differentiates the inverse dynamics `tau` (one entry per coordinate).
+///
+/// D has a second form: the velocity terms `-(Qqt1 + Qqt2) = C qd` are a
+/// quadratic form `c_i = sum_jk Gamma_ijk qd_j qd_k` with Christoffel
+/// symbols symmetric in j, k, so `dc_i/dqd_j = 2 sum_k Gamma_ijk qd_k =
+/// 2 C_ij`: `D = 2 C - d(extras)/dqd`, `extras` being the damping, friction
+/// and spring forces of Q(0) (diagonal in qd). Whichever form takes fewer
+/// operations (beside K) is kept.
+pub fn jacobians(
+    tau: &[Id],
+    coriolis: &[Vec<Id>],
+    extras: &[Id],
+    n_params: usize,
+    vars: Vars,
+    g: &mut Graph,
+) -> Perturbation {
+    let n = vars.n;
+    let k: Vec<Vec<Id>> = tau
+        .iter()
+        .map(|&t| (0..n).map(|j| g.diff(t, vars.q(j))).collect())
+        .collect();
+    let by_diff: Vec<Vec<Id>> = tau
+        .iter()
+        .map(|&t| (0..n).map(|j| g.diff(t, vars.qd(j))).collect())
+        .collect();
+    let by_coriolis: Vec<Vec<Id>> = (0..n)
+        .map(|i| {
+            (0..n)
+                .map(|j| {
+                    let twice = g.scale(coriolis[i][j], 2.0);
+                    let de = g.diff(extras[i], vars.qd(j));
+                    g.sub(twice, de)
+                })
+                .collect()
+        })
+        .collect();
+    let with_k = |g: &Graph, d: &[Vec<Id>]| {
+        let roots: Vec<Id> = k.iter().chain(d).flatten().copied().collect();
+        g.count_ops(&roots).total()
+    };
+    let d = if with_k(g, &by_coriolis) < with_k(g, &by_diff) {
+        by_coriolis
+    } else {
+        by_diff
+    };
+    let dp = (0..n_params)
+        .map(|p| tau.iter().map(|&t| g.diff(t, vars.param(p))).collect())
+        .collect();
+    Perturbation { k, d, dp }
+}
