@@ -2,17 +2,18 @@
 //! then check the tree (see `tree.rs`).
 
 use std::collections::HashMap;
-use std::path::Path;
+use std::path::{Path, PathBuf};
 
 use proc_macro2::Span;
 use syn::{Expr, Ident};
 
-use super::scalar::{resolve, resolve_array, Scalar, Scope};
-use super::{
-    inertia, transfer, tree, Inertial, Joint, JointForces, JointKind, Link, Model, Param, Point,
-};
+use super::joint::joint;
+use super::link::link;
+use super::scalar::{resolve, resolve_array, Scope};
+use super::{tree, Model, Param};
 use crate::ctxt::Ctxt;
 use crate::parse::ast::{Header, Input, Item, JointDecl, LinkDecl, Prop};
+use crate::urdf::Limits;
 
 /// Builds and validates the model; `None` when any error was recorded.
 ///
@@ -31,34 +32,7 @@ pub fn build(input: Input, complete: bool, base_dir: &Path, cx: &mut Ctxt) -> Op
     let mut constraint_decls = Vec::new();
     let mut symbols: HashMap<String, Span> = HashMap::new();
 
-    // A URDF item stands for the links, joints and parameters it holds.
-    let mut urdf: Option<(std::path::PathBuf, HashMap<String, crate::urdf::Limits>)> = None;
-    let mut items = Vec::with_capacity(input.items.len());
-    let mut urdf_links: Vec<LinkDecl> = Vec::new();
-    for item in input.items {
-        match item {
-            Item::Urdf { kw, path } => {
-                if urdf.is_some() {
-                    cx.error_spanned_by(&kw, "`urdf` is given twice");
-                    continue;
-                }
-                match crate::urdf::load(&path, base_dir, cx) {
-                    Some(l) => {
-                        items.extend(l.params.into_iter().map(Item::Param));
-                        urdf_links = l.links;
-                        items.extend(l.joints.into_iter().map(Item::Joint));
-                        urdf = Some((l.path, l.limits));
-                    }
-                    // Nothing to check the rest against: stop here.
-                    None => return None,
-                }
-            }
-            other => items.push(other),
-        }
-    }
-    if urdf.is_some() {
-        items = override_urdf_links(items, urdf_links);
-    }
+    let (items, urdf) = expand_urdf(input.items, base_dir, cx)?;
     for item in items {
         match item {
             Item::Urdf { .. } => {}
@@ -80,26 +54,14 @@ pub fn build(input: Input, complete: bool, base_dir: &Path, cx: &mut Ctxt) -> Op
                 }
             }
             Item::Const(b) => {
-                let scope = Scope {
-                    consts: &consts,
-                    params: &param_names,
-                    coord: false,
-                    allow_params: false,
-                    joints: &[],
-                };
+                let scope = constants_only(&consts, &param_names);
                 let value = resolve(&b.value, &scope, cx).and_then(|s| s.as_number());
                 if unique_symbol(&b.name, &mut symbols, cx) {
                     consts.push((b.name.to_string(), value.unwrap_or(0.0)));
                 }
             }
             Item::Param(b) => {
-                let scope = Scope {
-                    consts: &consts,
-                    params: &param_names,
-                    coord: false,
-                    allow_params: false,
-                    joints: &[],
-                };
+                let scope = constants_only(&consts, &param_names);
                 let default = resolve(&b.value, &scope, cx).and_then(|s| s.as_number());
                 if unique_symbol(&b.name, &mut symbols, cx) {
                     param_names.push(b.name.to_string());
@@ -135,13 +97,7 @@ pub fn build(input: Input, complete: bool, base_dir: &Path, cx: &mut Ctxt) -> Op
             None
         }
         Some((_, value)) => {
-            let scope = Scope {
-                consts: &consts,
-                params: &param_names,
-                coord: false,
-                allow_params: false,
-                joints: &[],
-            };
+            let scope = constants_only(&consts, &param_names);
             resolve_array::<3>(value, "`gravity`", &scope, cx)
                 .and_then(|g| Some([g[0].as_number()?, g[1].as_number()?, g[2].as_number()?]))
         }
@@ -280,6 +236,52 @@ fn override_urdf_links(items: Vec<Item>, mut urdf_links: Vec<LinkDecl>) -> Vec<I
     out
 }
 
+/// The items with a `urdf = "..."` item replaced by the parameters, links and
+/// joints the file holds (`link` items of the input override the file's
+/// links property by property). `None` when the file cannot be read: there
+/// is nothing to check the rest against.
+#[allow(clippy::type_complexity)]
+fn expand_urdf(
+    input: Vec<Item>,
+    base_dir: &Path,
+    cx: &mut Ctxt,
+) -> Option<(Vec<Item>, Option<(PathBuf, HashMap<String, Limits>)>)> {
+    let mut urdf: Option<(PathBuf, HashMap<String, Limits>)> = None;
+    let mut items = Vec::with_capacity(input.len());
+    let mut urdf_links: Vec<LinkDecl> = Vec::new();
+    for item in input {
+        match item {
+            Item::Urdf { kw, path } => {
+                if urdf.is_some() {
+                    cx.error_spanned_by(&kw, "`urdf` is given twice");
+                    continue;
+                }
+                let l = crate::urdf::load(&path, base_dir, cx)?;
+                items.extend(l.params.into_iter().map(Item::Param));
+                urdf_links = l.links;
+                items.extend(l.joints.into_iter().map(Item::Joint));
+                urdf = Some((l.path, l.limits));
+            }
+            other => items.push(other),
+        }
+    }
+    if urdf.is_some() {
+        items = override_urdf_links(items, urdf_links);
+    }
+    Some((items, urdf))
+}
+
+/// The scope of `const`, `param` and `gravity` values: constants only.
+fn constants_only<'a>(consts: &'a [(String, f64)], params: &'a [String]) -> Scope<'a> {
+    Scope {
+        consts,
+        params,
+        coord: false,
+        allow_params: false,
+        joints: &[],
+    }
+}
+
 fn unique_symbol(name: &Ident, seen: &mut HashMap<String, Span>, cx: &mut Ctxt) -> bool {
     let key = name.to_string();
     if matches!(key.as_str(), "q" | "pi" | "PI") {
@@ -291,292 +293,4 @@ fn unique_symbol(name: &Ident, seen: &mut HashMap<String, Span>, cx: &mut Ctxt) 
         return false;
     }
     true
-}
-
-/// One link: its properties resolved and checked.
-fn link(decl: &LinkDecl, scope: &Scope, points: &mut HashMap<String, Span>, cx: &mut Ctxt) -> Link {
-    let mut mass: Option<(Scalar, &Ident)> = None;
-    let mut com = None;
-    let mut inertia_v = None;
-    let mut out_points = Vec::new();
-    let mut seen: Vec<String> = Vec::new();
-    let mut first_inertial: Option<&Ident> = None;
-    let mut mass_given = false;
-    for prop in &decl.props {
-        match prop {
-            Prop::Value { key, value } => {
-                let k = key.to_string();
-                if seen.contains(&k) {
-                    cx.error_spanned_by(key, format!("`{k}` is given twice"));
-                    continue;
-                }
-                seen.push(k.clone());
-                match k.as_str() {
-                    "mass" => {
-                        mass_given = true;
-                        if let Some(m) = resolve(value, scope, cx) {
-                            if matches!(m.as_number(), Some(v) if v <= 0.0) {
-                                cx.error_spanned_by(value, "mass must be positive");
-                            }
-                            mass = Some((m, key));
-                        }
-                    }
-                    "com" => {
-                        first_inertial.get_or_insert(key);
-                        com = resolve_array::<3>(value, "`com`", scope, cx);
-                    }
-                    "inertia" => {
-                        first_inertial.get_or_insert(key);
-                        inertia_v = inertia_tensor(value, scope, cx);
-                    }
-                    _ => cx.error_spanned_by(
-                        key,
-                        format!("unknown link property `{k}`; expected mass, com, inertia, point or point_mass"),
-                    ),
-                }
-            }
-            Prop::Point { name, at, .. } => {
-                if let Some(p) = point(name, at, None, scope, points, cx) {
-                    out_points.push(p);
-                }
-            }
-            Prop::PointMass { name, mass, at, .. } => {
-                let m = resolve(mass, scope, cx);
-                if matches!(m.as_ref().and_then(Scalar::as_number), Some(v) if v <= 0.0) {
-                    cx.error_spanned_by(mass, "a point mass must be positive");
-                }
-                if let Some(p) = point(name, at, m, scope, points, cx) {
-                    out_points.push(p);
-                }
-            }
-        }
-    }
-    let zero = || Scalar::Num(0.0);
-    let inertial = match (mass, first_inertial) {
-        (None, Some(key)) if !mass_given => {
-            cx.error_spanned_by(
-                key,
-                format!(
-                    "link `{}` has a centre of mass or inertia but no `mass`",
-                    decl.name
-                ),
-            );
-            None
-        }
-        (None, _) => None,
-        (Some((mass, _)), _) => Some(Inertial {
-            mass,
-            com: com.unwrap_or_else(|| [zero(), zero(), zero()]),
-            inertia: inertia_v.unwrap_or_else(|| [zero(), zero(), zero(), zero(), zero(), zero()]),
-        }),
-    };
-    Link {
-        name: decl.name.clone(),
-        parent: None,
-        joint: None,
-        inertial,
-        points: out_points,
-    }
-}
-
-fn point(
-    name: &Ident,
-    at: &Expr,
-    mass: Option<Scalar>,
-    scope: &Scope,
-    points: &mut HashMap<String, Span>,
-    cx: &mut Ctxt,
-) -> Option<Point> {
-    let key = name.to_string();
-    if points.insert(key.clone(), name.span()).is_some() {
-        cx.error_spanned_by(name, format!("duplicate point name `{key}`"));
-        return None;
-    }
-    let at = resolve_array::<3>(at, "a point's position", scope, cx)?;
-    Some(Point {
-        name: name.clone(),
-        at,
-        mass,
-    })
-}
-
-/// `[ixx, iyy, izz]` or `[ixx, iyy, izz, ixy, ixz, iyz]`, positive definite.
-fn inertia_tensor(value: &Expr, scope: &Scope, cx: &mut Ctxt) -> Option<[Scalar; 6]> {
-    let items = super::scalar::array_items(value, "`inertia`", cx)?;
-    let zero = || Scalar::Num(0.0);
-    let t: [Scalar; 6] = match items.len() {
-        3 => {
-            let [a, b, c] = resolve_array::<3>(value, "`inertia`", scope, cx)?;
-            [a, b, c, zero(), zero(), zero()]
-        }
-        6 => resolve_array::<6>(value, "`inertia`", scope, cx)?,
-        n => {
-            cx.error_spanned_by(
-                value,
-                format!("`inertia` must be [ixx, iyy, izz] or [ixx, iyy, izz, ixy, ixz, iyz], found {n} entries"),
-            );
-            return None;
-        }
-    };
-    let nums: Option<Vec<f64>> = t.iter().map(Scalar::as_number).collect();
-    if let Some(n) = nums {
-        let arr = [n[0], n[1], n[2], n[3], n[4], n[5]];
-        if !inertia::positive_definite(arr) {
-            cx.error_spanned_by(value, "inertia tensor is not positive definite");
-            return None;
-        }
-    }
-    Some(t)
-}
-
-/// One joint: kind, placement and forces.
-fn joint(
-    decl: &JointDecl,
-    links: &HashMap<String, usize>,
-    complete: bool,
-    scope: &Scope,
-    cx: &mut Ctxt,
-) -> Option<Joint> {
-    let kind = match decl.kind.to_string().as_str() {
-        "revolute" | "continuous" => Some(JointKind::Revolute),
-        "prismatic" => Some(JointKind::Prismatic),
-        "fixed" => Some(JointKind::Fixed),
-        other => {
-            cx.error_spanned_by(
-                &decl.kind,
-                format!("unsupported joint kind `{other}`; expected revolute, prismatic or fixed"),
-            );
-            None
-        }
-    };
-    let parent = links.get(&decl.parent.to_string()).copied();
-    if parent.is_none() && complete {
-        cx.error_spanned_by(&decl.parent, format!("unknown link `{}`", decl.parent));
-    }
-    let child = links.get(&decl.child.to_string()).copied();
-    if child.is_none() && complete {
-        cx.error_spanned_by(&decl.child, format!("unknown link `{}`", decl.child));
-    }
-
-    let mut values: HashMap<String, (&Ident, &Expr)> = HashMap::new();
-    for prop in &decl.props {
-        match prop {
-            Prop::Value { key, value } => {
-                let k = key.to_string();
-                const KEYS: &[&str] = &[
-                    "transfer",
-                    "origin",
-                    "rpy",
-                    "axis",
-                    "damping",
-                    "coulomb",
-                    "coulomb_smoothing",
-                    "spring",
-                    "rest",
-                ];
-                if !KEYS.contains(&k.as_str()) {
-                    cx.error_spanned_by(
-                        key,
-                        format!(
-                            "unknown joint property `{k}`; expected one of {}",
-                            KEYS.join(", ")
-                        ),
-                    );
-                } else if values.insert(k.clone(), (key, value)).is_some() {
-                    cx.error_spanned_by(key, format!("`{k}` is given twice"));
-                }
-            }
-            Prop::Point { kw, .. } | Prop::PointMass { kw, .. } => {
-                cx.error_spanned_by(kw, "points belong to links, not joints");
-            }
-        }
-    }
-    let kind = kind?;
-    let get = |k: &str| values.get(k).map(|(_, e)| *e);
-    let chain_scope = Scope {
-        coord: kind != JointKind::Fixed,
-        ..*scope
-    };
-    let chain = match (
-        values.get("transfer"),
-        get("origin").or(get("rpy")).or(get("axis")),
-    ) {
-        (Some((key, _)), Some(_)) => {
-            cx.error_spanned_by(
-                *key,
-                "give either `transfer` or `origin`/`rpy`/`axis`, not both",
-            );
-            None
-        }
-        (Some((_, t)), None) => {
-            let chain = transfer::chain(t, &chain_scope, cx)?;
-            let (rot, trans) = transfer::coord_use(&chain);
-            match kind {
-                JointKind::Revolute if !rot => {
-                    cx.error_spanned_by(
-                        *t,
-                        "the joint coordinate `q` must drive a rotation of this revolute joint, e.g. `rot_z(q)`",
-                    );
-                    None
-                }
-                JointKind::Prismatic if !trans => {
-                    cx.error_spanned_by(
-                        *t,
-                        "the joint coordinate `q` must drive a translation of this prismatic joint, e.g. `trans_x(q)`",
-                    );
-                    None
-                }
-                _ => Some(chain),
-            }
-        }
-        (None, _) => transfer::urdf_style(
-            kind,
-            get("origin"),
-            get("rpy"),
-            values.get("axis").map(|(k, e)| (*k, *e)),
-            &decl.name,
-            scope,
-            cx,
-        ),
-    };
-
-    let mut forces = JointForces::default();
-    let scalar = |k: &str, cx: &mut Ctxt| get(k).and_then(|e| resolve(e, scope, cx));
-    if kind == JointKind::Fixed {
-        for k in ["damping", "coulomb", "coulomb_smoothing", "spring", "rest"] {
-            if let Some((key, _)) = values.get(k) {
-                cx.error_spanned_by(*key, "a fixed joint carries no forces");
-            }
-        }
-    } else {
-        forces.damping = scalar("damping", cx);
-        forces.coulomb = scalar("coulomb", cx);
-        forces.coulomb_smoothing = scalar("coulomb_smoothing", cx);
-        if matches!(forces.coulomb_smoothing.as_ref().and_then(Scalar::as_number), Some(v) if v <= 0.0)
-        {
-            if let Some(e) = get("coulomb_smoothing") {
-                cx.error_spanned_by(e, "`coulomb_smoothing` must be positive");
-            }
-        }
-        let stiffness = scalar("spring", cx);
-        let rest = scalar("rest", cx);
-        match (stiffness, rest) {
-            (Some(c), r) => forces.spring = Some((c, r.unwrap_or(Scalar::Num(0.0)))),
-            (None, Some(_)) => {
-                if let Some((key, _)) = values.get("rest") {
-                    cx.error_spanned_by(*key, "`rest` needs a `spring = stiffness;`");
-                }
-            }
-            (None, None) => {}
-        }
-    }
-    Some(Joint {
-        name: decl.name.clone(),
-        kind,
-        parent: parent?,
-        child: child?,
-        chain: chain?,
-        coord: None,
-        forces,
-    })
 }

@@ -7,6 +7,8 @@
 
 mod build;
 mod inertia;
+mod joint;
+mod link;
 pub mod merge;
 mod normalize;
 pub mod scalar;

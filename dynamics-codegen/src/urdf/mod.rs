@@ -13,6 +13,11 @@
 //! `damping_<joint>` / `friction_<joint>` with the file's values as
 //! defaults, so the rigid body alone stays one assignment away.
 
+mod joint;
+mod link;
 mod read;
+mod reader;
+mod tokens;
+mod tree;
 
 pub use read::{load, Limits};
