@@ -1,0 +1,64 @@
+#!/usr/bin/env bash
+# One benchmark sitting: the CasADi anchor, our generated dynamics, the CasADi
+# anchor again and Pinocchio, back to back on one pinned core, then one table
+# of medians and ratios (the machines are noisy: quote ratios from one sitting).
+#
+#   bash scripts/bench-sitting.sh [SHARED]     (SHARED defaults to ../shared)
+#
+# Needs the anchors of SHARED/anchors/pinocchio (their README: `bash build.sh`
+# once, ~5 min, then this script reuses the binaries). Output: the table on
+# stdout and the raw logs in target/sitting/. Takes about 12 minutes.
+set -euo pipefail
+ROOT="$(cd "$(dirname "${BASH_SOURCE[0]}")/.." && pwd)"
+SHARED="$(cd "${1:-$ROOT/../shared}" && pwd)"
+ANCHOR="$SHARED/anchors/pinocchio"
+OUT="$ROOT/target/sitting"
+mkdir -p "$OUT"
+PIN=""; command -v taskset >/dev/null && PIN="taskset -c 1"
+echo "load average before: $(cut -d' ' -f1-3 /proc/loadavg)" | tee "$OUT/load.txt"
+cd "$ROOT"
+cargo bench -p robots --bench dynamics --no-run >/dev/null 2>&1
+bash "$ANCHOR/build.sh" casadi > "$OUT/casadi-before.log" 2>&1
+rm -rf target/criterion/{arm3r,rrp,mar,ur5,panda}
+$PIN cargo bench -p robots --bench dynamics > "$OUT/ours.log" 2>&1
+bash "$ANCHOR/build.sh" casadi > "$OUT/casadi-after.log" 2>&1
+bash "$ANCHOR/build.sh" run > "$OUT/pinocchio.log" 2>&1
+echo "load average after: $(cut -d' ' -f1-3 /proc/loadavg)" | tee -a "$OUT/load.txt"
+python3 - "$ROOT/target/criterion" "$OUT" "${BUILD:-/tmp/anchors/build}/bench_native.csv" <<'PY'
+import csv, glob, json, os, re, sys
+crit, out, pin_csv = sys.argv[1:4]
+ours = {}
+for f in glob.glob(os.path.join(crit, "*", "*", "new", "benchmark.json")):
+    b = json.load(open(f))
+    est = json.load(open(os.path.join(os.path.dirname(f), "estimates.json")))
+    ours[(b["group_id"], b["function_id"].split(" ")[0])] = est["median"]["point_estimate"]
+def casadi(log):
+    d = {}
+    for line in open(log):
+        m = re.match(r"(\w+)_(crba|rnea) n=\d+ median ([\d.]+)", line)
+        if m:
+            d[(m.group(1), m.group(2))] = float(m.group(3))
+    return d
+cb, ca = casadi(os.path.join(out, "casadi-before.log")), casadi(os.path.join(out, "casadi-after.log"))
+pin = {r["robot"]: r for r in csv.DictReader(open(pin_csv))}
+robots = ["arm3r", "rrp", "mar", "ur5", "panda"]
+def row(cells): print("| " + " | ".join(cells) + " |")
+def f(x): return f"{x:.1f}"
+print("\nMedian ns per call, thread CPU time, pinned to core 1. CasADi before / after ours.\n")
+row(["robot", "A (ours)", "CasADi crba", "ratio", "tau (ours)", "CasADi rnea", "ratio", "Pin crba", "Pin rnea"])
+row(["---"] * 9)
+for r in robots:
+    a, t = ours[(r, "mass_matrix")], ours[(r, "inverse_dynamics")]
+    cr = (cb[(r, "crba")], ca[(r, "crba")]); rn = (cb[(r, "rnea")], ca[(r, "rnea")])
+    row([r, f(a), f"{f(cr[0])} / {f(cr[1])}", f"{a/max(cr):.2f}-{a/min(cr):.2f}",
+         f(t), f"{f(rn[0])} / {f(rn[1])}", f"{t/max(rn):.2f}-{t/min(rn):.2f}",
+         pin[r]["crba"], pin[r]["rnea"]])
+print()
+row(["robot", "A+Qqt+Q0 (ours)", "Pin crba+nle", "ratio", "K,D (ours)", "Pin rnea_derivs", "ratio", "fwd (ours)", "Pin aba", "ratio"])
+row(["---"] * 10)
+for r in robots:
+    m = ours[(r, "motion_terms")]; cn = float(pin[r]["crba"]) + float(pin[r]["nle"])
+    k = ours[(r, "perturbation_jacobians")]; d = float(pin[r]["rnea_derivs"])
+    fw = ours[(r, "forward_dynamics")]; ab = float(pin[r]["aba"])
+    row([r, f(m), f(cn), f"{m/cn:.3f}", f(k), f(d), f"{k/d:.2f}", f(fw), f(ab), f"{fw/ab:.2f}"])
+PY
