@@ -4,6 +4,13 @@ use super::tableau::{A, B, C, D, E};
 use super::OdeState;
 
 /// Tolerances and limits of [`Dopri5`].
+///
+/// ```
+/// use dynamics_runtime::ode::Tolerances;
+/// // Tighter than the default, and never a step longer than 1 ms.
+/// let tol = Tolerances { rtol: 1e-10, atol: 1e-12, h_max: 1e-3, ..Default::default() };
+/// assert_eq!(tol.max_steps, Tolerances::default().max_steps);
+/// ```
 #[derive(Debug, Clone, Copy, PartialEq)]
 pub struct Tolerances {
     /// Relative tolerance.
@@ -31,6 +38,18 @@ impl Default for Tolerances {
 }
 
 /// Why an adaptive integration stopped early.
+///
+/// ```
+/// use dynamics_runtime::ode::{Dopri5, OdeError, Tolerances};
+/// use nalgebra::Vector1;
+/// // x' = x^2 from x(0) = 1 blows up at t = 1.
+/// let mut f = |_t: f64, x: &Vector1<f64>| Ok::<_, ()>(x.component_mul(x));
+/// let mut ode = Dopri5::new(0.0, Vector1::new(1.0), Tolerances::default());
+/// match ode.run(&mut f, 2.0, |_| true) {
+///     Err(OdeError::StepSizeCollapsed { t, .. }) => assert!((t - 1.0).abs() < 1e-3),
+///     other => panic!("{other:?}"),
+/// }
+/// ```
 #[derive(Debug, Clone, PartialEq)]
 pub enum OdeError<E> {
     /// The right-hand side failed.
@@ -50,6 +69,21 @@ pub enum OdeError<E> {
 }
 
 /// One accepted step with its dense output.
+///
+/// ```
+/// use dynamics_runtime::ode::{Dopri5, Tolerances};
+/// use nalgebra::Vector1;
+/// // x' = cos t: dense output inside every step matches sin t.
+/// let mut f = |t: f64, _x: &Vector1<f64>| Ok::<_, ()>(Vector1::new(t.cos()));
+/// let mut ode = Dopri5::new(0.0, Vector1::new(0.0), Tolerances::default());
+/// let mut worst = 0.0f64;
+/// ode.run(&mut f, 2.0, |step| {
+///     let mid = step.t0 + 0.5 * step.h;
+///     worst = worst.max((step.at(mid)[0] - mid.sin()).abs());
+///     true
+/// }).unwrap();
+/// assert!(worst < 1e-6);
+/// ```
 #[derive(Debug, Clone, Copy)]
 pub struct Step<S> {
     /// Start time.
@@ -235,6 +269,25 @@ impl<S: OdeState> Dopri5<S> {
 
 /// Locates a sign change of `g` on a step's dense output, to `tol` in time
 /// (Illinois variant of regula falsi). `g0` and `g1` are g at the ends.
+///
+/// ```
+/// use dynamics_runtime::ode::{locate_event, Dopri5, Tolerances};
+/// use nalgebra::Vector2;
+/// // A ball thrown up at 5 m/s: when does it come back to the ground?
+/// let mut f = |_t: f64, y: &Vector2<f64>| Ok::<_, ()>(Vector2::new(y[1], -9.81));
+/// let mut ode = Dopri5::new(0.0, Vector2::new(0.0, 5.0), Tolerances::default());
+/// let mut height = |_t: f64, y: &Vector2<f64>| y[0];
+/// let mut landing = None;
+/// ode.run(&mut f, 2.0, |step| {
+///     let (g0, g1) = (step.y0[0], step.y1[0]);
+///     if step.t0 > 0.0 && g0 > 0.0 && g1 <= 0.0 {
+///         landing = Some(locate_event(step, &mut height, g0, g1, 1e-12));
+///         return false;
+///     }
+///     true
+/// }).unwrap();
+/// assert!((landing.unwrap() - 2.0 * 5.0 / 9.81).abs() < 1e-9);
+/// ```
 pub fn locate_event<S: OdeState>(
     step: &Step<S>,
     g: &mut impl FnMut(f64, &S) -> f64,
