@@ -13,6 +13,19 @@ use super::{differentiate, Measured};
 pub const MIN_SAMPLES: usize = 200;
 
 /// What is wrong with a data file. Every variant names the file.
+///
+/// ```
+/// use dynamics_runtime::data::{read_csv_str, DataError};
+/// let mut text = String::from("t,q_j,tau_j\n");
+/// for k in 0..300 { text.push_str(&format!("{},0,0\n", k as f64 * 1e-3)); }
+/// let bad = text.replacen("0.005,0,0", "0.005,NaN,0", 1);
+/// match read_csv_str(&bad, &["j"], "run.csv") {
+///     Err(e @ DataError::BadNumber { line: 7, .. }) => {
+///         assert_eq!(e.to_string(), "run.csv:7: column `q_j`: `NaN` is not a finite number");
+///     }
+///     other => panic!("{other:?}"),
+/// }
+/// ```
 #[derive(Debug, Error)]
 pub enum DataError {
     /// The file could not be opened or read.
@@ -123,6 +136,17 @@ pub fn read_csv<const N: usize>(path: &Path, joints: &[&str; N]) -> Result<Measu
 }
 
 /// Reads CSV text; `file` names it in errors.
+///
+/// ```
+/// use dynamics_runtime::data::{read_csv_str, DataError};
+/// let mut text = String::from("t,q_elbow,qd_elbow,tau_elbow\n");
+/// for k in 0..300 { text.push_str(&format!("{},0.1,0,2.5\n", k as f64 * 1e-3)); }
+/// let m = read_csv_str(&text, &["elbow"], "inline").unwrap();
+/// assert_eq!((m.len(), m.qd_measured, m.tau[0][0]), (300, true, 2.5));
+/// // A joint the file does not have is named, with the columns it would need.
+/// let err = read_csv_str(&text, &["wrist"], "inline").unwrap_err();
+/// assert!(matches!(err, DataError::MissingColumn { ref column, .. } if column == "q_wrist"));
+/// ```
 pub fn read_csv_str<const N: usize>(
     text: &str,
     joints: &[&str; N],
