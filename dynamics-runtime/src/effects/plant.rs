@@ -143,6 +143,32 @@ pub struct Plant<R, const N: usize> {
 
 /// A running simulation of a [`Plant`]: time, state and backlash contact
 /// sides (-1, 0, +1 per joint).
+///
+/// ```
+/// use dynamics_runtime::effects::{Effect, Plant};
+/// use dynamics_runtime::ode::Tolerances;
+/// dynamics_macros::robot! {
+///     pub robot Wheel;
+///     gravity = [0.0, 0.0, -9.81];
+///     link base;
+///     link disc { mass = 1.0; inertia = [0.1, 0.1, 0.1]; }
+///     joint j = revolute(base -> disc) { transfer = [rot_z(q)]; }
+/// }
+/// // A wheel driven through a gear with 0.01 rad of play: a torque step
+/// // first closes the gap, then the contact takes the load.
+/// let backlash = Effect::Backlash {
+///     joint: 0, half_width: 0.01, motor_inertia: 0.01,
+///     contact_stiffness: 1e4, contact_damping: 5.0,
+/// };
+/// let plant = Plant::new(Wheel::default(), vec![backlash]).unwrap();
+/// let mut sim = plant.start([0.0].into(), [0.0].into());
+/// assert_eq!(sim.contact, [0]); // no gravity about z: centred in the gap
+/// sim.advance(&plant, 0.2, &[1.0].into(), Tolerances::default()).unwrap();
+/// let first = sim.switches[0];
+/// assert_eq!((first.joint, first.contact), (0, 1));
+/// assert!((first.deflection - 0.01).abs() < 1e-9); // located on the edge of the gap
+/// assert!(sim.state.qd[0] > 0.0); // the link moves once in contact
+/// ```
 #[derive(Debug, Clone, PartialEq)]
 pub struct PlantSim<const N: usize> {
     /// Current time.
