@@ -19,6 +19,8 @@ mod kinematics;
 mod lower;
 mod perturbation;
 mod rnea;
+mod rnea_derivatives;
+mod spatial;
 
 use dynamics_symbolic::{Graph, Id, Var};
 
@@ -209,8 +211,10 @@ pub fn derive(model: &Model) -> Derived {
         }
         None => qqt_sum,
     };
+    let analytic = rnea_derivatives::jacobians(model, vars, &mut g);
     let perturbation = perturbation::jacobians(
         &tau,
+        analytic,
         &dyn_terms.coriolis,
         &extras,
         model.params.len(),
