@@ -35,6 +35,8 @@ use crate::model::{Elem, Model};
 struct Node {
     parent: usize,
     step: Step,
+    /// Whether the step follows a coordinate.
+    moving: bool,
 }
 
 /// A coordinate's twist and the motion of the frame before its element,
@@ -53,6 +55,7 @@ pub fn jacobians(model: &Model, vars: Vars, g: &mut Graph) -> Option<(Vec<Vec<Id
     let root = Node {
         parent: 0,
         step: Step::Trans([zero; 3]),
+        moving: false,
     };
     let mut nodes = vec![root];
     let gravity = model.gravity.map(|x| g.constant(-x));
@@ -113,7 +116,11 @@ pub fn jacobians(model: &Model, vars: Vars, g: &mut Graph) -> Option<(Vec<Vec<Id
                 let (v0, a0) = motion[node];
                 let vp = v0.motion_forward(g, &step);
                 let ap = a0.motion_forward(g, &step);
-                nodes.push(Node { parent: node, step });
+                nodes.push(Node {
+                    parent: node,
+                    step,
+                    moving: s.is_some(),
+                });
                 node = nodes.len() - 1;
                 let (v, a) = match s {
                     None => (vp, ap),
@@ -138,27 +145,39 @@ pub fn jacobians(model: &Model, vars: Vars, g: &mut Graph) -> Option<(Vec<Vec<Id
         link_node[l] = node;
     }
 
+    // Each body joins the frame after the last moving element above it
+    // (constant steps fold); bodies fixed to the base drop out.
+    let mut held: Vec<Option<Inertia>> = vec![None; nodes.len()];
+    for (l, &start) in link_node.iter().enumerate() {
+        for body in bodies(model, l, vars, g)? {
+            let (mut node, mut body) = (start, body);
+            while node != 0 && !nodes[node].moving {
+                body = body.back(g, &nodes[node].step);
+                node = nodes[node].parent;
+            }
+            if node != 0 {
+                let sum = match held[node] {
+                    Some(b) => b.add(g, body),
+                    None => body,
+                };
+                held[node] = Some(sum);
+            }
+        }
+    }
+
     // Backward: composite inertia, its rate, momentum and force per node.
     let empty = (Inertia::zero(g), Inertia::zero(g), Sv::zero(g), Sv::zero(g));
     let mut comp = vec![empty; nodes.len()];
-    for l in 0..model.links.len() {
-        if link_node[l] == 0 {
+    for (node, body) in held.iter().enumerate() {
+        let Some(body) = *body else {
             continue;
-        }
-        let (v, a) = motion[link_node[l]];
-        for body in bodies(model, l, vars, g)? {
-            let iv = body.apply(g, v);
-            let ia = body.apply(g, a);
-            let f = v.cross_force(g, iv).add(g, ia);
-            let rate = body.rate(g, v);
-            let c = &mut comp[link_node[l]];
-            *c = (
-                c.0.add(g, body),
-                c.1.add(g, rate),
-                c.2.add(g, iv),
-                c.3.add(g, f),
-            );
-        }
+        };
+        let (v, a) = motion[node];
+        let iv = body.apply(g, v);
+        let ia = body.apply(g, a);
+        let f = v.cross_force(g, iv).add(g, ia);
+        let rate = body.rate(g, v);
+        comp[node] = (body, rate, iv, f);
     }
     for k in (1..nodes.len()).rev() {
         let p = nodes[k].parent;
