@@ -11,6 +11,7 @@ mod body_jacobian;
 mod constraints;
 mod coriolis;
 mod crba;
+mod element_tree;
 mod forces;
 #[cfg(test)]
 mod golden;
