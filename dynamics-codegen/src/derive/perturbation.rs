@@ -25,13 +25,13 @@ pub struct Perturbation {
 /// quadratic form `c_i = sum_jk Gamma_ijk qd_j qd_k` with Christoffel
 /// symbols symmetric in j, k, so `dc_i/dqd_j = 2 sum_k Gamma_ijk qd_k =
 /// 2 C_ij`: `D = 2 C - d(extras)/dqd`, `extras` being the damping, friction
-/// and spring forces of Q(0) (diagonal in qd). Whichever form takes fewer
-/// operations (beside K) is kept.
+/// and spring forces of Q(0) (diagonal in qd).
 ///
 /// `analytic` is (K, D) of the rigid body by the analytic Newton-Euler
 /// derivatives (`rnea_derivatives.rs`), when the model allows them; minus
-/// the derivatives of `extras`, they are a third form, kept per matrix
-/// when cheaper.
+/// the derivatives of `extras` they are another form of each. Of all the
+/// pairs (K, D), the one with the fewest operations together is kept (on a
+/// tie, the exact derivatives).
 pub fn jacobians(
     tau: &[Id],
     analytic: Option<(Vec<Vec<Id>>, Vec<Vec<Id>>)>,
