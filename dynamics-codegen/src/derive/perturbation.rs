@@ -7,6 +7,7 @@
 
 use dynamics_symbolic::{Graph, Id, Var};
 
+use super::rnea_derivatives::Rigid;
 use super::Vars;
 
 /// K, D and the parameter sensitivities, as roots in the graph.
@@ -34,7 +35,7 @@ pub struct Perturbation {
 /// tie, the exact derivatives).
 pub fn jacobians(
     tau: &[Id],
-    analytic: Option<(Vec<Vec<Id>>, Vec<Vec<Id>>)>,
+    analytic: Option<Rigid>,
     coriolis: &[Vec<Id>],
     extras: &[Id],
     n_params: usize,
@@ -63,7 +64,7 @@ pub fn jacobians(
         .collect();
     let mut ks = vec![k];
     let mut ds = vec![by_diff, by_coriolis];
-    if let Some((ka, da)) = analytic {
+    if let Some(Rigid { k: ka, d: da }) = analytic {
         let minus_extras = |g: &mut Graph, m: Vec<Vec<Id>>, var: &dyn Fn(usize) -> Var| {
             m.into_iter()
                 .enumerate()

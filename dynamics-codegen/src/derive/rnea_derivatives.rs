@@ -30,8 +30,17 @@ use super::spatial::{Inertia, Sv};
 use super::Vars;
 use crate::model::Model;
 
-/// (K, D) of the rigid body (no damping, friction or springs), or `None`.
-pub fn jacobians(model: &Model, vars: Vars, g: &mut Graph) -> Option<(Vec<Vec<Id>>, Vec<Vec<Id>>)> {
+/// K and D of the rigid body (no damping, friction or springs).
+pub struct Rigid {
+    /// `k[i][j] = dtau_i/dq_j`.
+    pub k: Vec<Vec<Id>>,
+    /// `d[i][j] = dtau_i/dqd_j`.
+    pub d: Vec<Vec<Id>>,
+}
+
+/// K and D of the rigid body, or `None` when the model is outside
+/// [`tree`]'s reach.
+pub fn jacobians(model: &Model, vars: Vars, g: &mut Graph) -> Option<Rigid> {
     let n = vars.n;
     let zero = g.constant(0.0);
     let Tree {
@@ -141,7 +150,7 @@ pub fn jacobians(model: &Model, vars: Vars, g: &mut Graph) -> Option<(Vec<Vec<Id
             node = parent;
         }
     }
-    Some((k, d))
+    Some(Rigid { k, d })
 }
 
 #[cfg(test)]
@@ -184,7 +193,7 @@ mod tests {
             gravity: true,
         };
         let tau = inverse_dynamics(&m, vars, all, &mut g).expect("Newton-Euler applies");
-        let (k, d) = jacobians(&m, vars, &mut g).expect("the analytic form applies");
+        let Rigid { k, d } = jacobians(&m, vars, &mut g).expect("the analytic form applies");
         let values = |v: Var| 0.3 + 0.7 * (v.0 as f64 * 1.3).sin();
         for i in 0..4 {
             for j in 0..4 {
