@@ -32,7 +32,8 @@ pub struct Perturbation {
 /// derivatives (`rnea_derivatives.rs`), when the model allows them; minus
 /// the derivatives of `extras` they are another form of each. Of all the
 /// pairs (K, D), the one with the fewest operations together is kept (on a
-/// tie, the exact derivatives).
+/// tie, the exact derivatives); the flag says whether it is the analytic
+/// one, in either matrix.
 pub fn jacobians(
     tau: &[Id],
     analytic: Option<Rigid>,
@@ -41,7 +42,7 @@ pub fn jacobians(
     n_params: usize,
     vars: Vars,
     g: &mut Graph,
-) -> Perturbation {
+) -> (Perturbation, bool) {
     let n = vars.n;
     let k: Vec<Vec<Id>> = tau
         .iter()
@@ -93,10 +94,11 @@ pub fn jacobians(
             }
         }
     }
+    let analytic = best.1 == 1 || best.2 == 2;
     let k = ks.swap_remove(best.1);
     let d = ds.swap_remove(best.2);
     let dp = (0..n_params)
         .map(|p| tau.iter().map(|&t| g.diff(t, vars.param(p))).collect())
         .collect();
-    Perturbation { k, d, dp }
+    (Perturbation { k, d, dp }, analytic)
 }
