@@ -11,6 +11,7 @@ mod body_jacobian;
 mod constraints;
 mod coriolis;
 mod crba;
+mod element_tree;
 mod forces;
 #[cfg(test)]
 mod golden;
@@ -19,6 +20,8 @@ mod kinematics;
 mod lower;
 mod perturbation;
 mod rnea;
+mod rnea_derivatives;
+mod spatial;
 
 use dynamics_symbolic::{Graph, Id, Var};
 
@@ -209,14 +212,31 @@ pub fn derive(model: &Model) -> Derived {
         }
         None => qqt_sum,
     };
-    let perturbation = perturbation::jacobians(
-        &tau,
-        &dyn_terms.coriolis,
-        &extras,
-        model.params.len(),
-        vars,
-        &mut g,
-    );
+    // The analytic derivatives are tried on a copy of the graph: where they
+    // lose, the graph (so the emitted code) is as if never tried.
+    let jacobians = |analytic, g: &mut Graph| {
+        let coriolis = &dyn_terms.coriolis;
+        perturbation::jacobians(
+            &tau,
+            analytic,
+            coriolis,
+            &extras,
+            model.params.len(),
+            vars,
+            g,
+        )
+    };
+    let mut trial = g.clone();
+    let perturbation = match rnea_derivatives::jacobians(model, vars, &mut trial) {
+        Some(rigid) => match jacobians(Some(rigid), &mut trial) {
+            (p, true) => {
+                g = trial;
+                p
+            }
+            (_, false) => jacobians(None, &mut g).0,
+        },
+        None => jacobians(None, &mut g).0,
+    };
     let mut ke_terms = Vec::new();
     for i in 0..n {
         let qdi = g.var(vars.qd(i));
