@@ -58,9 +58,9 @@ pub fn perturbation_response<R: Robot<N>, const N: usize>(
 ) -> Result<Perturbed<N>, SimError> {
     check_span(t_end, dt)?;
     type Pair<const N: usize> = (JointState<N>, JointState<N>);
-    let mut eval = |t: f64,
-                    x: &Pair<N>|
-     -> Result<(SVector<f64, N>, SVector<f64, N>, SVector<f64, N>), SimError> {
+    // Nominal acceleration, perturbation acceleration, input.
+    type Rates<const N: usize> = (SVector<f64, N>, SVector<f64, N>, SVector<f64, N>);
+    let mut eval = |t: f64, x: &Pair<N>| -> Result<Rates<N>, SimError> {
         let (n, p) = x;
         let u = input(t, &n.q, &n.qd);
         if let Some(i) = u.iter().position(|v| !v.is_finite()) {

@@ -121,9 +121,10 @@ pub fn simulate_program<R: Constrained<N, M>, const N: usize, const M: usize>(
     gains: Baumgarte,
 ) -> Result<ProgramMotion<N, M>, SimError> {
     check_span(t_end, dt)?;
-    let mut eval = |t: f64,
-                    x: &JointState<N>|
-     -> Result<(SVector<f64, N>, SVector<f64, M>, SVector<f64, N>), SimError> {
+    // Accelerations, multipliers, control forces.
+    type Rates<const N: usize, const M: usize> =
+        (SVector<f64, N>, SVector<f64, M>, SVector<f64, N>);
+    let mut eval = |t: f64, x: &JointState<N>| -> Result<Rates<N, M>, SimError> {
         let u = input(t, &x.q, &x.qd);
         if let Some(i) = u.iter().position(|v| !v.is_finite()) {
             return Err(SimError::Input {

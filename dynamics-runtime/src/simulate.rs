@@ -132,15 +132,14 @@ pub fn simulate<R: Robot<N>, const N: usize>(
                 .map_err(|source| SimError::Dynamics { t, source })?;
             Ok((qdd, tau))
         };
+    /// Accelerations and efforts at a state.
+    type Accel<'a, const N: usize> =
+        dyn FnMut(f64, &JointState<N>) -> Result<(SVector<f64, N>, SVector<f64, N>), SimError> + 'a;
     let mut out = Trajectory::default();
     let record = |t: f64,
                   x: &JointState<N>,
                   out: &mut Trajectory<N>,
-                  accel: &mut dyn FnMut(
-        f64,
-        &JointState<N>,
-    )
-        -> Result<(SVector<f64, N>, SVector<f64, N>), SimError>|
+                  accel: &mut Accel<N>|
      -> Result<(), SimError> {
         let (qdd, tau) = accel(t, x)?;
         out.t.push(t);

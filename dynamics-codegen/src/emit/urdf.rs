@@ -34,7 +34,10 @@ pub fn emit(model: &Model) -> TokenStream {
             const _: &str = ::core::include_str!(#p);
         )
     });
+    // The file's numbers as written: 6.28318530718 is a limit, not a
+    // misspelt TAU.
     quote! {
+        #[allow(clippy::approx_constant, clippy::excessive_precision)]
         impl #name {
             /// Lower position limits (URDF `<limit lower>`; -inf where none).
             pub const LOWER: [f64; #n] = [#(#lower),*];
