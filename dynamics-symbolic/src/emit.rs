@@ -89,7 +89,7 @@ enum Trig<'a> {
 /// assert_eq!(out.roots[1].to_string(), "t1");
 /// ```
 pub fn emit(graph: &Graph, roots: &[Id], var: &dyn Fn(Var) -> TokenStream) -> Emitted {
-    emit_impl(graph, roots, var, Trig::Method)
+    emit_impl(graph, roots, var, Trig::Method, None)
 }
 
 /// [`emit()`] with the function that computes `(sin x, cos x)` given as a
@@ -110,7 +110,35 @@ pub fn emit_with(
     var: &dyn Fn(Var) -> TokenStream,
     sin_cos: &TokenStream,
 ) -> Emitted {
-    emit_impl(graph, roots, var, Trig::Path(sin_cos))
+    emit_impl(graph, roots, var, Trig::Path(sin_cos), None)
+}
+
+/// [`emit_with()`] that also writes every term `k * x` of a sum after the
+/// first as one fused multiply-add `mul_add(x, k, rest)` (`x * k + rest`),
+/// `mul_add` given as a path: one rounding and one instruction where the
+/// target has FMA, which rustc never contracts by itself (C compilers
+/// do by default).
+///
+/// ```
+/// use dynamics_symbolic::{emit_fused, Graph, Var};
+/// let mut g = Graph::new();
+/// let (x, y) = (g.var(Var(0)), g.var(Var(1)));
+/// let k = g.constant(2.0);
+/// let kx = g.mul(k, x);
+/// let one = g.constant(1.0);
+/// let e = g.sum(&[kx, y, one]);
+/// let names = |v: Var| if v.0 == 0 { quote::quote!(x) } else { quote::quote!(y) };
+/// let out = emit_fused(&g, &[e], &names, &quote::quote!(sc), &quote::quote!(fma));
+/// assert_eq!(out.lets.to_string(), "let t5 : f64 = fma (x , 2f64 , 1f64) + y ;");
+/// ```
+pub fn emit_fused(
+    graph: &Graph,
+    roots: &[Id],
+    var: &dyn Fn(Var) -> TokenStream,
+    sin_cos: &TokenStream,
+    mul_add: &TokenStream,
+) -> Emitted {
+    emit_impl(graph, roots, var, Trig::Path(sin_cos), Some(mul_add))
 }
 
 /// One binding: depth, pattern, type, expression.
@@ -182,6 +210,7 @@ fn emit_impl(
     roots: &[Id],
     var: &dyn Fn(Var) -> TokenStream,
     trig_fn: Trig<'_>,
+    mul_add: Option<&TokenStream>,
 ) -> Emitted {
     let reach = graph.reachable(roots);
     // sin/cos pairs: argument -> (sin id, cos id)
@@ -244,37 +273,11 @@ fn emit_impl(
         let expr = match graph.node(id) {
             Node::Const(_) | Node::Var(_) => continue,
             Node::Sum { constant, terms } => {
-                let mut out = TokenStream::new();
-                let mut first = true;
-                let k = constant.get();
-                if k != 0.0 {
-                    // Leading: a bare `-1.5f64` needs no parentheses.
-                    out.extend(if k < 0.0 && k.is_finite() {
-                        let lit = Literal::f64_suffixed(-k);
-                        quote!(-#lit)
-                    } else {
-                        float(k)
-                    });
-                    first = false;
+                let terms = by_ready(terms.iter().map(|(t, c)| (*t, c.get())), &ready);
+                match mul_add {
+                    Some(f) => fused_sum(constant.get(), &terms, &operand, f),
+                    None => plain_sum(constant.get(), &terms, &operand),
                 }
-                for (t, c) in by_ready(terms.iter().map(|(t, c)| (*t, *c)), &ready) {
-                    let (c, x) = (c.get(), operand(t));
-                    let mag = c.abs();
-                    let term = if mag == 1.0 {
-                        x
-                    } else {
-                        let k = float(mag);
-                        quote!(#k * #x)
-                    };
-                    out.extend(match (first, c < 0.0) {
-                        (true, false) => term,
-                        (true, true) => quote!(-#term),
-                        (false, false) => quote!(+ #term),
-                        (false, true) => quote!(- #term),
-                    });
-                    first = false;
-                }
-                out
             }
             Node::Product { coef, factors } => {
                 let c = coef.get();
@@ -378,6 +381,67 @@ fn emit_impl(
     }
 }
 
+/// `k + a - 2.5 * b`: the leading constant, then the terms in order.
+fn plain_sum(k: f64, terms: &[(Id, f64)], operand: &dyn Fn(Id) -> TokenStream) -> TokenStream {
+    let mut out = TokenStream::new();
+    let mut first = true;
+    if k != 0.0 {
+        // Leading: a bare `-1.5f64` needs no parentheses.
+        out.extend(if k < 0.0 && k.is_finite() {
+            let lit = Literal::f64_suffixed(-k);
+            quote!(-#lit)
+        } else {
+            float(k)
+        });
+        first = false;
+    }
+    for &(t, c) in terms {
+        let x = operand(t);
+        let mag = c.abs();
+        let term = if mag == 1.0 {
+            x
+        } else {
+            let k = float(mag);
+            quote!(#k * #x)
+        };
+        out.extend(match (first, c < 0.0) {
+            (true, false) => term,
+            (true, true) => quote!(-#term),
+            (false, false) => quote!(+ #term),
+            (false, true) => quote!(- #term),
+        });
+        first = false;
+    }
+    out
+}
+
+/// [`plain_sum`] with each scaled term after the first folded into a
+/// multiply-add: `f(b, -2.5f64, k + a)` for `k + a - 2.5 * b`.
+fn fused_sum(
+    k: f64,
+    terms: &[(Id, f64)],
+    operand: &dyn Fn(Id) -> TokenStream,
+    f: &TokenStream,
+) -> TokenStream {
+    let (mut acc, rest) = match (k != 0.0, terms) {
+        (false, []) => return float(0.0),
+        (true, _) => (plain_sum(k, &[], operand), terms),
+        (false, [first, rest @ ..]) => (plain_sum(0.0, &[*first], operand), rest),
+    };
+    for &(t, c) in rest {
+        let x = operand(t);
+        acc = if c == 1.0 {
+            quote!(#acc + #x)
+        } else if c == -1.0 {
+            quote!(#acc - #x)
+        } else {
+            let c = float(c);
+            quote!(#f(#x, #c, #acc))
+        };
+    }
+    acc
+}
+
 /// `a * b * c`
 fn join_mul(factors: Vec<TokenStream>) -> TokenStream {
     let mut out = TokenStream::new();
@@ -477,6 +541,22 @@ mod tests {
             out.lets.to_string(),
             "let ((t1 , t2) , t4) : ((f64 , f64) , f64) = (k :: sc (x) , k :: sc (y) . 1) ; \
              let t5 : f64 = t1 * t2 * t4 ;"
+        );
+    }
+
+    #[test]
+    fn fused_sums_fold_scaled_terms_after_the_first() {
+        let mut g = Graph::new();
+        let (x, y, z) = (g.var(Var(0)), g.var(Var(1)), g.var(Var(2)));
+        let (k2, k3) = (g.constant(2.0), g.constant(-3.0));
+        let (a, b) = (g.mul(k2, x), g.mul(k3, y));
+        let mz = g.neg(z);
+        // No constant: the first term is a plain product.
+        let e = g.sum(&[a, b, mz]);
+        let out = emit_fused(&g, &[e], &names, &quote!(sc), &quote!(f));
+        assert_eq!(
+            out.lets.to_string(),
+            "let t9 : f64 = f (y , (- 3f64) , 2f64 * x) - z ;"
         );
     }
 

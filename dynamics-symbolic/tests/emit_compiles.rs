@@ -9,7 +9,7 @@ use std::fmt::Write as _;
 use std::path::PathBuf;
 use std::process::Command;
 
-use dynamics_symbolic::{emit, emit_with, Graph, Id, Var};
+use dynamics_symbolic::{emit, emit_fused, emit_with, Graph, Id, Var};
 use proptest::strategy::{Strategy, ValueTree};
 use proptest::test_runner::TestRunner;
 use quote::quote;
@@ -32,11 +32,18 @@ fn emitted_code_compiles_cleanly_and_agrees_with_eval() {
         let id = common::build(&tree, &mut g);
         let d = g.diff(id, Var(k % 3));
         let roots: Vec<Id> = vec![id, d];
-        // Half through the default, half through a path for sin_cos.
-        let out = if k % 2 == 0 {
-            emit(&g, &roots, &var)
-        } else {
-            emit_with(&g, &roots, &var, &quote!(f64::sin_cos))
+        // A third through the default, a third through a path for sin_cos,
+        // a third also with fused multiply-adds.
+        let out = match k % 3 {
+            0 => emit(&g, &roots, &var),
+            1 => emit_with(&g, &roots, &var, &quote!(f64::sin_cos)),
+            _ => emit_fused(
+                &g,
+                &roots,
+                &var,
+                &quote!(f64::sin_cos),
+                &quote!(f64::mul_add),
+            ),
         };
         let (lets, r0, r1) = (&out.lets, &out.roots[0], &out.roots[1]);
         let _ = writeln!(
