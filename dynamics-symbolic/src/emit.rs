@@ -435,7 +435,13 @@ fn fused_sum(
         } else if c == -1.0 {
             quote!(#acc - #x)
         } else {
-            let c = float(c);
+            // An argument needs no parentheses around `-3f64`.
+            let c = if c < 0.0 && c.is_finite() {
+                let lit = Literal::f64_suffixed(-c);
+                quote!(-#lit)
+            } else {
+                float(c)
+            };
             quote!(#f(#x, #c, #acc))
         };
     }
@@ -556,7 +562,7 @@ mod tests {
         let out = emit_fused(&g, &[e], &names, &quote!(sc), &quote!(f));
         assert_eq!(
             out.lets.to_string(),
-            "let t9 : f64 = f (y , (- 3f64) , 2f64 * x) - z ;"
+            "let t9 : f64 = f (y , - 3f64 , 2f64 * x) - z ;"
         );
     }
 
