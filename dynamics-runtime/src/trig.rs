@@ -61,13 +61,90 @@ pub fn sin_cos(x: f64) -> (f64, f64) {
     if !(x.abs() < REDUCE_LIMIT) {
         return x.sin_cos();
     }
+    let (bits, s, c) = reduced(x);
+    let quadrant = (bits & 3) as usize;
+    // Quadrant 0..3: (s, c), (c, -s), (-s, -c), (-c, s), as s a + c b with
+    // a, b in {0, 1, -1} (exact): the factors depend only on n, so they are
+    // ready before s and c, and neither a jump (the quadrant of a joint
+    // angle is random) nor a trip through integer registers is on the path.
+    (
+        mul_add(s, SIN_S[quadrant], c * SIN_C[quadrant]),
+        mul_add(s, COS_S[quadrant], c * COS_C[quadrant]),
+    )
+}
+
+/// Lanes of [`sin_cos_n`]: four f64, one AVX2 register.
+const LANES: usize = 4;
+
+/// `(sin x_i, cos x_i)` of several angles at once, as [`sin_cos`] computes
+/// them (same results), four lanes at a time: the compiler turns each
+/// operation into one vector instruction, so all the joint angles of a
+/// robot cost about two scalar `sin_cos` in instructions.
+///
+/// ```
+/// let (s, c) = dynamics_runtime::trig::sin_cos_n([0.5, -2.0, 3.0]);
+/// assert_eq!((s[1], c[1]), dynamics_runtime::trig::sin_cos(-2.0));
+/// assert!((c[2] - 3.0f64.cos()).abs() <= 2e-16);
+/// ```
+#[inline]
+pub fn sin_cos_n<const N: usize>(x: [f64; N]) -> ([f64; N], [f64; N]) {
+    let mut sin = [0.0; N];
+    let mut cos = [0.0; N];
+    if x.iter().any(|v| !(v.abs() < REDUCE_LIMIT)) {
+        for i in 0..N {
+            (sin[i], cos[i]) = sin_cos(x[i]);
+        }
+        return (sin, cos);
+    }
+    let mut k = 0;
+    while k < N {
+        let mut lane = [0.0; LANES];
+        for (j, l) in lane.iter_mut().enumerate() {
+            *l = if k + j < N { x[k + j] } else { 0.0 };
+        }
+        let (s, c) = lanes(lane);
+        for j in 0..LANES.min(N - k) {
+            sin[k + j] = s[j];
+            cos[k + j] = c[j];
+        }
+        k += LANES;
+    }
+    (sin, cos)
+}
+
+/// [`sin_cos`] lane-wise, the quadrant applied with bit masks (vector
+/// integer operations; a table lookup per lane would be a gather).
+#[inline(always)]
+fn lanes(x: [f64; LANES]) -> ([f64; LANES], [f64; LANES]) {
+    let mut bits = [0u64; LANES];
+    let mut s = [0.0; LANES];
+    let mut c = [0.0; LANES];
+    for j in 0..LANES {
+        (bits[j], s[j], c[j]) = reduced(x[j]);
+    }
+    let mut sin = [0.0; LANES];
+    let mut cos = [0.0; LANES];
+    for j in 0..LANES {
+        let swap = 0u64.wrapping_sub(bits[j] & 1);
+        let (sb, cb) = (s[j].to_bits(), c[j].to_bits());
+        let sin_sign = ((bits[j] >> 1) & 1) << 63;
+        let cos_sign = ((bits[j].wrapping_add(1) >> 1) & 1) << 63;
+        sin[j] = f64::from_bits(((cb & swap) | (sb & !swap)) ^ sin_sign);
+        cos[j] = f64::from_bits(((sb & swap) | (cb & !swap)) ^ cos_sign);
+    }
+    (sin, cos)
+}
+
+/// For |x| < [`REDUCE_LIMIT`]: the bits whose last two are the quadrant n
+/// mod 4 (x = n pi/2 + r, |r| <= pi/4), sin r and cos r.
+#[inline(always)]
+fn reduced(x: f64) -> (u64, f64, f64) {
     // Round x 2/pi to the nearest integer n by adding 1.5 * 2^52: the sum's
     // last mantissa bits are n itself (two's complement), so neither a libm
     // `round` call (baseline x86-64 has no rounding instruction) nor an
     // integer conversion is needed.
     let shifted = mul_add(x, FRAC_2_PI, ROUNDER);
     let n = shifted - ROUNDER;
-    let quadrant = (shifted.to_bits() & 3) as usize;
     let r = reduce(x, n);
     let z = r * r;
     // The kernels' polynomials in Estrin's form (pairs, then z^2 and z^4),
@@ -92,14 +169,7 @@ pub fn sin_cos(x: f64) -> (f64, f64) {
     let hz = 0.5 * z;
     let w = 1.0 - hz;
     let c = w + mul_add(z2, pc, (1.0 - w) - hz);
-    // Quadrant 0..3: (s, c), (c, -s), (-s, -c), (-c, s), as s a + c b with
-    // a, b in {0, 1, -1} (exact): the factors depend only on n, so they are
-    // ready before s and c, and neither a jump (the quadrant of a joint
-    // angle is random) nor a trip through integer registers is on the path.
-    (
-        mul_add(s, SIN_S[quadrant], c * SIN_C[quadrant]),
-        mul_add(s, COS_S[quadrant], c * COS_C[quadrant]),
-    )
+    (shifted.to_bits(), s, c)
 }
 
 /// Factors of s and c in sin x and cos x, by quadrant.
@@ -129,7 +199,7 @@ fn reduce(x: f64, n: f64) -> f64 {
 
 #[cfg(test)]
 mod tests {
-    use super::sin_cos;
+    use super::{sin_cos, sin_cos_n};
 
     fn ulps(a: f64, b: f64) -> f64 {
         (a - b).abs() / f64::EPSILON / b.abs().max(f64::MIN_POSITIVE)
@@ -172,6 +242,24 @@ mod tests {
             }
         }
         assert!(worst < 4.0, "{worst} ulp");
+    }
+
+    #[test]
+    fn lanes_give_the_scalar_results() {
+        let mut x = -40.0;
+        while x < 40.0 {
+            let xs = [x, x + 0.37, -x * 1.9, x * 0.11, x - 2.5, x + 7.0, 0.5 * x];
+            let (s, c) = sin_cos_n(xs);
+            for i in 0..xs.len() {
+                assert_eq!((s[i], c[i]), sin_cos(xs[i]), "x = {}", xs[i]);
+            }
+            x += 0.013;
+        }
+        let (s, c) = sin_cos_n([1.0, 1e12, f64::NAN]);
+        assert_eq!((s[0], c[0]), sin_cos(1.0));
+        assert_eq!((s[1], c[1]), 1e12f64.sin_cos());
+        assert!(s[2].is_nan() && c[2].is_nan());
+        assert_eq!(sin_cos_n::<0>([]), ([], []));
     }
 
     #[test]
