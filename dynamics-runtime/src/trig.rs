@@ -7,21 +7,22 @@
 //! fdlibm kernels (`__kernel_sin`, `__kernel_cos`: minimax polynomials on
 //! [-pi/4, pi/4], error below 1 ulp, in Estrin's form with fused
 //! multiply-adds where the target has them) and a Cody-Waite reduction (pi/2
-//! in two parts with FMA, in fdlibm's three without), accurate for
+//! in three doubles with FMA, in fdlibm's parts without), accurate for
 //! |x| < 2^20 pi/2. Larger or non-finite arguments go to `std`.
 
 use core::f64::consts::FRAC_2_PI;
 
 use crate::fma::mul_add;
 
-// pi/2 split in three parts, each with trailing zero bits so that n * part
-// is exact for the quotients used here (fdlibm's pio2_1, pio2_2, pio2_3).
+// Without FMA: pi/2 in parts with trailing zero bits, so that n * part is
+// exact for the quotients used here (fdlibm's pio2_1, pio2_2), and the rest.
 #[cfg(not(any(target_feature = "fma", target_arch = "aarch64")))]
 const PIO2_1: f64 = 1.570_796_326_734_125_614_17e+00;
 #[cfg(not(any(target_feature = "fma", target_arch = "aarch64")))]
 const PIO2_2: f64 = 6.077_100_506_303_965_976_60e-11;
+/// pi/2 - PIO2_1 - PIO2_2 (fdlibm's pio2_2t).
 #[cfg(not(any(target_feature = "fma", target_arch = "aarch64")))]
-const PIO2_3: f64 = 2.022_266_248_711_166_455_80e-21;
+const PIO2_2T: f64 = 2.022_266_248_795_950_631_54e-21;
 // With FMA: pi/2 = FRAC_PI_2 + PIO2_LO + PIO2_TAIL, each the double
 // nearest the rest.
 #[cfg(any(target_feature = "fma", target_arch = "aarch64"))]
@@ -86,15 +87,14 @@ const LANES: usize = 4;
 /// assert_eq!((s[1], c[1]), dynamics_runtime::trig::sin_cos(-2.0));
 /// assert!((c[2] - 3.0f64.cos()).abs() <= 2e-16);
 /// ```
-#[inline]
+// Always inlined: as a call, its arguments and results go through memory
+// and the call itself sits at the head of every output's critical path.
+#[inline(always)]
 pub fn sin_cos_n<const N: usize>(x: [f64; N]) -> ([f64; N], [f64; N]) {
     let mut sin = [0.0; N];
     let mut cos = [0.0; N];
     if x.iter().any(|v| !(v.abs() < REDUCE_LIMIT)) {
-        for i in 0..N {
-            (sin[i], cos[i]) = sin_cos(x[i]);
-        }
-        return (sin, cos);
+        return one_by_one(x);
     }
     let mut k = 0;
     while k < N {
@@ -108,6 +108,19 @@ pub fn sin_cos_n<const N: usize>(x: [f64; N]) -> ([f64; N], [f64; N]) {
             cos[k + j] = c[j];
         }
         k += LANES;
+    }
+    (sin, cos)
+}
+
+/// [`sin_cos`] of each angle: the rare case of a huge or non-finite one,
+/// kept out of line.
+#[cold]
+#[inline(never)]
+fn one_by_one<const N: usize>(x: [f64; N]) -> ([f64; N], [f64; N]) {
+    let mut sin = [0.0; N];
+    let mut cos = [0.0; N];
+    for i in 0..N {
+        (sin[i], cos[i]) = sin_cos(x[i]);
     }
     (sin, cos)
 }
@@ -184,8 +197,10 @@ fn reduce(x: f64, n: f64) -> f64 {
     // A fused multiply-add rounds x - n part once, after the exact
     // product, so the parts need no trailing zero bits: full doubles, whose
     // three terms hold pi/2 to 2^-160 (r to about an ulp of itself, also
-    // near multiples of pi/2, where it is tiny). Without FMA, fdlibm's three
-    // parts keep every product exact.
+    // near multiples of pi/2, where it is tiny). Without FMA, fdlibm's
+    // parts keep every product exact, and the rounding error of the second
+    // subtraction is carried into the third (fdlibm's rem_pio2 "2nd
+    // iteration"), without which a tiny r loses most of its digits.
     #[cfg(any(target_feature = "fma", target_arch = "aarch64"))]
     {
         let r = mul_add(-n, core::f64::consts::FRAC_PI_2, x);
@@ -193,7 +208,10 @@ fn reduce(x: f64, n: f64) -> f64 {
     }
     #[cfg(not(any(target_feature = "fma", target_arch = "aarch64")))]
     {
-        ((x - n * PIO2_1) - n * PIO2_2) - n * PIO2_3
+        let t = x - n * PIO2_1;
+        let w = n * PIO2_2;
+        let r = t - w;
+        r - (n * PIO2_2T - ((t - r) - w))
     }
 }
 
