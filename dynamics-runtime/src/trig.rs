@@ -93,7 +93,7 @@ const LANES: usize = 4;
 pub fn sin_cos_n<const N: usize>(x: [f64; N]) -> ([f64; N], [f64; N]) {
     let mut sin = [0.0; N];
     let mut cos = [0.0; N];
-    if x.iter().any(|v| !(v.abs() < REDUCE_LIMIT)) {
+    if !x.iter().all(|v| v.abs() < REDUCE_LIMIT) {
         return one_by_one(x);
     }
     let mut k = 0;
@@ -103,10 +103,9 @@ pub fn sin_cos_n<const N: usize>(x: [f64; N]) -> ([f64; N], [f64; N]) {
             *l = if k + j < N { x[k + j] } else { 0.0 };
         }
         let (s, c) = lanes(lane);
-        for j in 0..LANES.min(N - k) {
-            sin[k + j] = s[j];
-            cos[k + j] = c[j];
-        }
+        let m = LANES.min(N - k);
+        sin[k..k + m].copy_from_slice(&s[..m]);
+        cos[k..k + m].copy_from_slice(&c[..m]);
         k += LANES;
     }
     (sin, cos)
