@@ -90,10 +90,11 @@ const LANES: usize = 4;
 // Always inlined: as a call, its arguments and results go through memory
 // and the call itself sits at the head of every output's critical path.
 #[inline(always)]
+#[allow(clippy::neg_cmp_op_on_partial_ord)] // NaN must take the slow path
 pub fn sin_cos_n<const N: usize>(x: [f64; N]) -> ([f64; N], [f64; N]) {
     let mut sin = [0.0; N];
     let mut cos = [0.0; N];
-    if !x.iter().all(|v| v.abs() < REDUCE_LIMIT) {
+    if x.iter().any(|v| !(v.abs() < REDUCE_LIMIT)) {
         return one_by_one(x);
     }
     let mut k = 0;
@@ -103,9 +104,14 @@ pub fn sin_cos_n<const N: usize>(x: [f64; N]) -> ([f64; N], [f64; N]) {
             *l = if k + j < N { x[k + j] } else { 0.0 };
         }
         let (s, c) = lanes(lane);
-        let m = LANES.min(N - k);
-        sin[k..k + m].copy_from_slice(&s[..m]);
-        cos[k..k + m].copy_from_slice(&c[..m]);
+        // Element by element, as the test above is a negated `any`: the
+        // clippy-preferred forms (`copy_from_slice` of ranges, `all`) made
+        // UR5's inertia matrix 40 % slower (74 -> 104 ns).
+        #[allow(clippy::manual_memcpy)]
+        for j in 0..LANES.min(N - k) {
+            sin[k + j] = s[j];
+            cos[k + j] = c[j];
+        }
         k += LANES;
     }
     (sin, cos)
