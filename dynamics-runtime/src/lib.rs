@@ -23,6 +23,7 @@ pub mod data;
 pub mod diagnose;
 pub mod effects;
 mod error;
+pub mod fma;
 pub mod ode;
 mod params;
 mod perturbation;

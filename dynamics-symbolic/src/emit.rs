@@ -89,7 +89,7 @@ enum Trig<'a> {
 /// assert_eq!(out.roots[1].to_string(), "t1");
 /// ```
 pub fn emit(graph: &Graph, roots: &[Id], var: &dyn Fn(Var) -> TokenStream) -> Emitted {
-    emit_impl(graph, roots, var, Trig::Method)
+    emit_impl(graph, roots, var, Trig::Method, None)
 }
 
 /// [`emit()`] with the function that computes `(sin x, cos x)` given as a
@@ -110,7 +110,65 @@ pub fn emit_with(
     var: &dyn Fn(Var) -> TokenStream,
     sin_cos: &TokenStream,
 ) -> Emitted {
-    emit_impl(graph, roots, var, Trig::Path(sin_cos))
+    emit_impl(graph, roots, var, Trig::Path(sin_cos), None)
+}
+
+/// Paths of the functions [`emit_fused()`] calls.
+#[derive(Clone, Copy, Debug)]
+pub struct Calls<'a> {
+    /// `(sin x, cos x)` of one angle, called as `sin_cos(x)`.
+    pub sin_cos: &'a TokenStream,
+    /// `([sin x_i; n], [cos x_i; n])` of an array of angles, called as
+    /// `sin_cos_n([x, y, z])`: used for the variables whose sine or cosine
+    /// is needed, when there are two or more.
+    pub sin_cos_n: &'a TokenStream,
+    /// `a * b + c`, called as `mul_add(a, b, c)`.
+    pub mul_add: &'a TokenStream,
+}
+
+/// [`emit_with()`] that also writes every term `k * x` of a sum after the
+/// first as one fused multiply-add `mul_add(x, k, rest)` (`x * k + rest`):
+/// one rounding and one instruction where the target has FMA, which rustc
+/// never contracts by itself (C compilers do by default); and that computes
+/// the sines and cosines of all variables in one `sin_cos_n` call, which
+/// can share vector instructions.
+///
+/// ```
+/// use dynamics_symbolic::{emit_fused, Calls, Graph, Var};
+/// use quote::quote;
+/// let mut g = Graph::new();
+/// let (x, y) = (g.var(Var(0)), g.var(Var(1)));
+/// let k = g.constant(2.0);
+/// let kx = g.mul(k, x);
+/// let one = g.constant(1.0);
+/// let e = g.sum(&[kx, y, one]);
+/// let names = |v: Var| if v.0 == 0 { quote!(x) } else { quote!(y) };
+/// let calls = Calls { sin_cos: &quote!(sc), sin_cos_n: &quote!(scn), mul_add: &quote!(fma) };
+/// let out = emit_fused(&g, &[e], &names, &calls);
+/// assert_eq!(out.lets.to_string(), "let t5 : f64 = fma (x , 2f64 , 1f64) + y ;");
+///
+/// let (sx, cy) = (g.sin(x), g.cos(y));
+/// let p = g.mul(sx, cy);
+/// let out = emit_fused(&g, &[p], &names, &calls);
+/// assert_eq!(
+///     out.lets.to_string(),
+///     "let ([t6 , _] , [_ , t7]) : ([f64 ; 2usize] , [f64 ; 2usize]) = scn ([x , y]) ; \
+///      let t8 : f64 = t6 * t7 ;"
+/// );
+/// ```
+pub fn emit_fused(
+    graph: &Graph,
+    roots: &[Id],
+    var: &dyn Fn(Var) -> TokenStream,
+    calls: &Calls,
+) -> Emitted {
+    emit_impl(
+        graph,
+        roots,
+        var,
+        Trig::Path(calls.sin_cos),
+        Some((calls.mul_add, calls.sin_cos_n)),
+    )
 }
 
 /// One binding: depth, pattern, type, expression.
@@ -182,7 +240,9 @@ fn emit_impl(
     roots: &[Id],
     var: &dyn Fn(Var) -> TokenStream,
     trig_fn: Trig<'_>,
+    fast: Option<(&TokenStream, &TokenStream)>,
 ) -> Emitted {
+    let mul_add = fast.map(|f| f.0);
     let reach = graph.reachable(roots);
     // sin/cos pairs: argument -> (sin id, cos id)
     let mut trig: HashMap<Id, (Option<Id>, Option<Id>)> = HashMap::new();
@@ -239,42 +299,72 @@ fn emit_impl(
     }
     let ready = ready_times(graph, &reach);
     let mut items: Vec<Item> = Vec::new();
+    // Sines and cosines of variables, or of sums of variables and constants
+    // (a joint offset: `q + 1.57`), all in one `sin_cos_n` call, first; such
+    // a sum is written into the call, and bound on its own only if
+    // something else uses it.
+    let is_leaf = |a: Id| matches!(graph.node(a), Node::Var(_) | Node::Const(_));
+    let simple = |a: Id| match graph.node(a) {
+        Node::Var(_) => true,
+        Node::Sum { terms, .. } => terms.iter().all(|(t, _)| is_leaf(*t)),
+        _ => false,
+    };
+    let mut batched: Vec<Id> = match fast {
+        Some(_) => trig.keys().copied().filter(|a| simple(*a)).collect(),
+        None => Vec::new(),
+    };
+    batched.sort_unstable();
+    if batched.len() < 2 {
+        batched.clear();
+    }
+    let mut used_apart: Vec<bool> = vec![false; graph.len()];
+    for r in roots {
+        used_apart[r.index()] = true;
+    }
+    for &id in &reach {
+        let node = graph.node(id);
+        if !matches!(node, Node::Sin(a) | Node::Cos(a) if batched.binary_search(a).is_ok()) {
+            node.for_each_child(|c| used_apart[c.index()] = true);
+        }
+    }
+    if let (Some((_, p)), false) = (fast, batched.is_empty()) {
+        let lane = |t: Option<Id>| match t {
+            Some(t) => {
+                let i = ident(t);
+                quote!(#i)
+            }
+            None => quote!(_),
+        };
+        let sins = batched.iter().map(|a| lane(trig[a].0));
+        let coss = batched.iter().map(|a| lane(trig[a].1));
+        let args = batched.iter().map(|&a| match graph.node(a) {
+            Node::Sum { constant, terms } if !used_apart[a.index()] => {
+                let terms: Vec<(Id, f64)> = terms.iter().map(|(t, c)| (*t, c.get())).collect();
+                plain_sum(constant.get(), &terms, &operand)
+            }
+            _ => operand(a),
+        });
+        let n = batched.len();
+        items.push(Item {
+            level: 0,
+            pat: quote!(([#(#sins),*], [#(#coss),*])),
+            ty: quote!(([f64; #n], [f64; #n])),
+            expr: quote!(#p([#(#args),*])),
+        });
+    }
     for &id in &reach {
         let name = ident(id);
+        if batched.binary_search(&id).is_ok() && !used_apart[id.index()] {
+            continue;
+        }
         let expr = match graph.node(id) {
             Node::Const(_) | Node::Var(_) => continue,
             Node::Sum { constant, terms } => {
-                let mut out = TokenStream::new();
-                let mut first = true;
-                let k = constant.get();
-                if k != 0.0 {
-                    // Leading: a bare `-1.5f64` needs no parentheses.
-                    out.extend(if k < 0.0 && k.is_finite() {
-                        let lit = Literal::f64_suffixed(-k);
-                        quote!(-#lit)
-                    } else {
-                        float(k)
-                    });
-                    first = false;
+                let terms = by_ready(terms.iter().map(|(t, c)| (*t, c.get())), &ready);
+                match mul_add {
+                    Some(f) => fused_sum(constant.get(), &terms, &operand, f),
+                    None => plain_sum(constant.get(), &terms, &operand),
                 }
-                for (t, c) in by_ready(terms.iter().map(|(t, c)| (*t, *c)), &ready) {
-                    let (c, x) = (c.get(), operand(t));
-                    let mag = c.abs();
-                    let term = if mag == 1.0 {
-                        x
-                    } else {
-                        let k = float(mag);
-                        quote!(#k * #x)
-                    };
-                    out.extend(match (first, c < 0.0) {
-                        (true, false) => term,
-                        (true, true) => quote!(-#term),
-                        (false, false) => quote!(+ #term),
-                        (false, true) => quote!(- #term),
-                    });
-                    first = false;
-                }
-                out
             }
             Node::Product { coef, factors } => {
                 let c = coef.get();
@@ -307,6 +397,7 @@ fn emit_impl(
                     }
                 }
             }
+            Node::Sin(a) | Node::Cos(a) if batched.binary_search(a).is_ok() => continue,
             node @ (Node::Sin(a) | Node::Cos(a)) => {
                 let is_sin = matches!(node, Node::Sin(_));
                 let x = operand(*a);
@@ -376,6 +467,73 @@ fn emit_impl(
         lets,
         roots: roots.iter().map(|r| operand(*r)).collect(),
     }
+}
+
+/// `k + a - 2.5 * b`: the leading constant, then the terms in order.
+fn plain_sum(k: f64, terms: &[(Id, f64)], operand: &dyn Fn(Id) -> TokenStream) -> TokenStream {
+    let mut out = TokenStream::new();
+    let mut first = true;
+    if k != 0.0 {
+        // Leading: a bare `-1.5f64` needs no parentheses.
+        out.extend(if k < 0.0 && k.is_finite() {
+            let lit = Literal::f64_suffixed(-k);
+            quote!(-#lit)
+        } else {
+            float(k)
+        });
+        first = false;
+    }
+    for &(t, c) in terms {
+        let x = operand(t);
+        let mag = c.abs();
+        let term = if mag == 1.0 {
+            x
+        } else {
+            let k = float(mag);
+            quote!(#k * #x)
+        };
+        out.extend(match (first, c < 0.0) {
+            (true, false) => term,
+            (true, true) => quote!(-#term),
+            (false, false) => quote!(+ #term),
+            (false, true) => quote!(- #term),
+        });
+        first = false;
+    }
+    out
+}
+
+/// [`plain_sum`] with each scaled term after the first folded into a
+/// multiply-add: `f(b, -2.5f64, k + a)` for `k + a - 2.5 * b`.
+fn fused_sum(
+    k: f64,
+    terms: &[(Id, f64)],
+    operand: &dyn Fn(Id) -> TokenStream,
+    f: &TokenStream,
+) -> TokenStream {
+    let (mut acc, rest) = match (k != 0.0, terms) {
+        (false, []) => return float(0.0),
+        (true, _) => (plain_sum(k, &[], operand), terms),
+        (false, [first, rest @ ..]) => (plain_sum(0.0, &[*first], operand), rest),
+    };
+    for &(t, c) in rest {
+        let x = operand(t);
+        acc = if c == 1.0 {
+            quote!(#acc + #x)
+        } else if c == -1.0 {
+            quote!(#acc - #x)
+        } else {
+            // An argument needs no parentheses around `-3f64`.
+            let c = if c < 0.0 && c.is_finite() {
+                let lit = Literal::f64_suffixed(-c);
+                quote!(-#lit)
+            } else {
+                float(c)
+            };
+            quote!(#f(#x, #c, #acc))
+        };
+    }
+    acc
 }
 
 /// `a * b * c`
@@ -477,6 +635,56 @@ mod tests {
             out.lets.to_string(),
             "let ((t1 , t2) , t4) : ((f64 , f64) , f64) = (k :: sc (x) , k :: sc (y) . 1) ; \
              let t5 : f64 = t1 * t2 * t4 ;"
+        );
+    }
+
+    #[test]
+    fn fused_sums_fold_scaled_terms_after_the_first() {
+        let mut g = Graph::new();
+        let (x, y, z) = (g.var(Var(0)), g.var(Var(1)), g.var(Var(2)));
+        let (k2, k3) = (g.constant(2.0), g.constant(-3.0));
+        let (a, b) = (g.mul(k2, x), g.mul(k3, y));
+        let mz = g.neg(z);
+        // No constant: the first term is a plain product.
+        let e = g.sum(&[a, b, mz]);
+        let calls = Calls {
+            sin_cos: &quote!(sc),
+            sin_cos_n: &quote!(scn),
+            mul_add: &quote!(f),
+        };
+        let out = emit_fused(&g, &[e], &names, &calls);
+        assert_eq!(
+            out.lets.to_string(),
+            "let t9 : f64 = f (y , - 3f64 , 2f64 * x) - z ;"
+        );
+    }
+
+    #[test]
+    fn joint_offsets_go_into_the_batched_sin_cos() {
+        let mut g = Graph::new();
+        let (x, y) = (g.var(Var(0)), g.var(Var(1)));
+        let k = g.constant(1.5);
+        let a = g.add(k, x);
+        let (sa, ca, cy) = (g.sin(a), g.cos(a), g.cos(y));
+        let p = g.product(&[sa, ca, cy]);
+        let calls = Calls {
+            sin_cos: &quote!(sc),
+            sin_cos_n: &quote!(scn),
+            mul_add: &quote!(f),
+        };
+        let out = emit_fused(&g, &[p], &names, &calls);
+        assert_eq!(
+            out.lets.to_string(),
+            "let ([_ , t4] , [t6 , t5]) : ([f64 ; 2usize] , [f64 ; 2usize]) = \
+             scn ([y , 1.5f64 + x]) ; let t7 : f64 = t4 * t5 * t6 ;"
+        );
+        // Used elsewhere too, the offset angle is bound and passed by name.
+        let q = g.mul(p, a);
+        let out = emit_fused(&g, &[q], &names, &calls);
+        assert!(
+            out.lets.to_string().contains("scn ([y , t3])"),
+            "{}",
+            out.lets
         );
     }
 

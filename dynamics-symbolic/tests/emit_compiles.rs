@@ -9,7 +9,7 @@ use std::fmt::Write as _;
 use std::path::PathBuf;
 use std::process::Command;
 
-use dynamics_symbolic::{emit, emit_with, Graph, Id, Var};
+use dynamics_symbolic::{emit, emit_fused, emit_with, Calls, Graph, Id, Var};
 use proptest::strategy::{Strategy, ValueTree};
 use proptest::test_runner::TestRunner;
 use quote::quote;
@@ -32,11 +32,21 @@ fn emitted_code_compiles_cleanly_and_agrees_with_eval() {
         let id = common::build(&tree, &mut g);
         let d = g.diff(id, Var(k % 3));
         let roots: Vec<Id> = vec![id, d];
-        // Half through the default, half through a path for sin_cos.
-        let out = if k % 2 == 0 {
-            emit(&g, &roots, &var)
-        } else {
-            emit_with(&g, &roots, &var, &quote!(f64::sin_cos))
+        // A third through the default, a third through a path for sin_cos,
+        // a third also with fused multiply-adds.
+        let out = match k % 3 {
+            0 => emit(&g, &roots, &var),
+            1 => emit_with(&g, &roots, &var, &quote!(f64::sin_cos)),
+            _ => emit_fused(
+                &g,
+                &roots,
+                &var,
+                &Calls {
+                    sin_cos: &quote!(f64::sin_cos),
+                    sin_cos_n: &quote!(sin_cos_n),
+                    mul_add: &quote!(f64::mul_add),
+                },
+            ),
         };
         let (lets, r0, r1) = (&out.lets, &out.roots[0], &out.roots[1]);
         let _ = writeln!(
@@ -47,6 +57,11 @@ fn emitted_code_compiles_cleanly_and_agrees_with_eval() {
             expected.push(g.eval(&roots, &|v| p[v.0 as usize]));
         }
     }
+    // The array form of `f64::sin_cos`, for `emit_fused`.
+    functions.push_str(
+        "#[allow(dead_code)] fn sin_cos_n<const N: usize>(x: [f64; N]) -> ([f64; N], [f64; N]) { \
+         (x.map(f64::sin), x.map(f64::cos)) }\n",
+    );
     let mut main = String::from("fn main() {\n");
     for k in 0..60 {
         for p in POINTS {

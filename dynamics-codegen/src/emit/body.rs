@@ -37,12 +37,12 @@ impl<'a> Spelling<'a> {
 
 /// The `let` chain for `roots` and the tokens of each root's value.
 pub fn chain(g: &Graph, roots: &[Id], sp: &Spelling) -> (TokenStream, Vec<TokenStream>) {
-    let e = dynamics_symbolic::emit_with(
-        g,
-        roots,
-        &|v| sp.var(v),
-        &quote!(::dynamics_runtime::trig::sin_cos),
-    );
+    let calls = dynamics_symbolic::Calls {
+        sin_cos: &quote!(::dynamics_runtime::trig::sin_cos),
+        sin_cos_n: &quote!(::dynamics_runtime::trig::sin_cos_n),
+        mul_add: &quote!(::dynamics_runtime::fma::mul_add),
+    };
+    let e = dynamics_symbolic::emit_fused(g, roots, &|v| sp.var(v), &calls);
     (e.lets, e.roots)
 }
 
