@@ -10,6 +10,10 @@
 //! in three doubles with FMA, in fdlibm's parts without), accurate for
 //! |x| < 2^20 pi/2. Larger or non-finite arguments go to `std`.
 
+// The polynomial and reduction constants are written with fdlibm's digits
+// so that they can be checked against it; the extra digits round away.
+#![allow(clippy::excessive_precision)]
+
 use core::f64::consts::FRAC_2_PI;
 
 use crate::fma::mul_add;
@@ -58,6 +62,8 @@ const REDUCE_LIMIT: f64 = 1_647_099.0; // 2^20 * pi/2
 /// assert!((c - 1.0f64.cos()).abs() <= 2e-16);
 /// ```
 #[inline]
+// `!(|x| < limit)` is also true for NaN, which must go to `std` too.
+#[allow(clippy::neg_cmp_op_on_partial_ord)]
 pub fn sin_cos(x: f64) -> (f64, f64) {
     if !(x.abs() < REDUCE_LIMIT) {
         return x.sin_cos();
