@@ -91,7 +91,7 @@ impl Fit {
             | (Candidate::Backlash(j), Some(g))
             | (Candidate::Armature(j), Some(g)) => {
                 let backlash = matches!(self.candidate, Candidate::Backlash(_));
-                let t = motor_transmitted(&p.sig, j, &g, backlash);
+                let t = motor_transmitted(&p.sig, j, &g, backlash, p.basis.inertia[j]);
                 for k in a..z {
                     if t[k].is_finite() {
                         r[k][j] = t[k] - p.sig.model[k][j];
@@ -183,7 +183,7 @@ fn stiff_rotor<const N: usize>(linear: Fit, j: usize, p: &Prepared<N>) -> Fit {
         }
     };
     let cost = |jm: f64| -> f64 {
-        let t = motor_transmitted_raw(&p.sig, j, &guess(jm), false);
+        let t = motor_transmitted_raw(&p.sig, j, &guess(jm), false, inertia);
         let sse: f64 = base - own
             + p.rows
                 .iter()
@@ -251,7 +251,7 @@ fn fit_motor<R: Robot<N>, const N: usize>(c: Candidate, p: &Prepared<N>) -> Fit 
         if !motor_feasible(g, backlash, inertia, revolute) {
             return f64::INFINITY;
         }
-        let t = motor_transmitted_raw(&p.sig, j, g, backlash);
+        let t = motor_transmitted_raw(&p.sig, j, g, backlash, inertia);
         let sse_j: f64 = p
             .rows
             .iter()

@@ -18,7 +18,8 @@
 //! more, so that they do not add its noise a second time (rotor inertia
 //! was otherwise taken for a stiff elastic joint). Elasticity and backlash
 //! are fitted by a grid search on a motor-side simulation driven by the
-//! measured effort, refined by a compass search on the logarithms of their
+//! measured effort (its link following the measured motion plus the
+//! effect of the transmitted effort's departure from the model), refined by a compass search on the logarithms of their
 //! parameters. Rotor inertia is fitted both ways (its acceleration column,
 //! and a rotor on a very stiff coupling simulated like the motor-side
 //! models, which see the effort's fast content the same way) and keeps the

@@ -138,6 +138,22 @@ fn run_case(i: usize, dir: &Path) -> Outcome {
         truth.effect,
         report.which.ranked.iter().take(2).map(|r| (r.kind.as_str(), r.delta_aicc.round(), (r.holdout_share * 100.0).round())).collect::<Vec<_>>()
     );
+    // A miss: the top three, with their fitted parameters.
+    if said != truth.kind && truth.kind != "none" {
+        for r in report.which.ranked.iter().take(3) {
+            eprintln!(
+                "    case {i:2} ranked {:>22} {:>4} daicc {:9.1} holdout {:5.2} {:?}",
+                r.kind,
+                r.joint.clone().unwrap_or_default(),
+                r.delta_aicc,
+                r.holdout_share,
+                r.parameters
+                    .iter()
+                    .map(|p| format!("{}={:.3e}", p.name, p.value))
+                    .collect::<Vec<_>>()
+            );
+        }
+    }
     Outcome {
         identifiable: truth.kind != "none" && truth.snr >= IDENTIFIABLE_SNR,
         truth: truth.kind,
