@@ -281,12 +281,12 @@ fn fit_motor<R: Robot<N>, const N: usize>(c: Candidate, p: &Prepared<N>) -> Fit 
         Some((g, sse)) => {
             let (mut g, mut sse) = refine(g, sse, backlash, cost);
             // One Gauss-Newton step on the search's optimum, when it helps.
-            let (mut sd, step) = motor_std(&g, backlash, &rows);
+            let (mut sd, step) = motor_std(&g, backlash, rows);
             if let Some(next) = step {
                 let c = cost(&next);
                 if c < sse {
                     (g, sse) = (next, c);
-                    sd = motor_std(&g, backlash, &rows).0;
+                    sd = motor_std(&g, backlash, rows).0;
                 }
             }
             (Some(g), Some(sd), sse)
