@@ -20,7 +20,8 @@
 //! are fitted by a grid search on a motor-side simulation driven by the
 //! measured effort (its link following the measured motion plus the
 //! effect of the transmitted effort's departure from the model), refined by a compass search on the logarithms of their
-//! parameters. Rotor inertia is fitted both ways (its acceleration column,
+//! parameters; their standard deviations come from the objective's
+//! curvature there (`spread`). Rotor inertia is fitted both ways (its acceleration column,
 //! and a rotor on a very stiff coupling simulated like the motor-side
 //! models, which see the effort's fast content the same way) and keeps the
 //! better. Candidates are ranked by AICc; a richer model nesting a
