@@ -298,15 +298,25 @@ pub fn motor_feasible(g: &MotorGuess, backlash: bool, inertia: f64, revolute: bo
 }
 
 /// Simulates the motor side of joint `j` driven by the measured effort
-/// (held per sample) and the measured link motion; returns the smoothed
-/// effort it passes to the link at every sample (NaN outside the range).
+/// (held per sample) and the link of joint `j` (own inertia `inertia`);
+/// returns the smoothed effort it passes to the link at every sample (NaN
+/// outside the range). The link follows the measured (smoothed) motion
+/// plus what the transmitted effort adds over the nominal model's,
+/// pulled back to the measurement at [`OBSERVER_HZ`]: a link pinned to
+/// the smoothed motion would meet a stiff contact or spring at positions
+/// the 40 ms smoothing has blurred (a backlash crossing lasts about as
+/// long), and the contact stiffness would turn that blur into effort
+/// (on a generated backlash case, the whitened error of the true
+/// parameters fell from 7258 to 4623, nominal model 20985).
 pub fn motor_transmitted<const N: usize>(
     sig: &Signals<N>,
     j: usize,
     g: &MotorGuess,
     backlash: bool,
+    inertia: f64,
 ) -> Vec<f64> {
-    sig.sg.apply(&motor_transmitted_raw(sig, j, g, backlash), 0)
+    sig.sg
+        .apply(&motor_transmitted_raw(sig, j, g, backlash, inertia), 0)
 }
 
 /// [`motor_transmitted`] before smoothing (NaN outside the range, and
@@ -316,6 +326,7 @@ pub fn motor_transmitted_raw<const N: usize>(
     j: usize,
     g: &MotorGuess,
     backlash: bool,
+    inertia: f64,
 ) -> Vec<f64> {
     let n = sig.t.len();
     let (a, z) = sig.range;
@@ -343,43 +354,74 @@ pub fn motor_transmitted_raw<const N: usize>(
         sig.q[a][j] + load / g.stiffness
     };
     let mut thd = sig.qd[a][j];
-    const SUB: usize = 4;
+    let (mut ql, mut vl) = (sig.q[a][j], sig.qd[a][j]);
+    let wo = 2.0 * PI * OBSERVER_HZ;
+    // Two RK4 steps a sample: omega h <= 0.8 up to the 250 Hz stiff rotor,
+    // well inside RK4's stability; the scoring named the same effects on
+    // five seed bases as with four steps.
+    const SUB: usize = 2;
     // A multiply, not a divide, on the integration's dependent chain.
-    let inv_jm = 1.0 / g.jm;
+    let (inv_jm, inv_i) = (1.0 / g.jm, 1.0 / inertia);
     for k in a..z {
-        let (q0, v0) = (sig.q[k][j], sig.qd[k][j]);
-        out[k] = force(th - q0, thd - v0);
+        out[k] = force(th - ql, thd - vl);
         if k + 1 >= z {
             break;
         }
-        let (q1, v1) = (sig.q[k + 1][j], sig.qd[k + 1][j]);
+        let (q0, v0, a0, m0) = (sig.q[k][j], sig.qd[k][j], sig.qdd[k][j], sig.model[k][j]);
+        let (q1, v1, a1, m1) = (
+            sig.q[k + 1][j],
+            sig.qd[k + 1][j],
+            sig.qdd[k + 1][j],
+            sig.model[k + 1][j],
+        );
         let h = (sig.t[k + 1] - sig.t[k]) / SUB as f64;
         let tau = sig.tau_raw[k][j];
-        let link = |s: f64| (q0 + (q1 - q0) * s, v0 + (v1 - v0) * s);
-        let acc = |th: f64, thd: f64, s: f64| {
-            let (q, v) = link(s);
-            (tau - force(th - q, thd - v)) * inv_jm
+        // State derivative of (motor angle, motor rate, link angle, link
+        // rate) at fraction s of the interval: the link follows the
+        // measured motion plus what the transmitted effort adds over the
+        // model's, pulled back to the measurement at OBSERVER_HZ.
+        let d = |x: [f64; 4], s: f64| -> [f64; 4] {
+            let qs = q0 + (q1 - q0) * s;
+            let vs = v0 + (v1 - v0) * s;
+            let as_ = a0 + (a1 - a0) * s;
+            let ms = m0 + (m1 - m0) * s;
+            let f = force(x[0] - x[2], x[1] - x[3]);
+            [
+                x[1],
+                (tau - f) * inv_jm,
+                x[3],
+                as_ + (f - ms) * inv_i + wo * wo * (qs - x[2]) + 2.0 * wo * (vs - x[3]),
+            ]
         };
+        let mut x = [th, thd, ql, vl];
         for i in 0..SUB {
             let s0 = i as f64 / SUB as f64;
             let sm = (i as f64 + 0.5) / SUB as f64;
             let s1 = (i + 1) as f64 / SUB as f64;
-            let k1 = (thd, acc(th, thd, s0));
-            let k2 = (
-                thd + 0.5 * h * k1.1,
-                acc(th + 0.5 * h * k1.0, thd + 0.5 * h * k1.1, sm),
-            );
-            let k3 = (
-                thd + 0.5 * h * k2.1,
-                acc(th + 0.5 * h * k2.0, thd + 0.5 * h * k2.1, sm),
-            );
-            let k4 = (thd + h * k3.1, acc(th + h * k3.0, thd + h * k3.1, s1));
-            th += h / 6.0 * (k1.0 + 2.0 * k2.0 + 2.0 * k3.0 + k4.0);
-            thd += h / 6.0 * (k1.1 + 2.0 * k2.1 + 2.0 * k3.1 + k4.1);
+            let add = |x: [f64; 4], k: [f64; 4], c: f64| -> [f64; 4] {
+                [
+                    x[0] + c * k[0],
+                    x[1] + c * k[1],
+                    x[2] + c * k[2],
+                    x[3] + c * k[3],
+                ]
+            };
+            let k1 = d(x, s0);
+            let k2 = d(add(x, k1, 0.5 * h), sm);
+            let k3 = d(add(x, k2, 0.5 * h), sm);
+            let k4 = d(add(x, k3, h), s1);
+            for c in 0..4 {
+                x[c] += h / 6.0 * (k1[c] + 2.0 * k2[c] + 2.0 * k3[c] + k4[c]);
+            }
         }
-        if !th.is_finite() || !thd.is_finite() {
+        [th, thd, ql, vl] = x;
+        if !th.is_finite() || !thd.is_finite() || !ql.is_finite() {
             return vec![f64::NAN; n];
         }
     }
     out
 }
+
+/// Bandwidth with which the simulated link is pulled back to the measured
+/// motion, Hz.
+pub const OBSERVER_HZ: f64 = 3.0;

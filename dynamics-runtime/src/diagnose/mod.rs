@@ -18,8 +18,10 @@
 //! more, so that they do not add its noise a second time (rotor inertia
 //! was otherwise taken for a stiff elastic joint). Elasticity and backlash
 //! are fitted by a grid search on a motor-side simulation driven by the
-//! measured effort, refined by a compass search on the logarithms of their
-//! parameters. Rotor inertia is fitted both ways (its acceleration column,
+//! measured effort (its link following the measured motion plus the
+//! effect of the transmitted effort's departure from the model), refined by a compass search on the logarithms of their
+//! parameters; their standard deviations come from the objective's
+//! curvature there (`spread`). Rotor inertia is fitted both ways (its acceleration column,
 //! and a rotor on a very stiff coupling simulated like the motor-side
 //! models, which see the effort's fast content the same way) and keeps the
 //! better. Candidates are ranked by AICc; a richer model nesting a
@@ -35,12 +37,13 @@ mod horizon;
 mod refine;
 mod report;
 mod signals;
+mod spread;
 pub mod traces;
 mod windows;
 mod yardstick;
 
 pub use analysis::{Fit, Prepared};
-pub use candidate::Candidate;
+pub use candidate::{Candidate, MotorGuess};
 pub use filter::SavitzkyGolay;
 pub use fit::aicc;
 pub use report::*;
@@ -406,20 +409,26 @@ fn ranked_entry<R: Robot<N>, const N: usize>(
         _ => {}
     }
     if let (Some(g), false) = (f.motor, matches!(c, Candidate::Armature(_))) {
-        let mut push = |name: &str, value: f64, rel: f64| {
+        let mut push = |name: &str, value: f64, std: f64| {
             parameters.push(Parameter {
                 name: name.into(),
                 value,
-                std: value * rel,
+                std,
             })
         };
-        push("motor_inertia", g.jm, 0.4);
+        let sd = f.motor_std.unwrap_or(MotorGuess {
+            jm: f64::INFINITY,
+            stiffness: f64::INFINITY,
+            damping: f64::INFINITY,
+            half_width: f64::INFINITY,
+        });
+        push("motor_inertia", g.jm, sd.jm);
         if matches!(c, Candidate::Backlash(_)) {
-            push("half_width", g.half_width, 0.3);
-            push("contact_stiffness", g.stiffness, 0.5);
+            push("half_width", g.half_width, sd.half_width);
+            push("contact_stiffness", g.stiffness, sd.stiffness);
         } else {
-            push("stiffness", g.stiffness, 0.4);
-            push("damping", g.damping, 0.6);
+            push("stiffness", g.stiffness, sd.stiffness);
+            push("damping", g.damping, sd.damping);
         }
     }
     let a = f.aicc(n);

@@ -43,7 +43,7 @@ pub fn refine(
 
 /// `g` with parameter `d` (0 inertia, 1 stiffness, 2 damping, 3
 /// half-width) multiplied by `f`.
-fn scaled(g: &MotorGuess, d: usize, f: f64) -> MotorGuess {
+pub(super) fn scaled(g: &MotorGuess, d: usize, f: f64) -> MotorGuess {
     let mut out = *g;
     match d {
         0 => out.jm *= f,
