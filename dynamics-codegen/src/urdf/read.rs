@@ -147,11 +147,12 @@ mod tests {
       </joint>
     </robot>"#;
 
-    fn load_text(text: &str) -> (Option<Loaded>, Ctxt) {
+    /// Loads `text` from a file of its own (`name`: tests run in parallel).
+    fn load_text(name: &str, text: &str) -> (Option<Loaded>, Ctxt) {
         let dir = std::env::temp_dir().join(format!("dynamics-urdf-{}", std::process::id()));
         std::fs::create_dir_all(&dir).expect("a temporary directory");
-        std::fs::write(dir.join("r.urdf"), text).expect("a temporary file");
-        let lit = LitStr::new("r.urdf", proc_macro2::Span::call_site());
+        std::fs::write(dir.join(name), text).expect("a temporary file");
+        let lit = LitStr::new(name, proc_macro2::Span::call_site());
         let mut cx = Ctxt::default();
         let loaded = load(&lit, &dir, &mut cx);
         (loaded, cx)
@@ -162,7 +163,7 @@ mod tests {
     /// gives some.
     #[test]
     fn partial_dynamics_and_continuous_limits() {
-        let (loaded, cx) = load_text(TWO_JOINTS);
+        let (loaded, cx) = load_text("partial.urdf", TWO_JOINTS);
         assert!(cx.is_ok());
         let loaded = loaded.expect("the file reads");
         assert_eq!(loaded.joints.len(), 2);
@@ -179,7 +180,7 @@ mod tests {
 
     #[test]
     fn a_bad_number_is_an_error_naming_the_joint() {
-        let (loaded, cx) = load_text(&TWO_JOINTS.replace("0.25", "fast"));
+        let (loaded, cx) = load_text("bad-number.urdf", &TWO_JOINTS.replace("0.25", "fast"));
         assert!(loaded.is_none());
         let msg = cx.check().expect_err("an error").to_string();
         assert!(
