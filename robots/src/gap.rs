@@ -333,7 +333,10 @@ pub fn traces_files(
     report: &Report,
 ) -> Result<Traces, GapError> {
     let robot = AnyRobot::by_name(name)?;
-    let chosen = (report.which.verdict.kind != "none")
+    let chosen = report
+        .which
+        .verdict
+        .names_effect()
         .then(|| report.which.ranked.first())
         .flatten();
     crate::each_robot!(&robot, r => traces_for(r, train, holdout, chosen))

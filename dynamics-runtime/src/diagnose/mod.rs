@@ -68,6 +68,10 @@ pub struct Options {
     pub none_margin: f64,
     /// AICc difference under which two candidates are `ambiguous`.
     pub ambiguity_margin: f64,
+    /// When no candidate qualifies, the verdict is `unexplained` rather than
+    /// `none` if some joint's torque residual RMS is at least this many
+    /// times its noise floor: the gap is real, the candidates miss it.
+    pub unexplained_ratio: f64,
     /// AICc improvement a richer nested model must add over the simpler one
     /// it contains to be preferred (10: "strong evidence" on the usual
     /// scale of AIC differences).
@@ -82,6 +86,7 @@ impl Default for Options {
             kinds: vec![],
             none_margin: 100.0,
             ambiguity_margin: 10.0,
+            unexplained_ratio: 3.0,
             nesting_margin: 10.0,
             threads: 0,
         }
@@ -284,19 +289,29 @@ pub fn diagnose<R: Robot<N> + Clone + Sync, const N: usize>(
                 rival: rival.map(|r| Box::new(r.clone())),
             }
         }
-        _ => Verdict {
-            kind: "none".into(),
-            joint: None,
-            point: None,
-            status: "within_noise".into(),
-            rival: None,
-            separating_motion: None,
-        },
+        _ => {
+            let gap = (0..N)
+                .map(|j| rms(&p, &p.sig.residual, j) / p.sig.floor[j])
+                .fold(0.0, f64::max);
+            let word = if gap >= options.unexplained_ratio {
+                "unexplained"
+            } else {
+                "none"
+            };
+            Verdict {
+                kind: word.into(),
+                joint: None,
+                point: None,
+                status: if word == "none" { "within_noise" } else { word }.into(),
+                rival: None,
+                separating_motion: None,
+            }
+        }
     };
-    let chosen = if verdict.kind == "none" {
-        None
-    } else {
+    let chosen = if verdict.names_effect() {
         best.first()
+    } else {
+        None
     };
 
     // Where (training data, nominal model).

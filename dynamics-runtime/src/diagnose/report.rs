@@ -94,7 +94,8 @@ pub struct Ranked {
 /// The verdict.
 #[derive(Debug, Clone, Serialize)]
 pub struct Verdict {
-    /// Effect kind (`none` when the model explains the data within noise).
+    /// Effect kind (`none` when the model explains the data within noise,
+    /// `unexplained` when it does not and no candidate explains the gap).
     pub kind: String,
     /// Joint name, for joint effects.
     #[serde(skip_serializing_if = "Option::is_none")]
@@ -102,7 +103,7 @@ pub struct Verdict {
     /// Point, for tip effects.
     #[serde(skip_serializing_if = "Option::is_none")]
     pub point: Option<String>,
-    /// `clear`, `ambiguous` or `within_noise`.
+    /// `clear`, `ambiguous`, `within_noise` or `unexplained`.
     pub status: String,
     /// The rival that these data cannot tell apart, when ambiguous.
     #[serde(skip_serializing_if = "Option::is_none")]
@@ -110,6 +111,21 @@ pub struct Verdict {
     /// A motion that would separate the two, when ambiguous.
     #[serde(skip_serializing_if = "Option::is_none")]
     pub separating_motion: Option<String>,
+}
+
+impl Verdict {
+    /// Whether the verdict names an effect (the first of the ranking):
+    /// false for `none` and `unexplained`.
+    ///
+    /// ```
+    /// use dynamics_runtime::diagnose::Verdict;
+    /// let v = Verdict { kind: "unexplained".into(), joint: None, point: None,
+    ///     status: "unexplained".into(), rival: None, separating_motion: None };
+    /// assert!(!v.names_effect());
+    /// ```
+    pub fn names_effect(&self) -> bool {
+        !matches!(self.kind.as_str(), "none" | "unexplained")
+    }
 }
 
 /// Shrink on held-out data.

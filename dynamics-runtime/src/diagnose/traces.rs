@@ -80,7 +80,7 @@ pub struct Traces {
 /// use dynamics_runtime::Robot;
 /// fn plot<R: Robot<3> + Clone + Sync>(robot: &R, train: &Measured<3>, holdout: &Measured<3>) {
 ///     let report = diagnose(robot, train, holdout, &Options::default(), &|_, _| {}).expect("enough data");
-///     let chosen = (report.which.verdict.kind != "none").then(|| &report.which.ranked[0]);
+///     let chosen = report.which.verdict.names_effect().then(|| &report.which.ranked[0]);
 ///     let t = traces(robot, train, holdout, chosen).expect("a candidate of this robot");
 ///     assert_eq!(t.train.joints.len(), 3);
 /// }

@@ -47,7 +47,7 @@ pub fn markdown(
     let mut s = String::new();
     let v = &report.which.verdict;
     let top = report.which.ranked.first();
-    let chosen = (v.kind != "none").then_some(top).flatten();
+    let chosen = v.names_effect().then_some(top).flatten();
     let unit = |joint: &str| -> (&str, &str) {
         let u = traces
             .train
@@ -96,10 +96,18 @@ pub fn markdown(
             }
         }
         None => {
-            let _ = write!(
-                s,
-                "**none**: the nominal model explains the data within noise"
-            );
+            if v.kind == "unexplained" {
+                let _ = write!(
+                    s,
+                    "**unexplained**: the nominal model misses the data by more than noise \
+                     (see Where), and none of the candidate effects explains the gap"
+                );
+            } else {
+                let _ = write!(
+                    s,
+                    "**none**: the nominal model explains the data within noise"
+                );
+            }
             match top {
                 Some(t) => {
                     let _ = writeln!(

@@ -71,7 +71,7 @@ fn joint_files(joint: &str) -> [String; 3] {
 /// # Ok::<(), robots::gap::GapError>(())
 /// ```
 pub fn render(report: &Report, traces: &Traces, options: &Options) -> Vec<(String, String)> {
-    let corrected = report.which.verdict.kind != "none";
+    let corrected = report.which.verdict.names_effect();
     let mut out = vec![(
         "report.md".to_string(),
         markdown::markdown(report, traces, options.none_margin, &joint_files),

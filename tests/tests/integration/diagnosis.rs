@@ -116,15 +116,16 @@ fn run_case(i: usize, dir: &Path) -> Outcome {
         .fold(0.0, f64::max);
     let v = &report.which.verdict;
     let first = report.which.ranked.first();
-    let said = if v.kind == "none" {
-        "none".to_string()
-    } else {
+    // `none` and `unexplained` name no effect: they are said as such.
+    let said = if v.names_effect() {
         first.map(|r| r.kind.clone()).unwrap_or_default()
-    };
-    let said_joint = if v.kind == "none" {
-        None
     } else {
+        v.kind.clone()
+    };
+    let said_joint = if v.names_effect() {
         first.and_then(|r| r.joint.clone())
+    } else {
+        None
     };
     eprintln!(
         "case {i:2} {robot:9} {:>22} {:>4} -> {:>22} {:>4} {:9} snr {:7.2} gap {gap:7.1} shrink {:.2} ({}) top {:?}",
@@ -351,4 +352,55 @@ fn diagnosed_stiffness_spread_matches_a_noise_bootstrap() {
         reported > whole / 2.0 && reported < 2.0 * whole,
         "reported std {reported} against the bootstrap's {whole}"
     );
+}
+
+/// A gap far above noise that none of the candidates offered explains is
+/// answered `unexplained`, not `none` (which means "within noise"); with
+/// every candidate offered, the same data name the withheld effect.
+#[test]
+fn a_gap_no_candidate_explains_is_unexplained() {
+    let dir = std::env::temp_dir().join(format!("dynamics-unexplained-{}", std::process::id()));
+    std::fs::create_dir_all(&dir).expect("temp dir");
+    let out = synth(&SynthRequest {
+        robot: "arm3r".into(),
+        kind: Some(EffectKind::CoulombFriction),
+        joint: Some("j2".into()),
+        magnitude: Some(0.3),
+        seed: 7,
+        excitation: ExcitationKind::Sines,
+        duration: 6.0,
+        noise: Noise::default(),
+    })
+    .expect("synthesizes");
+    let (train, holdout) = (dir.join("a.csv"), dir.join("b.csv"));
+    std::fs::write(&train, &out.train).expect("writes");
+    std::fs::write(&holdout, &out.holdout).expect("writes");
+    let only = |kinds: Vec<EffectKind>| {
+        let options = Options {
+            kinds,
+            ..Options::default()
+        };
+        diagnose_files("arm3r", &train, &holdout, &options, &|_, _| {})
+            .expect("diagnoses")
+            .0
+    };
+    let offered = only(vec![EffectKind::TimeDelay]);
+    let v = &offered.which.verdict;
+    let gap = offered
+        .where_
+        .joints
+        .iter()
+        .map(|j| j.torque_ratio)
+        .fold(0.0, f64::max);
+    assert!(gap > 10.0, "the withheld friction is a clear gap: {gap}");
+    assert_eq!(
+        (v.kind.as_str(), v.status.as_str()),
+        ("unexplained", "unexplained"),
+        "{v:?}"
+    );
+    assert!(!v.names_effect());
+    assert_eq!(offered.shrink.fraction, 0.0);
+    let all = only(vec![]);
+    assert_eq!(all.which.verdict.kind, "coulomb_friction");
+    let _ = std::fs::remove_dir_all(&dir);
 }
