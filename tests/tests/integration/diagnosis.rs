@@ -46,7 +46,7 @@ fn run_case(i: usize, dir: &Path) -> Outcome {
     let mut rng = Rng::new(1000 + base + i as u64);
     let robot = ROBOTS[rng.below(ROBOTS.len())];
     // One case in eleven is a control without any effect.
-    let kind = if i % 11 == 0 {
+    let kind = if i.is_multiple_of(11) {
         EffectKind::None
     } else {
         EffectKind::ALL[1 + rng.below(EffectKind::ALL.len() - 1)]
