@@ -1,0 +1,129 @@
+//! `dynamics diagnose`: the gap diagnosis on two data files, or on the
+//! built-in case, printed as where / which / shrink, with the JSON and the
+//! readable report on request.
+
+use std::path::PathBuf;
+
+use crate::Res;
+
+/// Runs the diagnosis and prints it; `train`/`holdout` absent: the built-in case.
+pub fn diagnose_cmd(
+    robot: &str,
+    train: Option<PathBuf>,
+    holdout: Option<PathBuf>,
+    json: Option<PathBuf>,
+    report_dir: Option<PathBuf>,
+) -> Res {
+    use dynamics_runtime::diagnose::Options;
+    use indicatif::{ProgressBar, ProgressStyle};
+    let (train, holdout, tmp) = match (train, holdout) {
+        (Some(a), Some(b)) => (a, b, None),
+        _ => {
+            // The built-in case: Coulomb friction withheld at arm3r's j2.
+            let dir = std::env::temp_dir().join(format!("dynamics-demo-{}", std::process::id()));
+            std::fs::create_dir_all(&dir)?;
+            let req = robots::gap::SynthRequest {
+                robot: "arm3r".into(),
+                kind: Some("coulomb_friction".parse()?),
+                joint: Some("j2".into()),
+                magnitude: Some(0.3),
+                seed: 7,
+                excitation: "sines".parse()?,
+                duration: 8.0,
+                noise: Default::default(),
+            };
+            eprintln!("built-in case: arm3r following sines, 8 s at 1 kHz, with a withheld effect (not told to the diagnoser)");
+            let data = robots::gap::synth(&req)?;
+            let (a, b) = (dir.join("train.csv"), dir.join("holdout.csv"));
+            std::fs::write(&a, &data.train)?;
+            std::fs::write(&b, &data.holdout)?;
+            (a, b, Some((dir, data.truth)))
+        }
+    };
+    let robot = if tmp.is_some() { "arm3r" } else { robot };
+    let bar = ProgressBar::new(0);
+    bar.set_style(
+        ProgressStyle::with_template("fitting candidates {bar:30} {pos}/{len}")
+            .unwrap_or_else(|_| ProgressStyle::default_bar()),
+    );
+    let progress = |done: usize, total: usize| {
+        bar.set_length(total as u64);
+        bar.set_position(done as u64);
+    };
+    let options = Options::default();
+    let (report, warnings) =
+        robots::gap::diagnose_files(robot, &train, &holdout, &options, &progress)?;
+    bar.finish_and_clear();
+    for w in warnings {
+        eprintln!("warning: {w}");
+    }
+    println!("where (training data, nominal model):");
+    for j in &report.where_.joints {
+        println!(
+            "  {:8} torque residual {:.4} = {:.1} x noise; 0.1 s prediction error {:.2e} = {:.1} x an exact model's",
+            j.joint, j.torque_rms, j.torque_ratio, j.prediction_rms, j.prediction_ratio
+        );
+        for w in j.windows.iter().take(2) {
+            println!(
+                "           {:.2}-{:.2} s {} ({:.1} x noise)",
+                w.start, w.end, w.phase, w.ratio
+            );
+        }
+    }
+    println!("which (best first):");
+    for r in report.which.ranked.iter().take(5) {
+        let place = r.joint.clone().or(r.point.clone()).unwrap_or_default();
+        let params: Vec<String> = r
+            .parameters
+            .iter()
+            .map(|p| format!("{} = {:.4e} +- {:.1e}", p.name, p.value, p.std))
+            .collect();
+        println!(
+            "  {:24} {:8} dAICc {:9.1}  explains {:5.1} % (held-out {:5.1} %)  {}",
+            r.kind,
+            place,
+            r.delta_aicc,
+            100.0 * r.share,
+            100.0 * r.holdout_share,
+            params.join(", ")
+        );
+    }
+    let v = &report.which.verdict;
+    println!(
+        "verdict: {} {} ({})",
+        v.kind,
+        v.joint.clone().or(v.point.clone()).unwrap_or_default(),
+        v.status
+    );
+    if let (Some(r), Some(m)) = (&v.rival, &v.separating_motion) {
+        println!(
+            "  rival: {} {}; to separate them: {m}",
+            r.kind,
+            r.joint.clone().or(r.point.clone()).unwrap_or_default()
+        );
+    }
+    println!(
+        "shrink on held-out data: torque gap -{:.1} %, short-horizon simulation error -{:.1} %",
+        100.0 * report.shrink.torque_fraction,
+        100.0 * report.shrink.simulation_fraction
+    );
+    if let Some(path) = json {
+        std::fs::write(&path, serde_json::to_string_pretty(&report)?)
+            .map_err(|e| format!("{}: {e}", path.display()))?;
+        eprintln!("wrote {}", path.display());
+    }
+    if let Some(dir) = report_dir {
+        let traces = robots::gap::traces_files(robot, &train, &holdout, &report)?;
+        robots::report::write(&dir, &report, &traces, &options)?;
+        eprintln!("wrote the report to {}", dir.join("report.md").display());
+    }
+    if let Some((dir, truth)) = tmp {
+        println!(
+            "truth of the built-in case (read after the verdict): {} at {}",
+            truth.kind,
+            truth.joint.unwrap_or_default()
+        );
+        let _ = std::fs::remove_dir_all(dir);
+    }
+    Ok(())
+}

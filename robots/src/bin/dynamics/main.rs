@@ -1,0 +1,194 @@
+//! `dynamics`: the command-line program.
+//!
+//! ```text
+//! dynamics                      # diagnose a built-in case (arm3r with a withheld effect)
+//! dynamics check                # every seed robot against the shipped Pinocchio values
+//! dynamics synth --robot NAME --effect KIND --joint J --out FILE.csv
+//! dynamics diagnose --robot NAME --train A.csv --holdout B.csv [--json OUT.json] [--report DIR]
+//! dynamics list                 # the robots it knows
+//! dynamics eval --robot NAME [--states FILE.json] [--out FILE.json] [--set NAME=VALUE]...
+//! ```
+
+use std::path::PathBuf;
+use std::process::ExitCode;
+
+use clap::{Parser, Subcommand};
+use robots::registry::ROBOTS;
+
+mod commands;
+mod diagnose;
+
+use commands::{check, eval, scenario, synth_cmd};
+use diagnose::diagnose_cmd;
+
+/// What every subcommand returns; `main` prints the error.
+type Res = Result<(), Box<dyn std::error::Error>>;
+
+#[derive(Parser)]
+#[command(
+    name = "dynamics",
+    version,
+    about = "Equations of motion generated at compile time: evaluate, compare, simulate."
+)]
+struct Cli {
+    #[command(subcommand)]
+    command: Option<Command>,
+}
+
+#[derive(Subcommand)]
+enum Command {
+    /// Compare every seed robot with the Pinocchio reference values shipped with it.
+    Check,
+    /// List the robots.
+    List,
+    /// Run a scenario of the seeds by name, writing CSV and SVG plots.
+    Scenario {
+        /// Scenario name; omit to list them.
+        name: Option<String>,
+        /// Output folder (default `out/NAME`).
+        #[arg(long)]
+        out: Option<PathBuf>,
+    },
+    /// Generate measured data (CSV) of a robot with a withheld effect under a tracking controller.
+    Synth {
+        /// Robot name (see `dynamics list`).
+        #[arg(long)]
+        robot: String,
+        /// Effect kind (coulomb_friction, viscous_friction, stribeck_friction, armature, payload_mass,
+        /// joint_elasticity, backlash, environment_resistance, encoder_offset, time_delay, none);
+        /// omit to draw one at random.
+        #[arg(long)]
+        effect: Option<String>,
+        /// Joint name; omit to draw one.
+        #[arg(long)]
+        joint: Option<String>,
+        /// Main parameter in SI units (Fc, Fv, Fc, rotor inertia, kg, resonance Hz, half-width,
+        /// mu, offset, delay s); omit to draw from the realistic range.
+        #[arg(long)]
+        magnitude: Option<f64>,
+        /// Random seed.
+        #[arg(long, default_value_t = 1)]
+        seed: u64,
+        /// Reference motion: sines, chirp or pick-place.
+        #[arg(long, default_value = "sines")]
+        excitation: String,
+        /// Duration, s.
+        #[arg(long, default_value_t = 8.0)]
+        duration: f64,
+        /// Position noise (rad or m).
+        #[arg(long, default_value_t = 2e-5)]
+        noise_q: f64,
+        /// Velocity noise.
+        #[arg(long, default_value_t = 2e-3)]
+        noise_qd: f64,
+        /// Effort noise as a fraction of each joint's peak effort.
+        #[arg(long, default_value_t = 2e-3)]
+        noise_tau: f64,
+        /// Training CSV to write (the held-out set goes beside it as `<stem>-holdout.csv`).
+        #[arg(long)]
+        out: PathBuf,
+        /// Where to write the truth (JSON); default: none written.
+        #[arg(long)]
+        truth: Option<PathBuf>,
+    },
+    /// Diagnose the gap between a robot's model and measured data: where, which effect, how far it shrinks.
+    /// Without files: a built-in case (arm3r with a withheld effect, generated in memory).
+    Diagnose {
+        /// Robot name.
+        #[arg(long, default_value = "arm3r")]
+        robot: String,
+        /// Training data (CSV or CSV.gz).
+        #[arg(long, requires = "holdout")]
+        train: Option<PathBuf>,
+        /// Held-out data.
+        #[arg(long, requires = "train")]
+        holdout: Option<PathBuf>,
+        /// Write the JSON report here.
+        #[arg(long)]
+        json: Option<PathBuf>,
+        /// Write a readable report here: report.md with SVG plots (residual per joint with the gap
+        /// windows, measured vs nominal vs corrected, the ranking) and report.json.
+        #[arg(long, value_name = "DIR")]
+        report: Option<PathBuf>,
+    },
+    /// Evaluate tau, M, g, C, nle, ddq and the energies at given states.
+    Eval {
+        /// Robot name (see `dynamics list`).
+        #[arg(long)]
+        robot: String,
+        /// States file (JSON with `states: [{q, v, a}]`); default: the shipped reference states.
+        #[arg(long)]
+        states: Option<PathBuf>,
+        /// Where to write the JSON; default: standard output.
+        #[arg(long)]
+        out: Option<PathBuf>,
+        /// Set a run-time parameter, e.g. `--set m=3.5` (repeatable).
+        #[arg(long = "set", value_name = "NAME=VALUE")]
+        set: Vec<String>,
+    },
+}
+
+fn main() -> ExitCode {
+    let cli = Cli::parse();
+    let result = match cli.command.unwrap_or(Command::Diagnose {
+        robot: "arm3r".into(),
+        train: None,
+        holdout: None,
+        json: None,
+        report: None,
+    }) {
+        Command::Check => check(),
+        Command::List => {
+            for (name, what) in ROBOTS {
+                println!("{name:12} {what}");
+            }
+            Ok(())
+        }
+        Command::Scenario { name, out } => scenario(name, out),
+        Command::Synth {
+            robot,
+            effect,
+            joint,
+            magnitude,
+            seed,
+            excitation,
+            duration,
+            noise_q,
+            noise_qd,
+            noise_tau,
+            out,
+            truth,
+        } => synth_cmd(
+            &robot,
+            effect,
+            joint,
+            magnitude,
+            seed,
+            &excitation,
+            duration,
+            [noise_q, noise_qd, noise_tau],
+            &out,
+            truth,
+        ),
+        Command::Diagnose {
+            robot,
+            train,
+            holdout,
+            json,
+            report,
+        } => diagnose_cmd(&robot, train, holdout, json, report),
+        Command::Eval {
+            robot,
+            states,
+            out,
+            set,
+        } => eval(&robot, states, out, &set),
+    };
+    match result {
+        Ok(()) => ExitCode::SUCCESS,
+        Err(e) => {
+            eprintln!("error: {e}");
+            ExitCode::FAILURE
+        }
+    }
+}
