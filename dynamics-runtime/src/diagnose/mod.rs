@@ -34,11 +34,15 @@ mod candidate;
 mod filter;
 mod fit;
 mod horizon;
+mod parallel;
+mod rank;
 mod refine;
 mod report;
+mod shrink;
 mod signals;
 mod spread;
 pub mod traces;
+mod verdict;
 mod windows;
 mod yardstick;
 
@@ -48,15 +52,12 @@ pub use filter::SavitzkyGolay;
 pub use fit::aicc;
 pub use report::*;
 
-use std::sync::atomic::{AtomicUsize, Ordering};
-
 use nalgebra::SVector;
 use thiserror::Error;
 
 use crate::data::Measured;
 use crate::effects::{EffectKind, Tip};
 use crate::Robot;
-use signals::robust_std;
 
 /// Options of [`diagnose`].
 #[derive(Debug, Clone, PartialEq)]
@@ -179,75 +180,11 @@ pub fn diagnose<R: Robot<N> + Clone + Sync, const N: usize>(
 
     // Fit every candidate, on all cores.
     let candidates = Candidate::all::<N>(&options.kinds);
-    let total = candidates.len();
-    let done = AtomicUsize::new(0);
-    let threads = if options.threads == 0 {
-        std::thread::available_parallelism()
-            .map(|n| n.get())
-            .unwrap_or(1)
-    } else {
-        options.threads
-    };
-    let chunk = total.div_ceil(threads.max(1)).max(1);
-    let fits: Vec<Fit> = std::thread::scope(|s| {
-        let handles: Vec<_> = candidates
-            .chunks(chunk)
-            .map(|cs| {
-                let (p, done) = (&p, &done);
-                s.spawn(move || {
-                    cs.iter()
-                        .map(|&c| {
-                            let f = analysis::fit::<R, N>(c, p);
-                            progress(done.fetch_add(1, Ordering::Relaxed) + 1, total);
-                            f
-                        })
-                        .collect::<Vec<_>>()
-                })
-            })
-            .collect();
-        handles
-            .into_iter()
-            .flat_map(|h| match h.join() {
-                Ok(v) => v,
-                Err(e) => std::panic::resume_unwind(e),
-            })
-            .collect()
-    });
+    let fits = parallel::fit_all::<R, N>(&candidates, &p, options.threads, progress);
 
-    // Best grid variant per (kind, place), ranked by AICc.
-    let mut best: Vec<Fit> = Vec::new();
-    for f in fits {
-        let key = (f.candidate.kind(), f.candidate.joint());
-        match best
-            .iter_mut()
-            .find(|b| (b.candidate.kind(), b.candidate.joint()) == key)
-        {
-            Some(b) if b.aicc(n) <= f.aicc(n) => {}
-            Some(b) => *b = f,
-            None => best.push(f),
-        }
-    }
-    best.sort_by(|a, b| a.aicc(n).total_cmp(&b.aicc(n)));
-    // Parsimony: a richer model that contains a simpler one at the same
-    // joint (Stribeck contains Coulomb; elasticity and backlash contain a
-    // rigid rotor) must beat it clearly, or the simpler one goes first.
-    if best.len() > 1 {
-        let top = best[0].candidate;
-        let simpler = match top {
-            Candidate::Stribeck(j, _) => Some(Candidate::Coulomb(j)),
-            Candidate::Elasticity(j) | Candidate::Backlash(j) => Some(Candidate::Armature(j)),
-            _ => None,
-        };
-        if let Some(s) = simpler {
-            if let Some(i) = best.iter().position(|f| f.candidate == s) {
-                let gain = best[i].aicc(n) - best[0].aicc(n);
-                if gain < options.nesting_margin {
-                    let f = best.remove(i);
-                    best.insert(0, f);
-                }
-            }
-        }
-    }
+    // Best grid variant per (kind, place), ranked by AICc, simpler nested
+    // models first unless the richer one wins clearly.
+    let best = rank::best_per_place(fits, n, options.nesting_margin);
     let tip_name = Tip::of::<R, N>().name::<R, N>().to_string();
     let excess = |sse: f64, sse0: f64, n: usize| -> f64 {
         let gap0 = (sse0 - n as f64).max(1e-12);
@@ -257,7 +194,7 @@ pub fn diagnose<R: Robot<N> + Clone + Sync, const N: usize>(
         .iter()
         .map(|f| {
             let hs = h.sse(&f.corrected(&h));
-            ranked_entry::<R, N>(
+            rank::ranked_entry::<R, N>(
                 f,
                 &tip_name,
                 aicc0,
@@ -269,45 +206,10 @@ pub fn diagnose<R: Robot<N> + Clone + Sync, const N: usize>(
         .collect();
 
     // Verdict.
-    let verdict = match ranked.first() {
-        Some(top) if top.delta_aicc >= options.none_margin && top.holdout_share > 0.0 => {
-            let rival = ranked
-                .iter()
-                .skip(1)
-                .find(|r| top.aicc - r.aicc > -options.ambiguity_margin);
-            Verdict {
-                kind: top.kind.clone(),
-                joint: top.joint.clone(),
-                point: top.point.clone(),
-                status: if rival.is_some() {
-                    "ambiguous"
-                } else {
-                    "clear"
-                }
-                .into(),
-                separating_motion: rival.map(|r| separating_motion(&top.kind, &r.kind)),
-                rival: rival.map(|r| Box::new(r.clone())),
-            }
-        }
-        _ => {
-            let gap = (0..N)
-                .map(|j| rms(&p, &p.sig.residual, j) / p.sig.floor[j])
-                .fold(0.0, f64::max);
-            let word = if gap >= options.unexplained_ratio {
-                "unexplained"
-            } else {
-                "none"
-            };
-            Verdict {
-                kind: word.into(),
-                joint: None,
-                point: None,
-                status: if word == "none" { "within_noise" } else { word }.into(),
-                rival: None,
-                separating_motion: None,
-            }
-        }
-    };
+    let gap = (0..N)
+        .map(|j| rms(&p, &p.sig.residual, j) / p.sig.floor[j])
+        .fold(0.0, f64::max);
+    let verdict = verdict::verdict(&ranked, gap, options);
     let chosen = if verdict.names_effect() {
         best.first()
     } else {
@@ -334,147 +236,18 @@ pub fn diagnose<R: Robot<N> + Clone + Sync, const N: usize>(
         .collect();
 
     // How far it shrinks (held-out data).
-    let after = chosen.map(|f| f.corrected(&h));
-    let effect = chosen.and_then(|f| f.effect());
-    let sim_before = horizon::prediction_error(robot, &h, None);
-    let sim_after = match effect {
-        Some(e) => horizon::prediction_error(robot, &h, Some(e)),
-        None => sim_before,
-    };
-    let hq_noise = position_noise(holdout, &h);
-    let mut gap = [0.0f64; 4];
-    let shrink_joints = (0..N)
-        .map(|j| {
-            let before = rms(&h, &h.sig.residual, j);
-            let aft = after.as_ref().map(|a| rms(&h, a, j)).unwrap_or(before);
-            let above = |x: f64, floor: f64| (x * x - floor * floor).max(0.0).sqrt() / floor;
-            gap[0] += above(before, h.sig.floor[j]).powi(2);
-            gap[1] += above(aft, h.sig.floor[j]).powi(2);
-            gap[2] += above(sim_before[j], hq_noise[j]).powi(2);
-            gap[3] += above(sim_after[j], hq_noise[j]).powi(2);
-            JointShrink {
-                joint: R::JOINT_NAMES[j].to_string(),
-                torque_before: before,
-                torque_after: aft,
-                simulation_before: sim_before[j],
-                simulation_after: sim_after[j],
-            }
-        })
-        .collect();
-    let frac = |b: f64, a: f64| if b > 0.0 { 1.0 - (a / b).sqrt() } else { 0.0 };
-    let torque_fraction = frac(gap[0], gap[1]);
+    let shrink = shrink::shrink(robot, holdout, &h, chosen);
     Ok(Report {
         robot: R::NAME.to_string(),
         samples: [train.len(), holdout.len()],
         where_: Where { joints },
         which: Which { ranked, verdict },
-        shrink: Shrink {
-            joints: shrink_joints,
-            torque_fraction,
-            simulation_fraction: frac(gap[2], gap[3]),
-            fraction: torque_fraction,
-        },
+        shrink,
     })
 }
 
+/// RMS of joint `j` of `r` over the rows in use.
 fn rms<const N: usize>(p: &Prepared<N>, r: &[SVector<f64, N>], j: usize) -> f64 {
     let s: f64 = p.rows.iter().map(|&k| r[k][j].powi(2)).sum();
     (s / p.rows.len().max(1) as f64).sqrt()
-}
-
-/// Position noise per joint: robust spread of raw minus smoothed positions.
-fn position_noise<const N: usize>(m: &Measured<N>, p: &Prepared<N>) -> SVector<f64, N> {
-    let (a, z) = p.sig.range;
-    SVector::from_fn(|j, _| {
-        let d: Vec<f64> = (a..z).map(|k| m.q[k][j] - p.sig.q[k][j]).collect();
-        robust_std(&d).max(1e-12)
-    })
-}
-
-fn ranked_entry<R: Robot<N>, const N: usize>(
-    f: &Fit,
-    tip: &str,
-    aicc0: f64,
-    n: usize,
-    share: f64,
-    holdout_share: f64,
-) -> Ranked {
-    let c = f.candidate;
-    let mut parameters: Vec<Parameter> = c
-        .linear_parameters()
-        .iter()
-        .zip(f.theta.iter().zip(&f.std))
-        .map(|((name, _), (v, s))| Parameter {
-            name: name.to_string(),
-            value: *v,
-            std: *s,
-        })
-        .collect();
-    match c {
-        Candidate::Stribeck(_, vs) => parameters.push(Parameter {
-            name: "vs".into(),
-            value: vs,
-            std: vs * 0.5,
-        }),
-        Candidate::Environment(alpha) => parameters.push(Parameter {
-            name: "alpha".into(),
-            value: alpha,
-            std: 0.25,
-        }),
-        _ => {}
-    }
-    if let (Some(g), false) = (f.motor, matches!(c, Candidate::Armature(_))) {
-        let mut push = |name: &str, value: f64, std: f64| {
-            parameters.push(Parameter {
-                name: name.into(),
-                value,
-                std,
-            })
-        };
-        let sd = f.motor_std.unwrap_or(MotorGuess {
-            jm: f64::INFINITY,
-            stiffness: f64::INFINITY,
-            damping: f64::INFINITY,
-            half_width: f64::INFINITY,
-        });
-        push("motor_inertia", g.jm, sd.jm);
-        if matches!(c, Candidate::Backlash(_)) {
-            push("half_width", g.half_width, sd.half_width);
-            push("contact_stiffness", g.stiffness, sd.stiffness);
-        } else {
-            push("stiffness", g.stiffness, sd.stiffness);
-            push("damping", g.damping, sd.damping);
-        }
-    }
-    let a = f.aicc(n);
-    Ranked {
-        kind: c.kind().name().to_string(),
-        joint: c.joint().map(|j| R::JOINT_NAMES[j].to_string()),
-        point: matches!(c, Candidate::Payload | Candidate::Environment(_)).then(|| tip.to_string()),
-        parameters,
-        share,
-        aicc: a,
-        delta_aicc: aicc0 - a,
-        holdout_share,
-    }
-}
-
-/// A motion that would tell `a` and `b` apart.
-fn separating_motion(a: &str, b: &str) -> String {
-    let pair = |x: &str, y: &str| (a == x && b == y) || (a == y && b == x);
-    if pair("viscous_friction", "armature") {
-        "decorrelate speed and acceleration: a chirp, or fast cruising at low acceleration followed by hard starts at low speed".into()
-    } else if pair("coulomb_friction", "encoder_offset") || pair("payload_mass", "encoder_offset") {
-        "hold still at several poses across the joint's range and reverse the velocity at different positions: gravity's dependence on the angle separates an offset from friction and mass".into()
-    } else if pair("coulomb_friction", "stribeck_friction") {
-        "slow velocity reversals (below 0.1 rad/s) where the breakaway level shows".into()
-    } else if a == "joint_elasticity"
-        || b == "joint_elasticity"
-        || a == "backlash"
-        || b == "backlash"
-    {
-        "quick effort reversals and steps at the joint, so that the motor side rings (elasticity) or crosses its gap (backlash)".into()
-    } else {
-        "a richer excitation: a chirp up to 5 Hz, slow reversals and holds at several poses".into()
-    }
 }
