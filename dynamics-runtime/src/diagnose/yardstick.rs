@@ -124,22 +124,8 @@ pub fn prediction_floor<R: Robot<N> + Clone + Sync, const N: usize>(
     };
     // Windows on all cores.
     let starts: Vec<usize> = (a..).step_by(step).take_while(|s0| s0 + seg < z).collect();
-    let threads = std::thread::available_parallelism().map_or(1, |n| n.get());
-    let chunk = starts.len().div_ceil(threads).max(1);
-    let window = &window;
-    let results: Vec<Option<(SVector<f64, N>, usize)>> = std::thread::scope(|s| {
-        let handles: Vec<_> = starts
-            .chunks(chunk)
-            .map(|c| s.spawn(move || c.iter().map(|&s0| window(s0)).collect::<Vec<_>>()))
-            .collect();
-        handles
-            .into_iter()
-            .flat_map(|h| match h.join() {
-                Ok(v) => v,
-                Err(e) => std::panic::resume_unwind(e),
-            })
-            .collect()
-    });
+    let results: Vec<Option<(SVector<f64, N>, usize)>> =
+        super::parallel::map(&starts, 0, |&s0| window(s0));
     let mut sum = SVector::<f64, N>::zeros();
     let mut count = 0usize;
     for r in results {
