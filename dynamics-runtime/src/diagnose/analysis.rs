@@ -168,13 +168,7 @@ const STIFF_ROTOR: (f64, f64) = (250.0, 0.7);
 /// would otherwise win for that reason alone. Keeps the better of the
 /// two fits of the one parameter.
 fn stiff_rotor<const N: usize>(linear: Fit, j: usize, p: &Prepared<N>) -> Fit {
-    let w = 1.0 / p.sig.floor[j];
-    let base: f64 = p.sse(&p.sig.residual);
-    let own: f64 = p
-        .rows
-        .iter()
-        .map(|&k| (p.sig.residual[k][j] * w).powi(2))
-        .sum();
+    let (w, base, own) = whitened_nominal(p, j);
     let inertia = p.basis.inertia[j];
     let guess = |jm: f64| -> MotorGuess {
         let om = 2.0 * std::f64::consts::PI * STIFF_ROTOR.0;
@@ -240,13 +234,7 @@ fn fit_motor<R: Robot<N>, const N: usize>(c: Candidate, p: &Prepared<N>) -> Fit 
         Candidate::Elasticity(j) => (j, false),
         _ => (0, false),
     };
-    let w = 1.0 / p.sig.floor[j];
-    let base: f64 = p.sse(&p.sig.residual);
-    let own: f64 = p
-        .rows
-        .iter()
-        .map(|&k| (p.sig.residual[k][j] * w).powi(2))
-        .sum();
+    let (w, base, own) = whitened_nominal(p, j);
     let revolute = R::JOINT_KINDS[j] != JointKind::Prismatic;
     // Whitened SSE with the motor side `g` at joint j (smoothing only the
     // rows' windows of the transmitted effort).
@@ -297,4 +285,17 @@ fn fit_motor<R: Robot<N>, const N: usize>(c: Candidate, p: &Prepared<N>) -> Fit 
         sse,
         k: if backlash { 4 } else { 3 },
     }
+}
+
+/// Joint `j`'s whitening weight, the nominal model's whitened SSE over all
+/// joints, and joint `j`'s share of it: what a model changing only joint
+/// `j`'s effort starts from.
+fn whitened_nominal<const N: usize>(p: &Prepared<N>, j: usize) -> (f64, f64, f64) {
+    let w = 1.0 / p.sig.floor[j];
+    let own = p
+        .rows
+        .iter()
+        .map(|&k| (p.sig.residual[k][j] * w).powi(2))
+        .sum();
+    (w, p.sse(&p.sig.residual), own)
 }
