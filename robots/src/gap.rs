@@ -189,7 +189,7 @@ fn effect_for<R: Robot<N>, const N: usize>(
             motor_inertia,
             ..
         } => {
-            let inertia = scales.inertia[joint];
+            let inertia = scales.free_inertia[joint];
             let w = 2.0 * std::f64::consts::PI * m;
             let stiffness = w * w / (1.0 / motor_inertia + 1.0 / inertia);
             Effect::JointElasticity {

@@ -5,7 +5,7 @@
 use super::candidate::MotorGuess;
 
 /// Largest number of evaluations a refinement spends.
-pub const BUDGET: usize = 48;
+pub const BUDGET: usize = 120;
 
 /// Minimises `cost` from `start` (cost `start_cost`) over motor inertia,
 /// stiffness, damping and, for backlash, the half-width; returns the best
@@ -20,7 +20,7 @@ pub fn refine(
     let (mut best, mut best_cost) = (start, start_cost);
     let mut step = 0.35f64; // ln(1.42): about the grid's spacing
     let mut spent = 0;
-    while step > 0.02 && spent < BUDGET {
+    while step > 0.005 && spent < BUDGET {
         let mut improved = false;
         for d in 0..dims {
             for sign in [1.0, -1.0] {

@@ -16,8 +16,15 @@ pub struct Scales<const N: usize> {
     pub peak_effort: SVector<f64, N>,
     /// Peak reference speed.
     pub peak_speed: SVector<f64, N>,
-    /// Mean of the joint's own inertia A[j][j] along the reference.
+    /// Mean of the joint's own inertia A[j][j] along the reference (the
+    /// inertia it moves with every other joint locked).
     pub inertia: SVector<f64, N>,
+    /// Mean of `1 / (A^-1)[j][j]` along the reference: the inertia joint j
+    /// moves when the other joints give way (never above `inertia`). Rotor
+    /// inertias are drawn against it: a rotor large against the joint's
+    /// lightest direction of motion is what makes a controller built on the
+    /// nominal model lose that direction.
+    pub free_inertia: SVector<f64, N>,
     /// Effective mass at the tip along gravity at the start pose,
     /// `1 / (g^T J A^-1 J^T g)` for unit g: the "tip mass" payloads are
     /// measured against.
@@ -31,6 +38,7 @@ impl<const N: usize> Scales<N> {
             peak_effort: SVector::zeros(),
             peak_speed: SVector::zeros(),
             inertia: SVector::zeros(),
+            free_inertia: SVector::zeros(),
             tip_mass: 0.0,
         };
         let steps = 400;
@@ -38,10 +46,16 @@ impl<const N: usize> Scales<N> {
             let r = reference.at(duration * k as f64 / steps as f64);
             let tau = robot.inverse_dynamics(&r.q, &r.qd, &r.qdd);
             let a = robot.mass_matrix(&r.q);
+            let a_inv = a.try_inverse();
             for j in 0..N {
                 s.peak_effort[j] = s.peak_effort[j].max(tau[j].abs());
                 s.peak_speed[j] = s.peak_speed[j].max(r.qd[j].abs());
                 s.inertia[j] += a[(j, j)] / (steps + 1) as f64;
+                let free = match &a_inv {
+                    Some(inv) if inv[(j, j)] > 0.0 => (1.0 / inv[(j, j)]).min(a[(j, j)]),
+                    _ => a[(j, j)],
+                };
+                s.free_inertia[j] += free / (steps + 1) as f64;
             }
         }
         let q0 = reference.at(0.0).q;
@@ -70,10 +84,10 @@ impl<const N: usize> Scales<N> {
 /// | coulomb_friction | Fc = 0.5-3 % of the joint's peak effort |
 /// | viscous_friction | Fv * peak speed = 0.5-3 % of peak effort |
 /// | stribeck_friction | Fc as Coulomb, Fs = 1.3-2 Fc, vs = 0.02-0.1 |
-/// | armature | 5-30 % of the joint's own inertia |
+/// | armature | 5-30 % of the joint's free inertia (`Scales::free_inertia`) |
 /// | payload_mass | 5-50 % of the tip mass |
-/// | joint_elasticity | resonance 5-30 Hz, motor inertia 20 % of the joint's, 5 % damping |
-/// | backlash | half-width 0.5-15 arcmin (revolute) or 10-300 um, contact at ~60 Hz |
+/// | joint_elasticity | resonance 5-30 Hz, motor inertia 20 % of the joint's free inertia, 5 % damping |
+/// | backlash | half-width 0.5-15 arcmin (revolute) or 10-300 um, contact at ~60 Hz, motor inertia as above |
 /// | environment_resistance | mu so that the force at peak tip speed is 1-5 % of m_tip g, alpha 1-2.5 |
 /// | encoder_offset | 0.1-1 deg (revolute) or 0.1-1 mm, either sign |
 /// | time_delay | 1-10 ms |
@@ -81,7 +95,7 @@ impl<const N: usize> Scales<N> {
 /// ```
 /// use dynamics_runtime::effects::EffectKind;
 /// use dynamics_runtime::synth::{draw_effect, Rng, Scales};
-/// let s = Scales::<2> { peak_effort: [10.0, 5.0].into(), peak_speed: [1.0, 1.0].into(), inertia: [1.0, 0.5].into(), tip_mass: 2.0 };
+/// let s = Scales::<2> { peak_effort: [10.0, 5.0].into(), peak_speed: [1.0, 1.0].into(), inertia: [1.0, 0.5].into(), free_inertia: [0.8, 0.4].into(), tip_mass: 2.0 };
 /// let kinds = [dynamics_runtime::JointKind::Revolute; 2];
 /// let e = draw_effect(EffectKind::CoulombFriction, 1, &s, &kinds, 1.0, &mut Rng::new(1)).unwrap();
 /// let dynamics_runtime::effects::Effect::CoulombFriction { fc, .. } = e else { panic!() };
@@ -98,7 +112,8 @@ pub fn draw_effect<const N: usize>(
     let j = joint.min(N - 1);
     let revolute = kinds[j] != JointKind::Prismatic;
     let peak = scales.peak_effort[j].max(1e-6);
-    let inertia = scales.inertia[j].max(1e-9);
+    let free = scales.free_inertia[j].max(1e-9);
+    let locked = scales.inertia[j].max(free);
     Some(match kind {
         EffectKind::None => return None,
         EffectKind::CoulombFriction => Effect::CoulombFriction {
@@ -120,15 +135,15 @@ pub fn draw_effect<const N: usize>(
         }
         EffectKind::Armature => Effect::Armature {
             joint: j,
-            inertia: inertia * rng.uniform(0.05, 0.3),
+            inertia: free * rng.uniform(0.05, 0.3),
         },
         EffectKind::PayloadMass => Effect::PayloadMass {
             mass: scales.tip_mass * rng.uniform(0.05, 0.5),
         },
         EffectKind::JointElasticity => {
-            let jm = 0.2 * inertia;
+            let jm = 0.2 * locked;
             let w = 2.0 * PI * rng.uniform(5.0, 30.0);
-            let stiffness = w * w / (1.0 / jm + 1.0 / inertia);
+            let stiffness = w * w / (1.0 / jm + 1.0 / free);
             Effect::JointElasticity {
                 joint: j,
                 stiffness,
@@ -137,9 +152,9 @@ pub fn draw_effect<const N: usize>(
             }
         }
         EffectKind::Backlash => {
-            let jm = 0.2 * inertia;
+            let jm = 0.2 * locked;
             let w = 2.0 * PI * 60.0;
-            let contact_stiffness = w * w / (1.0 / jm + 1.0 / inertia);
+            let contact_stiffness = w * w / (1.0 / jm + 1.0 / free);
             Effect::Backlash {
                 joint: j,
                 half_width: if revolute {

@@ -3,6 +3,14 @@
 //! controller built on the nominal model (which does not know the effect);
 //! positions, velocities and efforts are recorded at a fixed rate with
 //! sensor noise, sensor faults applied to what is measured.
+//!
+//! The controller is a cascade, as in a real drive: the position loop
+//! closes on the link-side position that is recorded, the velocity
+//! (damping) loop on the drive's own motor encoder. For a rigid joint the
+//! two speeds are one; across a joint with a motor side (elasticity,
+//! backlash) the damping acts where the torque is applied, which keeps the
+//! loop stable without the controller knowing about the effect (a damping
+//! loop closed across a lightly damped spring would not be).
 
 mod draw;
 mod excitation;
@@ -203,6 +211,9 @@ struct Run<'a, R, const N: usize> {
     opts: &'a SynthOptions<N>,
     offset: SVector<f64, N>,
     delay: f64,
+    /// Joints whose drive turns a motor side (elasticity, backlash): their
+    /// velocity loop reads the motor speed.
+    motor: [bool; N],
     /// The random stream after the reference was drawn (sensor noise).
     rng: Rng,
 }
@@ -234,7 +245,11 @@ impl<'a, R: Robot<N> + Clone, const N: usize> Run<'a, R, N> {
         );
         let scales = Scales::of(robot, &reference, opts.duration);
         let (mut offset, mut delay) = (SVector::<f64, N>::zeros(), 0.0);
+        let mut motor = [false; N];
         for e in effects {
+            if let (true, Some(j)) = (e.has_motor(), e.joint()) {
+                motor[j.min(N - 1)] = true;
+            }
             match *e {
                 Effect::EncoderOffset { joint, offset: o } => offset[joint] += o,
                 Effect::TimeDelay { delay: d } => delay += d,
@@ -249,6 +264,7 @@ impl<'a, R: Robot<N> + Clone, const N: usize> Run<'a, R, N> {
             opts,
             offset,
             delay,
+            motor,
             rng,
         })
     }
@@ -291,7 +307,16 @@ impl<'a, R: Robot<N> + Clone, const N: usize> Run<'a, R, N> {
             let q_meas = q_seen + noise_vec(rng, noise.q);
             let qd_meas = qd_seen + noise_vec(rng, noise.qd);
             let r: Reference<N> = self.reference.at(t);
-            let v = r.qdd + (r.q - q_meas) * kp + (r.qd - qd_meas) * kd;
+            // The drive's velocity loop: the motor encoder where there is
+            // a motor side, else the (one) joint speed.
+            let drive_qd = SVector::<f64, N>::from_fn(|j, _| {
+                if self.motor[j] {
+                    sim.state.qmd[j] + noise.qd * rng.normal()
+                } else {
+                    qd_meas[j]
+                }
+            });
+            let v = r.qdd + (r.q - q_meas) * kp + (r.qd - drive_qd) * kd;
             let tau = robot.inverse_dynamics(&q_meas, &qd_meas, &v);
             let mut tau_meas = tau;
             for j in 0..N {
