@@ -86,8 +86,8 @@ impl<const N: usize> Scales<N> {
 /// | stribeck_friction | Fc as Coulomb, Fs = 1.3-2 Fc, vs = 0.02-0.1 |
 /// | armature | 5-30 % of the joint's free inertia (`Scales::free_inertia`) |
 /// | payload_mass | 5-50 % of the tip mass |
-/// | joint_elasticity | resonance 5-30 Hz, motor inertia 20 % of the joint's free inertia, 5 % damping |
-/// | backlash | half-width 0.5-15 arcmin (revolute) or 10-300 um, contact at ~60 Hz, motor inertia as above |
+/// | joint_elasticity | motor inertia 20 % of the joint's own inertia, resonance against the free inertia 5-30 Hz, 5 % damping |
+/// | backlash | half-width 0.5-15 arcmin (revolute) or 10-300 um, motor as above, contact at ~60 Hz |
 /// | environment_resistance | mu so that the force at peak tip speed is 1-5 % of m_tip g, alpha 1-2.5 |
 /// | encoder_offset | 0.1-1 deg (revolute) or 0.1-1 mm, either sign |
 /// | time_delay | 1-10 ms |
