@@ -67,6 +67,12 @@ pub struct Truth {
     /// `synth::Synthesized::snr`; about 0 for a control.
     #[serde(default)]
     pub snr: f64,
+    /// The same ratio for the part of the effect a rigid rotor inertia
+    /// does not explain (`synth::Synthesized::distinct_snr`): what tells
+    /// elasticity and backlash from `armature`, which they contain; equal
+    /// to `snr` for the other effects.
+    #[serde(default)]
+    pub distinct_snr: f64,
 }
 
 /// A synthesis request.
@@ -270,7 +276,7 @@ fn synth_for<R: Robot<N> + Clone, const N: usize>(
         String::from_utf8(out).unwrap_or_default()
     };
     let sized = synthesize_with_size(robot, &effects, &train_opts)?;
-    let snr = sized.snr();
+    let (snr, distinct_snr) = (sized.snr(), sized.distinct_snr());
     let train = sized.data;
     let holdout = synthesize(robot, &effects, &hold_opts)?;
     let kind = effect.map(|e| e.kind()).unwrap_or(EffectKind::None);
@@ -291,6 +297,7 @@ fn synth_for<R: Robot<N> + Clone, const N: usize>(
             seed: req.seed,
             excitation: format!("{:?}", req.excitation),
             snr,
+            distinct_snr,
         },
     })
 }

@@ -15,10 +15,13 @@
 mod draw;
 mod excitation;
 mod rng;
+mod sensors;
 
 pub use draw::{draw_effect, Scales};
 pub use excitation::{Excitation, ExcitationKind};
 pub use rng::Rng;
+
+use sensors::{delayed, noise_vec};
 
 use nalgebra::SVector;
 use thiserror::Error;
@@ -147,6 +150,13 @@ pub struct Synthesized<const N: usize> {
     /// that the controller's reaction to sensor noise, which no sensor
     /// resolves in the motion, does not count as part of a delay.)
     pub effect_rms: SVector<f64, N>,
+    /// Per joint, the RMS of the part of that effort no rigid rotor
+    /// explains: at a joint with a motor side (elasticity, backlash), the
+    /// effort less its least-squares fit by an inertia times the link's
+    /// acceleration; elsewhere the same as `effect_rms`. The size of what
+    /// tells those effects from a plain rotor inertia (`armature`), which
+    /// they contain.
+    pub distinct_rms: SVector<f64, N>,
     /// Per joint, the standard deviation of the effort noise of one sample.
     pub noise_sigma: SVector<f64, N>,
 }
@@ -157,6 +167,14 @@ impl<const N: usize> Synthesized<N> {
     pub fn snr(&self) -> f64 {
         (0..N)
             .map(|j| self.effect_rms[j] / self.noise_sigma[j].max(1e-300))
+            .fold(0.0, f64::max)
+    }
+
+    /// The same ratio for `distinct_rms`: how far the withheld effects
+    /// stand out from a rigid rotor inertia.
+    pub fn distinct_snr(&self) -> f64 {
+        (0..N)
+            .map(|j| self.distinct_rms[j] / self.noise_sigma[j].max(1e-300))
             .fold(0.0, f64::max)
     }
 }
@@ -188,16 +206,17 @@ pub fn synthesize_with_size<R: Robot<N> + Clone, const N: usize>(
     opts: &SynthOptions<N>,
 ) -> Result<Synthesized<N>, SynthError> {
     let run = Run::new(robot, effects, opts)?;
-    let (data, _) = run.record(opts.noise, &mut run.rng.clone())?;
+    let (data, ..) = run.record(opts.noise, &mut run.rng.clone())?;
     let quiet = Noise {
         q: 0.0,
         qd: 0.0,
         tau_relative: 0.0,
     };
-    let (_, effect_rms) = run.record(quiet, &mut run.rng.clone())?;
+    let (_, effect_rms, distinct_rms) = run.record(quiet, &mut run.rng.clone())?;
     Ok(Synthesized {
         data,
         effect_rms,
+        distinct_rms,
         noise_sigma: run.scales.peak_effort * opts.noise.tau_relative,
     })
 }
@@ -214,6 +233,7 @@ struct Run<'a, R, const N: usize> {
     /// Joints whose drive turns a motor side (elasticity, backlash): their
     /// velocity loop reads the motor speed.
     motor: [bool; N],
+
     /// The random stream after the reference was drawn (sensor noise).
     rng: Rng,
 }
@@ -271,12 +291,14 @@ impl<'a, R: Robot<N> + Clone, const N: usize> Run<'a, R, N> {
 
     /// Runs the experiment with sensor noise `noise`; returns what the
     /// sensors recorded and, per joint, the RMS of the applied effort minus
-    /// the nominal inverse dynamics of the noise-free sensor readings.
+    /// the nominal inverse dynamics of the noise-free sensor readings, and
+    /// of what of it no rigid rotor explains at the motor joints.
+    #[allow(clippy::type_complexity)]
     fn record(
         &self,
         noise: Noise,
         rng: &mut Rng,
-    ) -> Result<(Measured<N>, SVector<f64, N>), SynthError> {
+    ) -> Result<(Measured<N>, SVector<f64, N>, SVector<f64, N>), SynthError> {
         let (robot, opts) = (self.robot, self.opts);
         let dt = 1.0 / opts.rate;
         let n = (opts.duration * opts.rate).round() as usize + 1;
@@ -341,52 +363,30 @@ impl<'a, R: Robot<N> + Clone, const N: usize> Run<'a, R, N> {
         // The effort is held over each sample interval: around sample k the
         // motion's mean acceleration (central difference of the velocity)
         // answers the mean of the efforts held before and after it.
-        let mut sum = SVector::<f64, N>::zeros();
+        // Per joint: sum of gap^2, of gap * qdd and of qdd^2 (for the best
+        // rigid rotor at the motor joints).
+        let (mut sum, mut cross, mut acc) = (
+            SVector::<f64, N>::zeros(),
+            SVector::<f64, N>::zeros(),
+            SVector::<f64, N>::zeros(),
+        );
         for k in 1..n.saturating_sub(1) {
             let qdd = (seen[k + 1].1 - seen[k - 1].1) / (2.0 * dt);
             let held = (applied[k - 1] + applied[k]) * 0.5;
             let gap = held - robot.inverse_dynamics(&seen[k].0, &seen[k].1, &qdd);
             sum += gap.component_mul(&gap);
+            cross += gap.component_mul(&qdd);
+            acc += qdd.component_mul(&qdd);
         }
         let count = n.saturating_sub(2).max(1) as f64;
-        Ok((out, (sum / count).map(f64::sqrt)))
+        let effect = (sum / count).map(f64::sqrt);
+        let distinct = SVector::<f64, N>::from_fn(|j, _| {
+            if self.motor[j] && acc[j] > 0.0 {
+                ((sum[j] - cross[j] * cross[j] / acc[j]).max(0.0) / count).sqrt()
+            } else {
+                effect[j]
+            }
+        });
+        Ok((out, effect, distinct))
     }
-}
-
-fn noise_vec<const N: usize>(rng: &mut Rng, sigma: f64) -> SVector<f64, N> {
-    SVector::from_fn(|_, _| sigma * rng.normal())
-}
-
-/// The true (q, qd) at time `t` from samples every `dt`, by cubic Hermite
-/// interpolation; before the start, the initial state.
-fn delayed<const N: usize>(
-    samples: &[(SVector<f64, N>, SVector<f64, N>)],
-    t: f64,
-    dt: f64,
-    first: &(SVector<f64, N>, SVector<f64, N>),
-) -> (SVector<f64, N>, SVector<f64, N>) {
-    if t <= 0.0 {
-        return *first;
-    }
-    let i = ((t / dt).floor() as usize).min(samples.len() - 1);
-    if i + 1 >= samples.len() {
-        return samples[i];
-    }
-    let s = t / dt - i as f64;
-    let ((p0, v0), (p1, v1)) = (samples[i], samples[i + 1]);
-    let (h00, h10, h01, h11) = (
-        2.0 * s.powi(3) - 3.0 * s * s + 1.0,
-        s.powi(3) - 2.0 * s * s + s,
-        -2.0 * s.powi(3) + 3.0 * s * s,
-        s.powi(3) - s * s,
-    );
-    let p = p0 * h00 + v0 * (h10 * dt) + p1 * h01 + v1 * (h11 * dt);
-    let (d00, d10, d01, d11) = (
-        6.0 * s * s - 6.0 * s,
-        3.0 * s * s - 4.0 * s + 1.0,
-        -6.0 * s * s + 6.0 * s,
-        3.0 * s * s - 2.0 * s,
-    );
-    let v = (p0 * d00 + p1 * d01) / dt + v0 * d10 + v1 * d11;
-    (p, v)
 }

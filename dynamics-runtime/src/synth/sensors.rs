@@ -1,0 +1,45 @@
+//! What the sensors of a synthetic run report: noise, and the state late
+//! by a delay.
+
+use nalgebra::SVector;
+
+use super::Rng;
+
+/// A vector of independent normal draws of standard deviation `sigma`.
+pub(super) fn noise_vec<const N: usize>(rng: &mut Rng, sigma: f64) -> SVector<f64, N> {
+    SVector::from_fn(|_, _| sigma * rng.normal())
+}
+
+/// The true (q, qd) at time `t` from samples every `dt`, by cubic Hermite
+/// interpolation; before the start, the initial state.
+pub(super) fn delayed<const N: usize>(
+    samples: &[(SVector<f64, N>, SVector<f64, N>)],
+    t: f64,
+    dt: f64,
+    first: &(SVector<f64, N>, SVector<f64, N>),
+) -> (SVector<f64, N>, SVector<f64, N>) {
+    if t <= 0.0 {
+        return *first;
+    }
+    let i = ((t / dt).floor() as usize).min(samples.len() - 1);
+    if i + 1 >= samples.len() {
+        return samples[i];
+    }
+    let s = t / dt - i as f64;
+    let ((p0, v0), (p1, v1)) = (samples[i], samples[i + 1]);
+    let (h00, h10, h01, h11) = (
+        2.0 * s.powi(3) - 3.0 * s * s + 1.0,
+        s.powi(3) - 2.0 * s * s + s,
+        -2.0 * s.powi(3) + 3.0 * s * s,
+        s.powi(3) - s * s,
+    );
+    let p = p0 * h00 + v0 * (h10 * dt) + p1 * h01 + v1 * (h11 * dt);
+    let (d00, d10, d01, d11) = (
+        6.0 * s * s - 6.0 * s,
+        3.0 * s * s - 4.0 * s + 1.0,
+        -6.0 * s * s + 6.0 * s,
+        3.0 * s * s - 2.0 * s,
+    );
+    let v = (p0 * d00 + p1 * d01) / dt + v0 * d10 + v1 * d11;
+    (p, v)
+}
