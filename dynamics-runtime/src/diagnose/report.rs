@@ -64,7 +64,8 @@ pub struct Parameter {
     pub name: String,
     /// Value (SI).
     pub value: f64,
-    /// Standard deviation (grid-searched parameters: half the grid step).
+    /// Standard deviation (grid-searched parameters: half the grid step);
+    /// infinite (`null` in JSON) where the data do not determine it.
     pub std: f64,
 }
 

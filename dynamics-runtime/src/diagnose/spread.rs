@@ -22,6 +22,13 @@ use super::refine::scaled;
 /// the 40 ms row spacing: a motion phase).
 pub const BANDWIDTH: usize = 10;
 
+/// A logarithm's standard deviation beyond which the parameter counts as
+/// undetermined (reported infinite): a factor e^3 = 20 either way spans
+/// the whole physical range the fit searches, so a number would only
+/// look like information (a backlash half-width fitted where no gap is
+/// ever crossed came out at 7.6e-4 +- 5e6 rad).
+pub const UNDETERMINED_LOG_STD: f64 = 3.0;
+
 /// Relative step of the finite differences (5 %: wide enough to step over
 /// the fine ripple of a backlash objective, whose contact times move in
 /// whole integration steps).
@@ -84,7 +91,7 @@ pub fn motor_std(
     let cov = &bread * meat * &bread * correction;
     let sd = |d: usize| -> f64 {
         let v = cov[(d, d)];
-        if v >= 0.0 {
+        if (0.0..=UNDETERMINED_LOG_STD * UNDETERMINED_LOG_STD).contains(&v) {
             v.sqrt()
         } else {
             f64::INFINITY

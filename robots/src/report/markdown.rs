@@ -31,7 +31,13 @@ fn pct(v: f64) -> String {
 fn parameters(r: &Ranked) -> String {
     r.parameters
         .iter()
-        .map(|p| format!("{} = {} ± {}", p.name, g(p.value), g(p.std)))
+        .map(|p| {
+            if p.std.is_finite() {
+                format!("{} = {} ± {}", p.name, g(p.value), g(p.std))
+            } else {
+                format!("{} = {} (not determined by these data)", p.name, g(p.value))
+            }
+        })
         .collect::<Vec<_>>()
         .join(", ")
 }
