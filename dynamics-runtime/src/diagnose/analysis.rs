@@ -4,10 +4,11 @@
 use nalgebra::{DMatrix, DVector, SVector};
 
 use super::basis::Basis;
-use super::candidate::{
-    motor_feasible, motor_grid, motor_transmitted, motor_transmitted_raw, Candidate, MotorGuess,
-};
+use super::candidate::Candidate;
 use super::fit::{aicc, constrained_least_squares};
+use super::motor::{
+    motor_feasible, motor_grid, motor_transmitted, motor_transmitted_raw, MotorGuess,
+};
 use super::refine::refine;
 use super::signals::Signals;
 use super::spread::motor_std;

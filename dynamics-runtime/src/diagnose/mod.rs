@@ -34,6 +34,7 @@ mod candidate;
 mod filter;
 mod fit;
 mod horizon;
+mod motor;
 mod parallel;
 mod rank;
 mod refine;
@@ -47,9 +48,10 @@ mod windows;
 mod yardstick;
 
 pub use analysis::{Fit, Prepared};
-pub use candidate::{Candidate, MotorGuess};
+pub use candidate::Candidate;
 pub use filter::SavitzkyGolay;
 pub use fit::aicc;
+pub use motor::MotorGuess;
 pub use report::*;
 
 use nalgebra::SVector;

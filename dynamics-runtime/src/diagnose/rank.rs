@@ -2,7 +2,8 @@
 //! by AICc, parsimony between nested models, and the report's entries.
 
 use super::analysis::Fit;
-use super::candidate::{Candidate, MotorGuess};
+use super::candidate::Candidate;
+use super::motor::MotorGuess;
 use super::report::{Parameter, Ranked};
 use crate::Robot;
 

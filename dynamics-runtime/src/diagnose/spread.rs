@@ -15,7 +15,7 @@
 
 use nalgebra::DMatrix;
 
-use super::candidate::MotorGuess;
+use super::motor::MotorGuess;
 use super::refine::scaled;
 
 /// Rows over which residual correlation is summed (10 rows = 0.4 s at
