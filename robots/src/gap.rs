@@ -73,6 +73,11 @@ pub struct Truth {
     /// to `snr` for the other effects.
     #[serde(default)]
     pub distinct_snr: f64,
+    /// The effort noise the training data were recorded with, per-sample
+    /// standard deviation per joint (N m or N): what `dynamics diagnose
+    /// --noise-tau` would be told by a user who knows the sensors.
+    #[serde(default)]
+    pub noise_tau: Vec<f64>,
 }
 
 /// A synthesis request.
@@ -277,6 +282,7 @@ fn synth_for<R: Robot<N> + Clone, const N: usize>(
     };
     let sized = synthesize_with_size(robot, &effects, &train_opts)?;
     let (snr, distinct_snr) = (sized.snr(), sized.distinct_snr());
+    let noise_tau = sized.noise_sigma.iter().copied().collect();
     let train = sized.data;
     let holdout = synthesize(robot, &effects, &hold_opts)?;
     let kind = effect.map(|e| e.kind()).unwrap_or(EffectKind::None);
@@ -298,6 +304,7 @@ fn synth_for<R: Robot<N> + Clone, const N: usize>(
             excitation: format!("{:?}", req.excitation),
             snr,
             distinct_snr,
+            noise_tau,
         },
     })
 }
@@ -338,6 +345,7 @@ pub fn traces_files(
     train: &Path,
     holdout: &Path,
     report: &Report,
+    options: &Options,
 ) -> Result<Traces, GapError> {
     let robot = AnyRobot::by_name(name)?;
     let chosen = report
@@ -346,7 +354,8 @@ pub fn traces_files(
         .names_effect()
         .then(|| report.which.ranked.first())
         .flatten();
-    crate::each_robot!(&robot, r => traces_for(r, train, holdout, chosen))
+    let noise = options.noise.as_ref();
+    crate::each_robot!(&robot, r => traces_for(r, train, holdout, chosen, noise))
 }
 
 fn traces_for<R: Robot<N> + Clone, const N: usize>(
@@ -354,8 +363,9 @@ fn traces_for<R: Robot<N> + Clone, const N: usize>(
     train: &Path,
     holdout: &Path,
     chosen: Option<&dynamics_runtime::diagnose::Ranked>,
+    noise: Option<&dynamics_runtime::diagnose::SensorNoise>,
 ) -> Result<Traces, GapError> {
     let a = read_csv(train, &R::JOINT_NAMES)?;
     let b = read_csv(holdout, &R::JOINT_NAMES)?;
-    Ok(traces(robot, &a, &b, chosen)?)
+    Ok(traces(robot, &a, &b, chosen, noise)?)
 }

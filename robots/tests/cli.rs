@@ -82,6 +82,47 @@ fn synth_then_diagnose_from_files_writes_the_json_report() {
     assert_eq!(report["which"]["verdict"]["kind"], "viscous_friction");
     assert_eq!(report["which"]["verdict"]["joint"], "j3");
     assert!(report["shrink"]["fraction"].as_f64().expect("number") > 0.8);
+    // Stated sensor noise: the truth file's effort noise (per joint) is
+    // accepted and gives the same verdict; a wrong count is refused.
+    let truth_json: serde_json::Value =
+        serde_json::from_str(&std::fs::read_to_string(&truth).expect("truth")).expect("json");
+    let noise_tau: Vec<String> = truth_json["noise_tau"]
+        .as_array()
+        .expect("noise_tau")
+        .iter()
+        .map(|v| v.as_f64().expect("number").to_string())
+        .collect();
+    assert_eq!(noise_tau.len(), 3);
+    let stated = |tau: &str| {
+        dynamics()
+            .args(["diagnose", "--robot", "arm3r", "--train"])
+            .arg(&train)
+            .arg("--holdout")
+            .arg(&holdout)
+            .args([
+                "--noise-q",
+                "2e-5",
+                "--noise-qd",
+                "2e-3",
+                "--noise-tau",
+                tau,
+            ])
+            .output()
+            .expect("runs")
+    };
+    let out = stated(&noise_tau.join(","));
+    let text = String::from_utf8_lossy(&out.stdout);
+    assert!(
+        out.status.success() && text.contains("verdict: viscous_friction j3"),
+        "{text}"
+    );
+    let out = stated("0.1,0.2");
+    assert!(!out.status.success());
+    assert!(
+        String::from_utf8_lossy(&out.stderr).contains("sensor noise `tau`: 2 values given"),
+        "{}",
+        String::from_utf8_lossy(&out.stderr)
+    );
     // A file for another robot is refused with the column named.
     let out = dynamics()
         .args(["diagnose", "--robot", "rrp", "--train"])
@@ -446,7 +487,7 @@ fn report_traces_carry_the_fitted_effect() {
         ("coulomb_friction", Some("j3"))
     );
     let fc = top.parameters[0].value;
-    let t = traces(&robot, &train, &holdout, Some(top)).expect("traces");
+    let t = traces(&robot, &train, &holdout, Some(top), None).expect("traces");
     for data in [&t.train, &t.holdout] {
         for (j, jt) in data.joints.iter().enumerate() {
             assert_eq!(jt.measured.len(), data.t.len());
@@ -479,7 +520,7 @@ fn report_traces_carry_the_fitted_effect() {
     // Every ranked entry (every kind of the vocabulary, with its grid
     // parameter) maps back to a candidate whose series are finite.
     for r in &report.which.ranked {
-        let t = traces(&robot, &train, &holdout, Some(r)).expect("every ranked entry");
+        let t = traces(&robot, &train, &holdout, Some(r), None).expect("every ranked entry");
         for jt in t.train.joints.iter().chain(&t.holdout.joints) {
             assert!(
                 jt.corrected.iter().all(|x| x.is_finite()),
@@ -490,11 +531,11 @@ fn report_traces_carry_the_fitted_effect() {
         }
     }
     // Without an effect, "corrected" is the nominal model.
-    let t = traces(&robot, &train, &holdout, None).expect("traces");
+    let t = traces(&robot, &train, &holdout, None, None).expect("traces");
     assert!(t.holdout.joints.iter().all(|j| j.corrected == j.nominal));
     // A ranked entry naming a joint the robot lacks is an error, not a panic.
     let mut wrong = top.clone();
     wrong.joint = Some("j9".into());
-    let err = traces(&robot, &train, &holdout, Some(&wrong)).expect_err("no j9");
+    let err = traces(&robot, &train, &holdout, Some(&wrong), None).expect_err("no j9");
     assert!(err.to_string().contains("no joint `j9`"), "{err}");
 }

@@ -35,6 +35,7 @@ mod filter;
 mod fit;
 mod horizon;
 mod motor;
+mod noise;
 mod parallel;
 mod rank;
 mod refine;
@@ -52,6 +53,7 @@ pub use candidate::Candidate;
 pub use filter::SavitzkyGolay;
 pub use fit::aicc;
 pub use motor::MotorGuess;
+pub use noise::SensorNoise;
 pub use report::*;
 
 use nalgebra::SVector;
@@ -81,6 +83,10 @@ pub struct Options {
     pub nesting_margin: f64,
     /// Threads (0: all cores).
     pub threads: usize,
+    /// Sensor noise, when known: the torque residual's noise floor is then
+    /// what this noise makes of it (pushed through the same smoothing and
+    /// inverse dynamics), not estimated from the data.
+    pub noise: Option<SensorNoise>,
 }
 
 impl Default for Options {
@@ -92,6 +98,7 @@ impl Default for Options {
             unexplained_ratio: 3.0,
             nesting_margin: 10.0,
             threads: 0,
+            noise: None,
         }
     }
 }
@@ -112,6 +119,14 @@ pub enum DiagnoseError {
         duration: f64,
         /// Samples needed.
         need: usize,
+    },
+    /// Stated sensor noise that cannot be used.
+    #[error("sensor noise `{sensor}`: {reason}")]
+    Noise {
+        /// `q`, `qd` or `tau`.
+        sensor: &'static str,
+        /// Why.
+        reason: String,
     },
     /// The sample interval is not uniform enough.
     #[error("{which} data: the sample interval varies from {min:e} to {max:e} s; resample to a fixed rate")]
@@ -166,9 +181,14 @@ pub fn diagnose<R: Robot<N> + Clone + Sync, const N: usize>(
 ) -> Result<Report, DiagnoseError> {
     check(train, "training")?;
     check(holdout, "held-out")?;
+    let levels = options
+        .noise
+        .as_ref()
+        .map(SensorNoise::per_joint::<N>)
+        .transpose()?;
     let (p, h) = std::thread::scope(|s| {
-        let h = s.spawn(|| Prepared::new(robot, holdout));
-        let p = Prepared::new(robot, train);
+        let h = s.spawn(|| Prepared::with_noise(robot, holdout, levels.as_ref()));
+        let p = Prepared::with_noise(robot, train, levels.as_ref());
         (p, h.join())
     });
     let h = match h {

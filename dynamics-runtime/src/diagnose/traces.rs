@@ -11,6 +11,7 @@ use thiserror::Error;
 
 use super::analysis::{fit, Prepared};
 use super::candidate::Candidate;
+use super::noise::SensorNoise;
 use super::report::Ranked;
 use crate::data::Measured;
 use crate::effects::EffectKind;
@@ -29,6 +30,9 @@ pub enum TracesError {
         /// What is wrong.
         cause: String,
     },
+    /// The stated sensor noise cannot be used.
+    #[error(transparent)]
+    Noise(#[from] super::DiagnoseError),
 }
 
 /// One data set's series (samples with a full smoothing window only).
@@ -72,7 +76,8 @@ pub struct Traces {
 
 /// Series of `train` and `holdout` for `robot`, with `chosen` (normally
 /// `report.which.ranked[0]` when the verdict is not `none`) fitted on
-/// `train`.
+/// `train`; `noise`: the sensor noise the diagnosis was told
+/// (`Options::noise`), for the same noise floors.
 ///
 /// ```
 /// use dynamics_runtime::data::Measured;
@@ -81,7 +86,7 @@ pub struct Traces {
 /// fn plot<R: Robot<3> + Clone + Sync>(robot: &R, train: &Measured<3>, holdout: &Measured<3>) {
 ///     let report = diagnose(robot, train, holdout, &Options::default(), &|_, _| {}).expect("enough data");
 ///     let chosen = report.which.verdict.names_effect().then(|| &report.which.ranked[0]);
-///     let t = traces(robot, train, holdout, chosen).expect("a candidate of this robot");
+///     let t = traces(robot, train, holdout, chosen, None).expect("a candidate of this robot");
 ///     assert_eq!(t.train.joints.len(), 3);
 /// }
 /// ```
@@ -90,10 +95,12 @@ pub fn traces<R: Robot<N> + Clone, const N: usize>(
     train: &Measured<N>,
     holdout: &Measured<N>,
     chosen: Option<&Ranked>,
+    noise: Option<&SensorNoise>,
 ) -> Result<Traces, TracesError> {
     let candidate = chosen.map(candidate::<R, N>).transpose()?;
-    let p = Prepared::new(robot, train);
-    let h = Prepared::new(robot, holdout);
+    let levels = noise.map(SensorNoise::per_joint::<N>).transpose()?;
+    let p = Prepared::with_noise(robot, train, levels.as_ref());
+    let h = Prepared::with_noise(robot, holdout, levels.as_ref());
     let fitted = candidate.map(|c| fit::<R, N>(c, &p));
     let series = |p: &Prepared<N>| -> DataTraces {
         let after = fitted.as_ref().map(|f| f.corrected(p));

@@ -4,7 +4,7 @@
 use std::fmt::Write as _;
 
 use dynamics_runtime::diagnose::traces::Traces;
-use dynamics_runtime::diagnose::{Ranked, Report};
+use dynamics_runtime::diagnose::{Options, Ranked, Report};
 
 use super::figures::{place, RANKED_SHOWN};
 
@@ -47,9 +47,15 @@ fn parameters(r: &Ranked) -> String {
 pub fn markdown(
     report: &Report,
     traces: &Traces,
-    none_margin: f64,
+    options: &Options,
     files: &dyn Fn(&str) -> [String; 3],
 ) -> String {
+    let none_margin = options.none_margin;
+    let floor_from = if options.noise.is_some() {
+        "noise floor made by the stated sensor noise"
+    } else {
+        "noise floor estimated from the data"
+    };
     let mut s = String::new();
     let v = &report.which.verdict;
     let top = report.which.ranked.first();
@@ -69,7 +75,7 @@ pub fn markdown(
         s,
         "Training data: {} samples; held-out data: {} samples. \
          Residual = measured effort minus the nominal model's effort along the measured \
-         motion (both smoothed); noise floor estimated from the data. Prediction error = \
+         motion (both smoothed); {floor_from}. Prediction error = \
          positions of 0.1 s open-loop simulations under the recorded efforts against the \
          measured ones; its yardstick is the same error for an exact model on a twin of \
          the data with the same sensor noise.\n",

@@ -65,7 +65,7 @@ fn joint_files(joint: &str) -> [String; 3] {
 /// let (report, _warnings) = robots::gap::diagnose_files(
 ///     "arm3r", Path::new("train.csv"), Path::new("holdout.csv"), &options, &|_, _| {})?;
 /// let traces = robots::gap::traces_files(
-///     "arm3r", Path::new("train.csv"), Path::new("holdout.csv"), &report)?;
+///     "arm3r", Path::new("train.csv"), Path::new("holdout.csv"), &report, &options)?;
 /// let files = robots::report::render(&report, &traces, &options);
 /// assert_eq!(files[0].0, "report.md");
 /// # Ok::<(), robots::gap::GapError>(())
@@ -74,7 +74,7 @@ pub fn render(report: &Report, traces: &Traces, options: &Options) -> Vec<(Strin
     let corrected = report.which.verdict.names_effect();
     let mut out = vec![(
         "report.md".to_string(),
-        markdown::markdown(report, traces, options.none_margin, &joint_files),
+        markdown::markdown(report, traces, options, &joint_files),
     )];
     for (j, gap) in report.where_.joints.iter().enumerate() {
         let (Some(train), Some(hold)) = (traces.train.joints.get(j), traces.holdout.joints.get(j))
@@ -115,7 +115,7 @@ pub fn render(report: &Report, traces: &Traces, options: &Options) -> Vec<(Strin
 /// std::fs::write(&holdout, &data.holdout)?;
 /// let options = Options::default();
 /// let (report, _warnings) = diagnose_files("arm3r", &train, &holdout, &options, &|_, _| {})?;
-/// let traces = traces_files("arm3r", &train, &holdout, &report)?;
+/// let traces = traces_files("arm3r", &train, &holdout, &report, &options)?;
 /// let written = robots::report::write(&dir.join("report"), &report, &traces, &options)?;
 /// assert!(written.iter().any(|p| p.ends_with("report.md")));
 /// assert!(written.iter().any(|p| p.ends_with("residual-j2.svg")));

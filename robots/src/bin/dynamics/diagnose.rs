@@ -13,6 +13,7 @@ pub fn diagnose_cmd(
     holdout: Option<PathBuf>,
     json: Option<PathBuf>,
     report_dir: Option<PathBuf>,
+    noise: Option<dynamics_runtime::diagnose::SensorNoise>,
 ) -> Res {
     use dynamics_runtime::diagnose::Options;
     use indicatif::{ProgressBar, ProgressStyle};
@@ -50,7 +51,10 @@ pub fn diagnose_cmd(
         bar.set_length(total as u64);
         bar.set_position(done as u64);
     };
-    let options = Options::default();
+    let options = Options {
+        noise,
+        ..Options::default()
+    };
     let (report, warnings) =
         robots::gap::diagnose_files(robot, &train, &holdout, &options, &progress)?;
     bar.finish_and_clear();
@@ -113,7 +117,7 @@ pub fn diagnose_cmd(
         eprintln!("wrote {}", path.display());
     }
     if let Some(dir) = report_dir {
-        let traces = robots::gap::traces_files(robot, &train, &holdout, &report)?;
+        let traces = robots::gap::traces_files(robot, &train, &holdout, &report, &options)?;
         robots::report::write(&dir, &report, &traces, &options)?;
         eprintln!("wrote the report to {}", dir.join("report.md").display());
     }

@@ -110,6 +110,27 @@ enum Command {
         /// windows, measured vs nominal vs corrected, the ranking) and report.json.
         #[arg(long, value_name = "DIR")]
         report: Option<PathBuf>,
+        /// Known effort noise, per-sample standard deviation (N m or N): one value, or one per
+        /// joint separated by commas. Given, the noise floor comes from the stated noise
+        /// (with --noise-q and --noise-qd, default 0) instead of being estimated from the data.
+        #[arg(long, value_delimiter = ',', value_name = "SIGMA[,..]")]
+        noise_tau: Option<Vec<f64>>,
+        /// Known position noise (rad or m), one value or one per joint; needs --noise-tau.
+        #[arg(
+            long,
+            value_delimiter = ',',
+            value_name = "SIGMA[,..]",
+            requires = "noise_tau"
+        )]
+        noise_q: Option<Vec<f64>>,
+        /// Known velocity noise (rad/s or m/s), one value or one per joint; needs --noise-tau.
+        #[arg(
+            long,
+            value_delimiter = ',',
+            value_name = "SIGMA[,..]",
+            requires = "noise_tau"
+        )]
+        noise_qd: Option<Vec<f64>>,
     },
     /// Evaluate tau, M, g, C, nle, ddq and the energies at given states.
     Eval {
@@ -136,6 +157,9 @@ fn main() -> ExitCode {
         holdout: None,
         json: None,
         report: None,
+        noise_tau: None,
+        noise_q: None,
+        noise_qd: None,
     }) {
         Command::Check => check(),
         Command::List => {
@@ -176,7 +200,17 @@ fn main() -> ExitCode {
             holdout,
             json,
             report,
-        } => diagnose_cmd(&robot, train, holdout, json, report),
+            noise_tau,
+            noise_q,
+            noise_qd,
+        } => {
+            let noise = noise_tau.map(|tau| dynamics_runtime::diagnose::SensorNoise {
+                q: noise_q.unwrap_or_else(|| vec![0.0]),
+                qd: noise_qd.unwrap_or_else(|| vec![0.0]),
+                tau,
+            });
+            diagnose_cmd(&robot, train, holdout, json, report, noise)
+        }
         Command::Eval {
             robot,
             states,
