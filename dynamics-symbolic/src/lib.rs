@@ -8,7 +8,7 @@
 //!   (`c + sum k_i t_i`), an n-ary [`Node::Product`] (`k * prod f_i^e_i`,
 //!   integer exponents, so division and powers are products), or a call
 //!   (sin, cos, tanh, sqrt, abs).
-//! - Builders simplify on construction (`build.rs`): constant folding that
+//! - Builders simplify on construction (`build/`): constant folding that
 //!   never makes a NaN or an infinity, flat sorted sums and products with
 //!   like terms collected, negation as a coefficient, `sin^2 + cos^2 = 1`,
 //!   sin/cos parity. Products are not distributed over sums.
