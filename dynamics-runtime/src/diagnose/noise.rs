@@ -4,9 +4,9 @@
 //! the data, instead of being estimated from the data (where an effect
 //! with fast content could pass for noise).
 
-use nalgebra::SVector;
+use nalgebra::{DMatrix, DVector, SVector};
 
-use super::signals::Signals;
+use super::signals::{robust_std, Signals};
 use super::DiagnoseError;
 use crate::data::Measured;
 use crate::synth::Rng;
@@ -96,4 +96,85 @@ pub(super) fn known_floor<R: Robot<N>, const N: usize>(
         sum += d.component_mul(&d);
     }
     (sum / (z - a).max(1) as f64).map(|s| s.sqrt().max(1e-12))
+}
+
+/// The sensors' per-sample noise levels (q, qd, tau per joint) estimated
+/// from the data: raw minus smoothed positions and velocities (variance
+/// sigma^2 (1 - w0) for white noise, w0 the smoother's centre weight), and
+/// [`effort_sensor_noise`] for the efforts.
+pub(super) fn sensor_levels<const N: usize>(
+    m: &Measured<N>,
+    sig: &Signals<N>,
+) -> [SVector<f64, N>; 3] {
+    let sg = &sig.sg;
+    let h = sg.half();
+    let (a, z) = sig.range;
+    let w0 = sg.weights(0)[h];
+    let gain = 1.0 / (1.0 - w0).max(0.25).sqrt();
+    let spread = |d: Vec<f64>| (robust_std(&d) * gain).max(1e-15);
+    let sigma_q: SVector<f64, N> =
+        SVector::from_fn(|j, _| spread((a..z).map(|k| m.q[k][j] - sig.q[k][j]).collect()));
+    let sigma_qd: SVector<f64, N> = SVector::from_fn(|j, _| {
+        if m.qd_measured {
+            spread((a..z).map(|k| m.qd[k][j] - sig.qd[k][j]).collect())
+        } else {
+            0.0
+        }
+    });
+    let sigma_tau = effort_sensor_noise(m, sig).map(|s| (s * gain).max(1e-15));
+    [sigma_q, sigma_qd, sigma_tau]
+}
+
+/// Samples per block of the regression in [`effort_sensor_noise`].
+const BLOCK: usize = 500;
+
+/// Robust spread per joint of the recorded efforts' fast part (raw minus
+/// smoothed) that the fast part of the measured positions and velocities
+/// does not explain. A feedback controller turns the sensors' position and
+/// velocity noise into real effort jitter that moves the robot and belongs
+/// in the prediction; what is left is effort that was recorded but not
+/// applied. Fitted by least squares in blocks of [`BLOCK`] samples (the
+/// controller's gains through the inertia vary with the pose).
+fn effort_sensor_noise<const N: usize>(m: &Measured<N>, sig: &Signals<N>) -> SVector<f64, N> {
+    let sg = &sig.sg;
+    let (a, z) = sig.range;
+    let fast = |v: &[SVector<f64, N>]| -> Vec<SVector<f64, N>> {
+        let mut out = vec![SVector::<f64, N>::zeros(); v.len()];
+        for j in 0..N {
+            let x: Vec<f64> = v.iter().map(|s| s[j]).collect();
+            for (k, y) in sg.apply(&x, 0).iter().enumerate() {
+                out[k][j] = x[k] - y;
+            }
+        }
+        out
+    };
+    let (eq, eqd, et) = (fast(&m.q), fast(&m.qd), fast(&m.tau));
+    let cols = if m.qd_measured { 2 * N } else { N };
+    let mut left: Vec<Vec<f64>> = vec![Vec::new(); N];
+    let mut k0 = a;
+    while k0 + BLOCK <= z {
+        let x = DMatrix::from_fn(BLOCK, cols, |r, c| {
+            if c < N {
+                eq[k0 + r][c]
+            } else {
+                eqd[k0 + r][c - N]
+            }
+        });
+        let svd = x.clone().svd(true, true);
+        for (j, l) in left.iter_mut().enumerate() {
+            let y = DVector::from_fn(BLOCK, |r, _| et[k0 + r][j]);
+            match svd.solve(&y, 1e-12) {
+                Ok(theta) => l.extend((&y - &x * theta).iter()),
+                Err(_) => l.extend(y.iter()),
+            }
+        }
+        k0 += BLOCK;
+    }
+    SVector::from_fn(|j, _| {
+        if left[j].is_empty() {
+            robust_std(&(a..z).map(|k| et[k][j]).collect::<Vec<_>>())
+        } else {
+            robust_std(&left[j])
+        }
+    })
 }

@@ -15,11 +15,11 @@
 //! the model predicts the motion as well as an exact model could on
 //! these data.
 
-use nalgebra::{DMatrix, DVector, SVector};
+use nalgebra::SVector;
 
 use super::analysis::Prepared;
 use super::horizon::{HORIZON, SPACING};
-use super::signals::robust_std;
+use super::noise::sensor_levels;
 use crate::data::Measured;
 use crate::effects::Plant;
 use crate::ode::Tolerances;
@@ -41,20 +41,7 @@ pub fn prediction_floor<R: Robot<N> + Clone + Sync, const N: usize>(
     let sg = &sig.sg;
     let h = sg.half();
     let (a, z) = sig.range;
-    // Raw minus smoothed has variance sigma^2 (1 - w0) for white noise.
-    let w0 = sg.weights(0)[h];
-    let gain = 1.0 / (1.0 - w0).max(0.25).sqrt();
-    let spread = |d: Vec<f64>| (robust_std(&d) * gain).max(1e-15);
-    let sigma_q: SVector<f64, N> =
-        SVector::from_fn(|j, _| spread((a..z).map(|k| m.q[k][j] - sig.q[k][j]).collect()));
-    let sigma_qd: SVector<f64, N> = SVector::from_fn(|j, _| {
-        if m.qd_measured {
-            spread((a..z).map(|k| m.qd[k][j] - sig.qd[k][j]).collect())
-        } else {
-            0.0
-        }
-    });
-    let sigma_tau = effort_sensor_noise(m, p).map(|s| (s * gain).max(1e-15));
+    let [sigma_q, sigma_qd, sigma_tau] = sensor_levels(m, sig);
     let Ok(plant) = Plant::new(robot.clone(), vec![]) else {
         return sigma_q;
     };
@@ -139,59 +126,4 @@ pub fn prediction_floor<R: Robot<N> + Clone + Sync, const N: usize>(
         return sigma_q;
     }
     (sum / count as f64).map(|x| x.sqrt().max(1e-15))
-}
-
-/// Samples per block of the regression in [`effort_sensor_noise`].
-const BLOCK: usize = 500;
-
-/// Robust spread per joint of the recorded efforts' fast part (raw minus
-/// smoothed) that the fast part of the measured positions and velocities
-/// does not explain. A feedback controller turns the sensors' position and
-/// velocity noise into real effort jitter that moves the robot and belongs
-/// in the prediction; what is left is effort that was recorded but not
-/// applied. Fitted by least squares in blocks of [`BLOCK`] samples (the
-/// controller's gains through the inertia vary with the pose).
-fn effort_sensor_noise<const N: usize>(m: &Measured<N>, p: &Prepared<N>) -> SVector<f64, N> {
-    let sig = &p.sig;
-    let sg = &sig.sg;
-    let (a, z) = sig.range;
-    let fast = |v: &[SVector<f64, N>]| -> Vec<SVector<f64, N>> {
-        let mut out = vec![SVector::<f64, N>::zeros(); v.len()];
-        for j in 0..N {
-            let x: Vec<f64> = v.iter().map(|s| s[j]).collect();
-            for (k, y) in sg.apply(&x, 0).iter().enumerate() {
-                out[k][j] = x[k] - y;
-            }
-        }
-        out
-    };
-    let (eq, eqd, et) = (fast(&m.q), fast(&m.qd), fast(&m.tau));
-    let cols = if m.qd_measured { 2 * N } else { N };
-    let mut left: Vec<Vec<f64>> = vec![Vec::new(); N];
-    let mut k0 = a;
-    while k0 + BLOCK <= z {
-        let x = DMatrix::from_fn(BLOCK, cols, |r, c| {
-            if c < N {
-                eq[k0 + r][c]
-            } else {
-                eqd[k0 + r][c - N]
-            }
-        });
-        let svd = x.clone().svd(true, true);
-        for (j, l) in left.iter_mut().enumerate() {
-            let y = DVector::from_fn(BLOCK, |r, _| et[k0 + r][j]);
-            match svd.solve(&y, 1e-12) {
-                Ok(theta) => l.extend((&y - &x * theta).iter()),
-                Err(_) => l.extend(y.iter()),
-            }
-        }
-        k0 += BLOCK;
-    }
-    SVector::from_fn(|j, _| {
-        if left[j].is_empty() {
-            robust_std(&(a..z).map(|k| et[k][j]).collect::<Vec<_>>())
-        } else {
-            robust_std(&left[j])
-        }
-    })
 }
