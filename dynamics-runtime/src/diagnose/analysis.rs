@@ -9,7 +9,7 @@ use super::fit::{aicc, constrained_least_squares};
 use super::motor::{
     motor_feasible, motor_grid, motor_transmitted, motor_transmitted_raw, MotorGuess,
 };
-use super::noise::known_floor;
+use super::noise::{known_floor, sensor_levels};
 use super::refine::refine;
 use super::signals::Signals;
 use super::spread::motor_std;
@@ -35,18 +35,20 @@ impl<const N: usize> Prepared<N> {
         Self::with_noise(robot, m, None)
     }
 
-    /// Prepares `m` for `robot`, the noise floor made by sensor noise of
-    /// `levels` (q, qd, tau per joint) when they are known, else estimated
-    /// from the data.
+    /// Prepares `m` for `robot`; the torque residual's noise floor is what
+    /// sensor noise of `levels` (q, qd, tau per joint) makes of it, the
+    /// levels estimated from the data when not known (`noise.rs`).
     pub fn with_noise<R: Robot<N>>(
         robot: &R,
         m: &Measured<N>,
         levels: Option<&[SVector<f64, N>; 3]>,
     ) -> Self {
         let mut sig = Signals::new(robot, m);
-        if let Some(levels) = levels {
-            sig.floor = known_floor(robot, m, &sig, levels);
-        }
+        let levels = match levels {
+            Some(l) => *l,
+            None => sensor_levels(m, &sig),
+        };
+        sig.floor = known_floor(robot, m, &sig, &levels);
         let basis = Basis::new(robot, &sig);
         let h = sig.sg.half();
         let (a, z) = sig.range;

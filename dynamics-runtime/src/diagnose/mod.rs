@@ -7,7 +7,9 @@
 //! Method: the torque residual `tau - ID(q, qd, qdd)` along the measured
 //! motion, every signal smoothed by one Savitzky-Golay filter (40 ms
 //! half-width; accelerations from its derivative, never from double
-//! differencing), rows whitened by a noise floor estimated from the data.
+//! differencing), rows whitened by the residual's noise floor: one draw of
+//! the sensor noise (levels stated by the user, or estimated from the
+//! data) pushed through the same smoothing and inverse dynamics.
 //! Effects linear in their parameters (friction, rotor inertia, payload,
 //! resistance, encoder offset through the emitted perturbation Jacobian K,
 //! delay through the model effort's rate) are fitted by sign-constrained
@@ -85,7 +87,8 @@ pub struct Options {
     pub threads: usize,
     /// Sensor noise, when known: the torque residual's noise floor is then
     /// what this noise makes of it (pushed through the same smoothing and
-    /// inverse dynamics), not estimated from the data.
+    /// inverse dynamics) rather than what noise of the levels estimated
+    /// from the data makes of it.
     pub noise: Option<SensorNoise>,
 }
 

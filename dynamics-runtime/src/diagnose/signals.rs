@@ -1,7 +1,7 @@
 //! From measured samples to what the diagnosis works on: smoothed positions,
 //! velocities and accelerations (no double differencing of raw data), the
 //! smoothed efforts, the nominal model's efforts along the measured motion,
-//! their difference (the torque residual) and its noise floor.
+//! their difference (the torque residual).
 
 use nalgebra::SVector;
 
@@ -17,9 +17,6 @@ use crate::Robot;
 pub const SMOOTHING_HALF_WIDTH: f64 = 0.04;
 /// Half-width of the light smoother of velocities, s.
 pub const LIGHT_HALF_WIDTH: f64 = 0.004;
-/// Half-width of the wide smoother that separates the slow part of the
-/// residual (effects) from its noise, s.
-const WIDE_HALF_WIDTH: f64 = 0.1;
 
 /// One data set, prepared.
 #[derive(Debug, Clone)]
@@ -50,7 +47,8 @@ pub struct Signals<const N: usize> {
     pub model_rate: Vec<SVector<f64, N>>,
     /// `tau - model`.
     pub residual: Vec<SVector<f64, N>>,
-    /// Noise floor of the smoothed residual per joint.
+    /// Noise floor of the smoothed residual per joint (zero here; set by
+    /// `Prepared` from the sensor noise, `noise.rs`).
     pub floor: SVector<f64, N>,
     /// The filter.
     pub sg: SavitzkyGolay,
@@ -121,7 +119,7 @@ impl<const N: usize> Signals<N> {
                 .collect();
             set_column(&mut model_rate, j, &sg.apply(&mj, 1));
         }
-        let mut s = Signals {
+        Signals {
             model_rate,
             dt,
             range,
@@ -136,63 +134,12 @@ impl<const N: usize> Signals<N> {
             residual,
             floor: SVector::zeros(),
             sg,
-        };
-        s.floor = s.noise_floor();
-        s
+        }
     }
 
     /// Number of samples with a full window.
     pub fn valid(&self) -> usize {
         self.range.1.saturating_sub(self.range.0)
-    }
-
-    /// Per joint: the residual's part above a wide smoother, robust
-    /// standard deviation, scaled to the noise the narrow smoother passes
-    /// (assuming white noise before smoothing).
-    fn noise_floor(&self) -> SVector<f64, N> {
-        let wide_half = ((WIDE_HALF_WIDTH / self.dt).round() as usize).max(self.sg.half() + 2);
-        let wide = SavitzkyGolay::new(wide_half, self.dt);
-        // Gain of (narrow - wide o narrow) against narrow, for white noise.
-        let len = 2 * (wide_half + self.sg.half()) + 1;
-        let mut impulse = vec![0.0; 3 * len];
-        impulse[len + len / 2] = 1.0;
-        let narrow = self
-            .sg
-            .apply(&impulse, 0)
-            .iter()
-            .map(|x| if x.is_nan() { 0.0 } else { *x })
-            .collect::<Vec<_>>();
-        let both = wide.apply(&narrow, 0);
-        let hp: f64 = narrow
-            .iter()
-            .zip(&both)
-            .map(|(a, b)| if b.is_nan() { 0.0 } else { (a - b).powi(2) })
-            .sum::<f64>()
-            .sqrt();
-        let nw: f64 = narrow.iter().map(|a| a * a).sum::<f64>().sqrt();
-        let gain = if hp > 0.0 { nw / hp } else { 1.0 };
-        let mut floor = SVector::zeros();
-        let (a, b) = self.range;
-        for j in 0..N {
-            let r: Vec<f64> = (0..self.t.len())
-                .map(|k| {
-                    if k >= a && k < b {
-                        self.residual[k][j]
-                    } else {
-                        f64::NAN
-                    }
-                })
-                .collect();
-            let slow = wide.apply(&r, 0);
-            let hf: Vec<f64> = r
-                .iter()
-                .zip(&slow)
-                .filter(|(x, y)| x.is_finite() && y.is_finite())
-                .map(|(x, y)| x - y)
-                .collect();
-            floor[j] = (robust_std(&hf) * gain).max(1e-12);
-        }
-        floor
     }
 }
 

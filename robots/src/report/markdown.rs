@@ -54,7 +54,7 @@ pub fn markdown(
     let floor_from = if options.noise.is_some() {
         "noise floor made by the stated sensor noise"
     } else {
-        "noise floor estimated from the data"
+        "noise floor made by sensor noise of the levels estimated from the data"
     };
     let mut s = String::new();
     let v = &report.which.verdict;

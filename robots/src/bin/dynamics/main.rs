@@ -112,7 +112,7 @@ enum Command {
         report: Option<PathBuf>,
         /// Known effort noise, per-sample standard deviation (N m or N): one value, or one per
         /// joint separated by commas. Given, the noise floor comes from the stated noise
-        /// (with --noise-q and --noise-qd, default 0) instead of being estimated from the data.
+        /// (with --noise-q and --noise-qd, default 0) instead of noise levels estimated from the data.
         #[arg(long, value_delimiter = ',', value_name = "SIGMA[,..]")]
         noise_tau: Option<Vec<f64>>,
         /// Known position noise (rad or m), one value or one per joint; needs --noise-tau.
