@@ -128,6 +128,11 @@ fn options<const N: usize>(name: &str, req: &SynthRequest, seed: u64) -> SynthOp
     }
 }
 
+/// Largest ratio of a joint's locked to free inertia at which a drawn
+/// motor-side effect may sit there: its rotor, 20 % of the locked inertia,
+/// then at most quadruples the free one (1 + 0.2 x 15 = 4).
+const MOTOR_RATIO: f64 = 15.0;
+
 /// The effect a request asks for (drawn where it leaves things open).
 fn effect_for<R: Robot<N>, const N: usize>(
     robot: &R,
@@ -139,6 +144,14 @@ fn effect_for<R: Robot<N>, const N: usize>(
         Some(k) => k,
         None => EffectKind::ALL[1 + rng.below(EffectKind::ALL.len() - 1)],
     };
+    let reference = Excitation::new(
+        opts.excitation,
+        opts.home,
+        opts.amplitude,
+        opts.duration,
+        &mut Rng::new(opts.seed),
+    );
+    let scales = Scales::of(robot, &reference, opts.duration);
     let joint = match &req.joint {
         Some(name) => R::joint_index(name).ok_or_else(|| {
             GapError::Request(format!(
@@ -148,26 +161,36 @@ fn effect_for<R: Robot<N>, const N: usize>(
             ))
         })?,
         None => {
+            // A motor side (rotor 20 % of the joint's locked inertia, see
+            // `draw_effect`) only where the controller can carry it: where
+            // it at most quadruples the joint's free inertia, the lightest
+            // it moves. (On the rrp arm, a 10 kg point load on links of a
+            // few hundredths of a kg m^2, q1 and q2 move 70 times more
+            // inertia locked than free: such a rotor leaves their light
+            // direction almost without stiffness and the run drifts off.)
+            let motor = matches!(kind, EffectKind::JointElasticity | EffectKind::Backlash);
+            let carried: Vec<usize> = (0..N)
+                .filter(|&j| !motor || scales.inertia[j] <= MOTOR_RATIO * scales.free_inertia[j])
+                .collect();
+            let carried = if carried.is_empty() {
+                (0..N).collect()
+            } else {
+                carried
+            };
             // Angle-based magnitudes (backlash, offsets) go to revolute joints.
-            let revolute: Vec<usize> = (0..N)
+            let revolute: Vec<usize> = carried
+                .iter()
+                .copied()
                 .filter(|&j| R::JOINT_KINDS[j] == dynamics_runtime::JointKind::Revolute)
                 .collect();
             let pool: Vec<usize> = if revolute.is_empty() {
-                (0..N).collect()
+                carried
             } else {
                 revolute
             };
             pool[rng.below(pool.len())]
         }
     };
-    let reference = Excitation::new(
-        opts.excitation,
-        opts.home,
-        opts.amplitude,
-        opts.duration,
-        &mut Rng::new(opts.seed),
-    );
-    let scales = Scales::of(robot, &reference, opts.duration);
     let tip = Tip::of::<R, N>();
     let tip_speed = (0..=200)
         .map(|k| {
