@@ -27,6 +27,9 @@ pub struct Prepared<const N: usize> {
     pub basis: Basis<N>,
     /// Sample indices used as rows (every half-window, away from the edges).
     pub rows: Vec<usize>,
+    /// Sensor noise levels per joint (q, qd, tau; stated, or estimated
+    /// from the data) behind the noise floor and the prediction yardstick.
+    pub levels: [SVector<f64, N>; 3],
 }
 
 impl<const N: usize> Prepared<N> {
@@ -53,7 +56,12 @@ impl<const N: usize> Prepared<N> {
         let h = sig.sg.half();
         let (a, z) = sig.range;
         let rows = (a + h..z.saturating_sub(h)).step_by(h.max(1)).collect();
-        Prepared { sig, basis, rows }
+        Prepared {
+            sig,
+            basis,
+            rows,
+            levels,
+        }
     }
 
     /// Whitened residual sum of squares of `r` over the rows.

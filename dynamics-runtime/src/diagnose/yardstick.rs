@@ -6,8 +6,9 @@
 //! nominal model explains exactly: the model itself, started from the
 //! smoothed measured state, driven by its own efforts along the measured
 //! motion (held from sample to sample as the recorded ones are). Sensor
-//! noise of the levels estimated from the data (raw minus smoothed
-//! positions, velocities and efforts) is added to what the twin records;
+//! noise of the data's levels (`Prepared::levels`: stated by the user, or
+//! estimated from raw minus smoothed positions, velocities and efforts)
+//! is added to what the twin records;
 //! then the twin goes through the procedure of the prediction error
 //! (smoothing, the start state from the smoothed samples, open-loop
 //! simulation under the recorded efforts, comparison with the smoothed
@@ -19,7 +20,6 @@ use nalgebra::SVector;
 
 use super::analysis::Prepared;
 use super::horizon::{HORIZON, SPACING};
-use super::noise::sensor_levels;
 use crate::data::Measured;
 use crate::effects::Plant;
 use crate::ode::Tolerances;
@@ -41,7 +41,7 @@ pub fn prediction_floor<R: Robot<N> + Clone + Sync, const N: usize>(
     let sg = &sig.sg;
     let h = sg.half();
     let (a, z) = sig.range;
-    let [sigma_q, sigma_qd, sigma_tau] = sensor_levels(m, sig);
+    let [sigma_q, sigma_qd, sigma_tau] = p.levels;
     let Ok(plant) = Plant::new(robot.clone(), vec![]) else {
         return sigma_q;
     };
