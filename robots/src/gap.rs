@@ -129,8 +129,9 @@ fn options<const N: usize>(name: &str, req: &SynthRequest, seed: u64) -> SynthOp
 }
 
 /// Largest ratio of a joint's locked to free inertia at which a drawn
-/// motor-side effect may sit there: its rotor, 20 % of the locked inertia,
-/// then at most quadruples the free one (1 + 0.2 x 15 = 4).
+/// rotor (armature, or the motor side of elasticity and backlash: 5-30 %
+/// of the locked inertia) may sit there. arm3r's joints reach 12, the rrp
+/// arm's q1 and q2 about 70.
 const MOTOR_RATIO: f64 = 15.0;
 
 /// The effect a request asks for (drawn where it leaves things open).
@@ -161,14 +162,17 @@ fn effect_for<R: Robot<N>, const N: usize>(
             ))
         })?,
         None => {
-            // A motor side (rotor 20 % of the joint's locked inertia, see
-            // `draw_effect`) only where the controller can carry it: where
-            // it at most quadruples the joint's free inertia, the lightest
-            // it moves. (On the rrp arm, a 10 kg point load on links of a
-            // few hundredths of a kg m^2, q1 and q2 move 70 times more
-            // inertia locked than free: such a rotor leaves their light
-            // direction almost without stiffness and the run drifts off.)
-            let motor = matches!(kind, EffectKind::JointElasticity | EffectKind::Backlash);
+            // A rotor (armature, motor side: a share of the joint's locked
+            // inertia, see `draw_effect`) only where the controller can
+            // carry it: see MOTOR_RATIO. (On the rrp arm, a 10 kg point
+            // load on links of a few hundredths of a kg m^2, q1 and q2 move
+            // 70 times more inertia locked than free: a rotor there leaves
+            // their light direction almost without stiffness under the
+            // nominal computed-torque loop, and the run drifts off.)
+            let motor = matches!(
+                kind,
+                EffectKind::Armature | EffectKind::JointElasticity | EffectKind::Backlash
+            );
             let carried: Vec<usize> = (0..N)
                 .filter(|&j| !motor || scales.inertia[j] <= MOTOR_RATIO * scales.free_inertia[j])
                 .collect();

@@ -20,10 +20,10 @@ pub struct Scales<const N: usize> {
     /// inertia it moves with every other joint locked).
     pub inertia: SVector<f64, N>,
     /// Mean of `1 / (A^-1)[j][j]` along the reference: the inertia joint j
-    /// moves when the other joints give way (never above `inertia`). Rotor
-    /// inertias are drawn against it: a rotor large against the joint's
-    /// lightest direction of motion is what makes a controller built on the
-    /// nominal model lose that direction.
+    /// moves when the other joints give way (never above `inertia`): the
+    /// link side of a motor-side resonance. A rotor large against it is
+    /// what makes a controller built on the nominal model lose the joint's
+    /// lightest direction of motion.
     pub free_inertia: SVector<f64, N>,
     /// Effective mass at the tip along gravity at the start pose,
     /// `1 / (g^T J A^-1 J^T g)` for unit g: the "tip mass" payloads are
@@ -84,7 +84,7 @@ impl<const N: usize> Scales<N> {
 /// | coulomb_friction | Fc = 0.5-3 % of the joint's peak effort |
 /// | viscous_friction | Fv * peak speed = 0.5-3 % of peak effort |
 /// | stribeck_friction | Fc as Coulomb, Fs = 1.3-2 Fc, vs = 0.02-0.1 |
-/// | armature | 5-30 % of the joint's free inertia (`Scales::free_inertia`) |
+/// | armature | 5-30 % of the joint's own (locked) inertia |
 /// | payload_mass | 5-50 % of the tip mass |
 /// | joint_elasticity | motor inertia 20 % of the joint's own inertia, resonance against the free inertia 5-30 Hz, 5 % damping |
 /// | backlash | half-width 0.5-15 arcmin (revolute) or 10-300 um, motor as above, contact at ~60 Hz |
@@ -135,7 +135,7 @@ pub fn draw_effect<const N: usize>(
         }
         EffectKind::Armature => Effect::Armature {
             joint: j,
-            inertia: free * rng.uniform(0.05, 0.3),
+            inertia: locked * rng.uniform(0.05, 0.3),
         },
         EffectKind::PayloadMass => Effect::PayloadMass {
             mass: scales.tip_mass * rng.uniform(0.05, 0.5),
