@@ -229,30 +229,32 @@ fn stiff_rotor<const N: usize>(linear: Fit, j: usize, p: &Prepared<N>) -> Fit {
         .copied()
         .unwrap_or(0.0)
         .max(1e-3 * inertia);
-    let mut best: Option<(MotorGuess, f64)> = None;
-    for f in STIFF_ROTOR.0 {
-        // From the best rotor so far: the couplings barely move it.
-        let mut jm = best.map_or(start, |b| b.0.jm);
-        let mut c_best = cost(&guess(jm, f));
-        let mut step = if best.is_some() { 0.05f64 } else { 0.35 };
-        while step > 0.01 {
-            let mut moved = false;
-            for s in [step.exp(), (-step).exp()] {
-                let c = cost(&guess(jm * s, f));
-                if c < c_best {
-                    (jm, c_best) = (jm * s, c);
-                    moved = true;
-                    break;
-                }
-            }
-            if !moved {
-                step *= 0.5;
+    // The coupling that fits best at the linear fit's inertia (the
+    // couplings barely move the inertia), then the inertia at it.
+    let f = STIFF_ROTOR
+        .0
+        .into_iter()
+        .map(|f| (f, cost(&guess(start, f))))
+        .min_by(|a, b| a.1.total_cmp(&b.1))
+        .map_or(STIFF_ROTOR.0[0], |(f, _)| f);
+    let mut jm = start;
+    let mut c_best = cost(&guess(jm, f));
+    let mut step = 0.35f64;
+    while step > 0.01 {
+        let mut moved = false;
+        for s in [step.exp(), (-step).exp()] {
+            let c = cost(&guess(jm * s, f));
+            if c < c_best {
+                (jm, c_best) = (jm * s, c);
+                moved = true;
+                break;
             }
         }
-        if c_best < best.map_or(f64::INFINITY, |b| b.1) {
-            best = Some((guess(jm, f), c_best));
+        if !moved {
+            step *= 0.5;
         }
     }
+    let best = c_best.is_finite().then(|| (guess(jm, f), c_best));
     match best {
         Some((g, sse)) if sse < linear.sse => Fit {
             theta: vec![g.jm],
