@@ -37,6 +37,7 @@ mod filter;
 mod fit;
 mod horizon;
 mod motor;
+mod motor_fit;
 mod noise;
 mod parallel;
 mod rank;

@@ -1,46 +1,19 @@
-//! Sim-to-real gap work by robot name: synthetic measured data with a
-//! withheld effect (`dynamics synth`) and the diagnosis of data files
-//! (`dynamics diagnose`).
+//! Synthetic measured data by robot name: the home pose and amplitudes of
+//! each robot's motion, the effect a request asks for (drawn where it
+//! leaves things open), the training and held-out CSVs and the truth.
 
-use std::path::Path;
-
-use dynamics_runtime::data::{read_csv, write_csv, DataError, Measured};
-use dynamics_runtime::diagnose::traces::{traces, Traces, TracesError};
-use dynamics_runtime::diagnose::{diagnose, DiagnoseError, Options, Report};
+use dynamics_runtime::data::{write_csv, Measured};
 use dynamics_runtime::effects::{Effect, EffectKind, PlaceKind, Tip};
 use dynamics_runtime::synth::{
     draw_effect, synthesize, synthesize_with_size, Excitation, ExcitationKind, Noise, Rng, Scales,
-    SynthError, SynthOptions,
+    SynthOptions,
 };
 use dynamics_runtime::Robot;
 use nalgebra::SVector;
 use serde::{Deserialize, Serialize};
-use thiserror::Error;
 
-use crate::registry::{AnyRobot, RegistryError};
-
-/// Why a gap command failed.
-#[derive(Debug, Error)]
-pub enum GapError {
-    /// Robot lookup.
-    #[error(transparent)]
-    Registry(#[from] RegistryError),
-    /// Reading data.
-    #[error(transparent)]
-    Data(#[from] DataError),
-    /// Generating data.
-    #[error(transparent)]
-    Synth(#[from] SynthError),
-    /// Diagnosing.
-    #[error(transparent)]
-    Diagnose(#[from] DiagnoseError),
-    /// Time series for the readable report.
-    #[error(transparent)]
-    Traces(#[from] TracesError),
-    /// A bad request.
-    #[error("{0}")]
-    Request(String),
-}
+use super::GapError;
+use crate::registry::AnyRobot;
 
 /// What was withheld in a synthetic data set (the truth file).
 #[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
@@ -334,65 +307,4 @@ fn synth_for<R: Robot<N> + Clone, const N: usize>(
             noise_tau,
         },
     })
-}
-
-/// Diagnoses `train` against `holdout` (CSV files) for robot `name`.
-pub fn diagnose_files(
-    name: &str,
-    train: &Path,
-    holdout: &Path,
-    options: &Options,
-    progress: &(dyn Fn(usize, usize) + Sync),
-) -> Result<(Report, Vec<String>), GapError> {
-    let robot = AnyRobot::by_name(name)?;
-    crate::each_robot!(&robot, r => diagnose_for(r, train, holdout, options, progress))
-}
-
-fn diagnose_for<R: Robot<N> + Clone + Sync, const N: usize>(
-    robot: &R,
-    train: &Path,
-    holdout: &Path,
-    options: &Options,
-    progress: &(dyn Fn(usize, usize) + Sync),
-) -> Result<(Report, Vec<String>), GapError> {
-    let a = read_csv(train, &R::JOINT_NAMES)?;
-    let b = read_csv(holdout, &R::JOINT_NAMES)?;
-    let mut warnings = a.warnings.clone();
-    warnings.extend(b.warnings.iter().cloned());
-    let report = diagnose(robot, &a, &b, options, progress)?;
-    Ok((report, warnings))
-}
-
-/// The time series behind `report` (the readable report's plots), from the
-/// same CSV files: the chosen effect (none when the verdict is `none`)
-/// refitted on `train` and applied to `holdout`. Example: with
-/// [`crate::report::write`].
-pub fn traces_files(
-    name: &str,
-    train: &Path,
-    holdout: &Path,
-    report: &Report,
-    options: &Options,
-) -> Result<Traces, GapError> {
-    let robot = AnyRobot::by_name(name)?;
-    let chosen = report
-        .which
-        .verdict
-        .names_effect()
-        .then(|| report.which.ranked.first())
-        .flatten();
-    let noise = options.noise.as_ref();
-    crate::each_robot!(&robot, r => traces_for(r, train, holdout, chosen, noise))
-}
-
-fn traces_for<R: Robot<N> + Clone, const N: usize>(
-    robot: &R,
-    train: &Path,
-    holdout: &Path,
-    chosen: Option<&dynamics_runtime::diagnose::Ranked>,
-    noise: Option<&dynamics_runtime::diagnose::SensorNoise>,
-) -> Result<Traces, GapError> {
-    let a = read_csv(train, &R::JOINT_NAMES)?;
-    let b = read_csv(holdout, &R::JOINT_NAMES)?;
-    Ok(traces(robot, &a, &b, chosen, noise)?)
 }

@@ -1,0 +1,73 @@
+//! The diagnosis of data files by robot name, and the time series behind
+//! its readable report.
+
+use std::path::Path;
+
+use dynamics_runtime::data::read_csv;
+use dynamics_runtime::diagnose::traces::{traces, Traces};
+use dynamics_runtime::diagnose::{diagnose, Options, Report};
+use dynamics_runtime::Robot;
+
+use super::GapError;
+use crate::registry::AnyRobot;
+
+/// Diagnoses `train` against `holdout` (CSV files) for robot `name`.
+pub fn diagnose_files(
+    name: &str,
+    train: &Path,
+    holdout: &Path,
+    options: &Options,
+    progress: &(dyn Fn(usize, usize) + Sync),
+) -> Result<(Report, Vec<String>), GapError> {
+    let robot = AnyRobot::by_name(name)?;
+    crate::each_robot!(&robot, r => diagnose_for(r, train, holdout, options, progress))
+}
+
+fn diagnose_for<R: Robot<N> + Clone + Sync, const N: usize>(
+    robot: &R,
+    train: &Path,
+    holdout: &Path,
+    options: &Options,
+    progress: &(dyn Fn(usize, usize) + Sync),
+) -> Result<(Report, Vec<String>), GapError> {
+    let a = read_csv(train, &R::JOINT_NAMES)?;
+    let b = read_csv(holdout, &R::JOINT_NAMES)?;
+    let mut warnings = a.warnings.clone();
+    warnings.extend(b.warnings.iter().cloned());
+    let report = diagnose(robot, &a, &b, options, progress)?;
+    Ok((report, warnings))
+}
+
+/// The time series behind `report` (the readable report's plots), from the
+/// same CSV files: the chosen effect (none when the verdict is `none`)
+/// refitted on `train` and applied to `holdout`. Example: with
+/// [`crate::report::write`].
+pub fn traces_files(
+    name: &str,
+    train: &Path,
+    holdout: &Path,
+    report: &Report,
+    options: &Options,
+) -> Result<Traces, GapError> {
+    let robot = AnyRobot::by_name(name)?;
+    let chosen = report
+        .which
+        .verdict
+        .names_effect()
+        .then(|| report.which.ranked.first())
+        .flatten();
+    let noise = options.noise.as_ref();
+    crate::each_robot!(&robot, r => traces_for(r, train, holdout, chosen, noise))
+}
+
+fn traces_for<R: Robot<N> + Clone, const N: usize>(
+    robot: &R,
+    train: &Path,
+    holdout: &Path,
+    chosen: Option<&dynamics_runtime::diagnose::Ranked>,
+    noise: Option<&dynamics_runtime::diagnose::SensorNoise>,
+) -> Result<Traces, GapError> {
+    let a = read_csv(train, &R::JOINT_NAMES)?;
+    let b = read_csv(holdout, &R::JOINT_NAMES)?;
+    Ok(traces(robot, &a, &b, chosen, noise)?)
+}

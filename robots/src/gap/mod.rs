@@ -1,0 +1,40 @@
+//! Sim-to-real gap work by robot name: synthetic measured data with a
+//! withheld effect (`dynamics synth`, `synth.rs`) and the diagnosis of
+//! data files (`dynamics diagnose`, `files.rs`).
+
+mod files;
+mod synth;
+
+pub use files::{diagnose_files, traces_files};
+pub use synth::{synth, SynthOutput, SynthRequest, Truth};
+
+use dynamics_runtime::data::DataError;
+use dynamics_runtime::diagnose::traces::TracesError;
+use dynamics_runtime::diagnose::DiagnoseError;
+use dynamics_runtime::synth::SynthError;
+use thiserror::Error;
+
+use crate::registry::RegistryError;
+
+/// Why a gap command failed.
+#[derive(Debug, Error)]
+pub enum GapError {
+    /// Robot lookup.
+    #[error(transparent)]
+    Registry(#[from] RegistryError),
+    /// Reading data.
+    #[error(transparent)]
+    Data(#[from] DataError),
+    /// Generating data.
+    #[error(transparent)]
+    Synth(#[from] SynthError),
+    /// Diagnosing.
+    #[error(transparent)]
+    Diagnose(#[from] DiagnoseError),
+    /// Time series for the readable report.
+    #[error(transparent)]
+    Traces(#[from] TracesError),
+    /// A bad request.
+    #[error("{0}")]
+    Request(String),
+}
