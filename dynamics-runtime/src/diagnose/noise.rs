@@ -85,13 +85,10 @@ pub(super) fn known_floor<R: Robot<N>, const N: usize>(
 ) -> SVector<f64, N> {
     let mut rng = Rng::new(0x5e_0015e);
     let mut noisy = m.clone();
-    let mut draw = |sigma: &SVector<f64, N>| -> SVector<f64, N> {
-        SVector::from_fn(|j, _| sigma[j] * rng.normal())
-    };
     for k in 0..noisy.len() {
-        noisy.q[k] += draw(&levels[0]);
-        noisy.qd[k] += draw(&levels[1]);
-        noisy.tau[k] += draw(&levels[2]);
+        noisy.q[k] += rng.normal_vec(&levels[0]);
+        noisy.qd[k] += rng.normal_vec(&levels[1]);
+        noisy.tau[k] += rng.normal_vec(&levels[2]);
     }
     let shaken = Signals::new(robot, &noisy);
     let (a, z) = sig.range;

@@ -53,8 +53,6 @@ pub fn prediction_floor<R: Robot<N> + Clone + Sync, const N: usize>(
     let len = (HORIZON / sig.dt).round() as usize;
     let step = ((SPACING / sig.dt).round() as usize).max(1);
     let seg = len + 2 * h + 1;
-    let noise =
-        |rng: &mut Rng, s: &SVector<f64, N>| SVector::<f64, N>::from_fn(|j, _| s[j] * rng.normal());
     let smooth = |x: &[SVector<f64, N>], c: usize, d: usize| -> SVector<f64, N> {
         sg.weights(d)
             .iter()
@@ -83,15 +81,15 @@ pub fn prediction_floor<R: Robot<N> + Clone + Sync, const N: usize>(
             // What its sensors record, and the procedure on that.
             let q: Vec<_> = truth
                 .iter()
-                .map(|x| x.0 + noise(&mut rng, &sigma_q))
+                .map(|x| x.0 + rng.normal_vec(&sigma_q))
                 .collect();
             let qd: Vec<_> = truth
                 .iter()
-                .map(|x| x.1 + noise(&mut rng, &sigma_qd))
+                .map(|x| x.1 + rng.normal_vec(&sigma_qd))
                 .collect();
             let tau: Vec<_> = efforts
                 .iter()
-                .map(|e| e + noise(&mut rng, &sigma_tau))
+                .map(|e| e + rng.normal_vec(&sigma_tau))
                 .collect();
             let v0 = if m.qd_measured {
                 smooth(&qd, h, 0)

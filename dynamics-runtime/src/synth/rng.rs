@@ -2,6 +2,8 @@
 //! same data on every machine and every version: synthetic data sets are
 //! named by their seed in tests and notes.
 
+use nalgebra::SVector;
+
 /// SplitMix64 with uniform and Gaussian draws.
 ///
 /// ```
@@ -45,6 +47,18 @@ impl Rng {
     /// Uniform integer in [0, n).
     pub fn below(&mut self, n: usize) -> usize {
         (self.uniform(0.0, n as f64) as usize).min(n.saturating_sub(1))
+    }
+
+    /// Independent normal draws, entry j of standard deviation `sigma[j]`
+    /// (drawn in index order).
+    ///
+    /// ```
+    /// use dynamics_runtime::synth::Rng;
+    /// let v = Rng::new(3).normal_vec(&nalgebra::Vector2::new(1.0, 0.0));
+    /// assert!(v[0] != 0.0 && v[1] == 0.0);
+    /// ```
+    pub fn normal_vec<const N: usize>(&mut self, sigma: &SVector<f64, N>) -> SVector<f64, N> {
+        SVector::from_fn(|j, _| sigma[j] * self.normal())
     }
 
     /// Standard normal (Box-Muller).

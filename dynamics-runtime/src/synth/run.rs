@@ -4,7 +4,7 @@
 
 use nalgebra::SVector;
 
-use super::sensors::{delayed, noise_vec};
+use super::sensors::delayed;
 use super::{Excitation, Noise, Rng, Scales, SynthError, SynthOptions};
 use crate::control::Reference;
 use crate::data::Measured;
@@ -117,8 +117,8 @@ impl<'a, R: Robot<N> + Clone, const N: usize> Run<'a, R, N> {
             let (q_seen, qd_seen) = delayed(&truth, t - self.delay, dt, &truth[0]);
             let q_seen = q_seen + self.offset;
             seen.push((q_seen, qd_seen));
-            let q_meas = q_seen + noise_vec(rng, noise.q);
-            let qd_meas = qd_seen + noise_vec(rng, noise.qd);
+            let q_meas = q_seen + rng.normal_vec(&SVector::repeat(noise.q));
+            let qd_meas = qd_seen + rng.normal_vec(&SVector::repeat(noise.qd));
             let r: Reference<N> = self.reference.at(t);
             // The drive's velocity loop: the motor encoder where there is
             // a motor side, else the (one) joint speed.

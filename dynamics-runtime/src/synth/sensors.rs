@@ -1,14 +1,6 @@
-//! What the sensors of a synthetic run report: noise, and the state late
-//! by a delay.
+//! What the sensors of a synthetic run report late: the state by a delay.
 
 use nalgebra::SVector;
-
-use super::Rng;
-
-/// A vector of independent normal draws of standard deviation `sigma`.
-pub(super) fn noise_vec<const N: usize>(rng: &mut Rng, sigma: f64) -> SVector<f64, N> {
-    SVector::from_fn(|_, _| sigma * rng.normal())
-}
 
 /// The true (q, qd) at time `t` from samples every `dt`, by cubic Hermite
 /// interpolation; before the start, the initial state.
