@@ -19,9 +19,6 @@
 mod check;
 mod constraint;
 pub mod control;
-pub mod data;
-pub mod diagnose;
-pub mod effects;
 mod error;
 pub mod fma;
 pub mod ode;
@@ -31,7 +28,6 @@ mod program;
 mod robot;
 mod simulate;
 mod solve;
-pub mod synth;
 pub mod trig;
 
 pub use constraint::Constrained;

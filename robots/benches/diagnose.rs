@@ -10,10 +10,10 @@ use std::hint::black_box;
 use std::time::Duration;
 
 use criterion::{criterion_group, criterion_main, Criterion};
-use dynamics_runtime::data::{read_csv_str, Measured};
-use dynamics_runtime::diagnose::{diagnose, Options};
-use dynamics_runtime::effects::EffectKind;
 use dynamics_runtime::Robot;
+use dynamics_sim2real::data::{read_csv_str, Measured};
+use dynamics_sim2real::diagnose::{diagnose, Options};
+use dynamics_sim2real::effects::EffectKind;
 use robots::gap::{synth, SynthRequest};
 use robots::{Arm3r, Panda, Ur5};
 

@@ -357,7 +357,7 @@ fn check_svg(name: &str, text: &str) -> usize {
 
 #[test]
 fn diagnose_writes_a_readable_report() {
-    use dynamics_runtime::effects::EffectKind;
+    use dynamics_sim2real::effects::EffectKind;
     for (case, kind, joint) in [
         ("report-coulomb", EffectKind::CoulombFriction, Some("j1")),
         ("report-none", EffectKind::None, None),
@@ -460,10 +460,10 @@ fn diagnose_writes_a_readable_report() {
 
 #[test]
 fn report_traces_carry_the_fitted_effect() {
-    use dynamics_runtime::data::read_csv_str;
-    use dynamics_runtime::diagnose::{diagnose, traces::traces, Options};
-    use dynamics_runtime::effects::EffectKind;
     use dynamics_runtime::Robot;
+    use dynamics_sim2real::data::read_csv_str;
+    use dynamics_sim2real::diagnose::{diagnose, traces::traces, Options};
+    use dynamics_sim2real::effects::EffectKind;
     use robots::Arm3r;
     let data = robots::gap::synth(&robots::gap::SynthRequest {
         robot: "arm3r".into(),

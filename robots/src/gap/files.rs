@@ -3,10 +3,10 @@
 
 use std::path::Path;
 
-use dynamics_runtime::data::read_csv;
-use dynamics_runtime::diagnose::traces::{traces, Traces};
-use dynamics_runtime::diagnose::{diagnose, Options, Report};
 use dynamics_runtime::Robot;
+use dynamics_sim2real::data::read_csv;
+use dynamics_sim2real::diagnose::traces::{traces, Traces};
+use dynamics_sim2real::diagnose::{diagnose, Options, Report};
 
 use super::GapError;
 use crate::registry::AnyRobot;
@@ -64,8 +64,8 @@ fn traces_for<R: Robot<N> + Clone, const N: usize>(
     robot: &R,
     train: &Path,
     holdout: &Path,
-    chosen: Option<&dynamics_runtime::diagnose::Ranked>,
-    noise: Option<&dynamics_runtime::diagnose::SensorNoise>,
+    chosen: Option<&dynamics_sim2real::diagnose::Ranked>,
+    noise: Option<&dynamics_sim2real::diagnose::SensorNoise>,
 ) -> Result<Traces, GapError> {
     let a = read_csv(train, &R::JOINT_NAMES)?;
     let b = read_csv(holdout, &R::JOINT_NAMES)?;

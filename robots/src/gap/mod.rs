@@ -8,10 +8,10 @@ mod synth;
 pub use files::{diagnose_files, traces_files};
 pub use synth::{synth, SynthOutput, SynthRequest, Truth};
 
-use dynamics_runtime::data::DataError;
-use dynamics_runtime::diagnose::traces::TracesError;
-use dynamics_runtime::diagnose::DiagnoseError;
-use dynamics_runtime::synth::SynthError;
+use dynamics_sim2real::data::DataError;
+use dynamics_sim2real::diagnose::traces::TracesError;
+use dynamics_sim2real::diagnose::DiagnoseError;
+use dynamics_sim2real::synth::SynthError;
 use thiserror::Error;
 
 use crate::registry::RegistryError;

@@ -2,13 +2,13 @@
 //! each robot's motion, the effect a request asks for (drawn where it
 //! leaves things open), the training and held-out CSVs and the truth.
 
-use dynamics_runtime::data::{write_csv, Measured};
-use dynamics_runtime::effects::{Effect, EffectKind, PlaceKind, Tip};
-use dynamics_runtime::synth::{
+use dynamics_runtime::Robot;
+use dynamics_sim2real::data::{write_csv, Measured};
+use dynamics_sim2real::effects::{Effect, EffectKind, PlaceKind, Tip};
+use dynamics_sim2real::synth::{
     draw_effect, synthesize, synthesize_with_size, Excitation, ExcitationKind, Noise, Rng, Scales,
     SynthOptions,
 };
-use dynamics_runtime::Robot;
 use nalgebra::SVector;
 use serde::{Deserialize, Serialize};
 
@@ -245,7 +245,7 @@ pub struct SynthOutput {
 /// next seed).
 ///
 /// ```
-/// use dynamics_runtime::effects::EffectKind;
+/// use dynamics_sim2real::effects::EffectKind;
 /// use robots::gap::{synth, SynthRequest};
 /// let out = synth(&SynthRequest {
 ///     robot: "arm3r".into(), kind: Some(EffectKind::ViscousFriction), joint: Some("j2".into()),

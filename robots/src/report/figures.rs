@@ -2,8 +2,8 @@
 //! windows shaded, the held-out residual before and after the chosen
 //! effect, measured vs nominal vs corrected effort; and the ranking.
 
-use dynamics_runtime::diagnose::traces::{DataTraces, JointTraces};
-use dynamics_runtime::diagnose::{JointGap, Ranked, Report};
+use dynamics_sim2real::diagnose::traces::{DataTraces, JointTraces};
+use dynamics_sim2real::diagnose::{JointGap, Ranked, Report};
 
 use crate::plot::{bars, svg_shaded, Series, Shade};
 

@@ -3,8 +3,8 @@
 
 use std::fmt::Write as _;
 
-use dynamics_runtime::diagnose::traces::Traces;
-use dynamics_runtime::diagnose::{Options, Ranked, Report};
+use dynamics_sim2real::diagnose::traces::Traces;
+use dynamics_sim2real::diagnose::{Options, Ranked, Report};
 
 use super::figures::{place, RANKED_SHOWN};
 

@@ -10,8 +10,8 @@ mod markdown;
 
 use std::path::{Path, PathBuf};
 
-use dynamics_runtime::diagnose::traces::Traces;
-use dynamics_runtime::diagnose::{Options, Report};
+use dynamics_sim2real::diagnose::traces::Traces;
+use dynamics_sim2real::diagnose::{Options, Report};
 use thiserror::Error;
 
 pub use markdown::GAP_RATIO;
@@ -59,7 +59,7 @@ fn joint_files(joint: &str) -> [String; 3] {
 /// The report's files: `(name, content)`, `report.md` first.
 ///
 /// ```no_run
-/// use dynamics_runtime::diagnose::Options;
+/// use dynamics_sim2real::diagnose::Options;
 /// use std::path::Path;
 /// let options = Options::default();
 /// let (report, _warnings) = robots::gap::diagnose_files(
@@ -100,8 +100,8 @@ pub fn render(report: &Report, traces: &Traces, options: &Options) -> Vec<(Strin
 /// missing); returns the paths written.
 ///
 /// ```
-/// use dynamics_runtime::diagnose::Options;
-/// use dynamics_runtime::effects::EffectKind;
+/// use dynamics_sim2real::diagnose::Options;
+/// use dynamics_sim2real::effects::EffectKind;
 /// use robots::gap::{diagnose_files, synth, traces_files, SynthRequest};
 /// let dir = std::env::temp_dir().join(format!("robots-report-doc-{}", std::process::id()));
 /// std::fs::create_dir_all(&dir)?;

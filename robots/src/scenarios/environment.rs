@@ -14,9 +14,9 @@
 
 use std::path::Path;
 
-use dynamics_runtime::effects::{Effect, Tip};
 use dynamics_runtime::ode::Tolerances;
 use dynamics_runtime::{simulate_program, Baumgarte, Constrained, ProgramMotion};
+use dynamics_sim2real::effects::{Effect, Tip};
 use nalgebra::Vector3;
 
 use super::{outputs, write, ScenarioError};

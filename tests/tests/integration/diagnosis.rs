@@ -11,9 +11,9 @@
 use std::collections::BTreeMap;
 use std::path::Path;
 
-use dynamics_runtime::diagnose::Options;
-use dynamics_runtime::effects::EffectKind;
-use dynamics_runtime::synth::{ExcitationKind, Noise, Rng};
+use dynamics_sim2real::diagnose::Options;
+use dynamics_sim2real::effects::EffectKind;
+use dynamics_sim2real::synth::{ExcitationKind, Noise, Rng};
 use robots::gap::{diagnose_files, synth, SynthRequest, Truth};
 
 const CASES: usize = 44;
@@ -270,7 +270,7 @@ fn diagnoser_names_the_withheld_effect() {
 /// original's); the reported std, of a replicate, is the whole.
 #[test]
 fn diagnosed_stiffness_spread_matches_a_noise_bootstrap() {
-    use dynamics_runtime::data::{read_csv_str, write_csv};
+    use dynamics_sim2real::data::{read_csv_str, write_csv};
     let dir = std::env::temp_dir().join(format!("dynamics-spread-{}", std::process::id()));
     std::fs::create_dir_all(&dir).expect("temp dir");
     let level = Noise {
@@ -432,7 +432,7 @@ fn a_gap_no_candidate_explains_is_unexplained() {
 /// named.
 #[test]
 fn stated_sensor_noise_gives_the_floor_the_data_show() {
-    use dynamics_runtime::diagnose::{DiagnoseError, SensorNoise};
+    use dynamics_sim2real::diagnose::{DiagnoseError, SensorNoise};
     use robots::gap::GapError;
     let dir = std::env::temp_dir().join(format!("dynamics-noise-{}", std::process::id()));
     std::fs::create_dir_all(&dir).expect("temp dir");

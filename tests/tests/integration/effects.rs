@@ -2,8 +2,8 @@
 //! and resistance dissipate, conservative add-ons conserve), backlash
 //! contact switches located by events, the two-mass joint's resonance.
 
-use dynamics_runtime::effects::{Effect, Plant, PlantSim};
 use dynamics_runtime::ode::Tolerances;
+use dynamics_sim2real::effects::{Effect, Plant, PlantSim};
 use nalgebra::Vector3;
 use robots::Arm3r;
 

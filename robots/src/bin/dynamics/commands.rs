@@ -116,7 +116,7 @@ pub fn synth_cmd(
     out: &std::path::Path,
     truth: Option<PathBuf>,
 ) -> Res {
-    use dynamics_runtime::synth::Noise;
+    use dynamics_sim2real::synth::Noise;
     let kind = effect.map(|e| e.parse()).transpose()?;
     let req = robots::gap::SynthRequest {
         robot: robot.into(),

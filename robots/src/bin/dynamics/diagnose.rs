@@ -13,9 +13,9 @@ pub fn diagnose_cmd(
     holdout: Option<PathBuf>,
     json: Option<PathBuf>,
     report_dir: Option<PathBuf>,
-    noise: Option<dynamics_runtime::diagnose::SensorNoise>,
+    noise: Option<dynamics_sim2real::diagnose::SensorNoise>,
 ) -> Res {
-    use dynamics_runtime::diagnose::Options;
+    use dynamics_sim2real::diagnose::Options;
     use indicatif::{ProgressBar, ProgressStyle};
     let (train, holdout, tmp) = match (train, holdout) {
         (Some(a), Some(b)) => (a, b, None),

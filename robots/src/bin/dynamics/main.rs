@@ -204,7 +204,7 @@ fn main() -> ExitCode {
             noise_q,
             noise_qd,
         } => {
-            let noise = noise_tau.map(|tau| dynamics_runtime::diagnose::SensorNoise {
+            let noise = noise_tau.map(|tau| dynamics_sim2real::diagnose::SensorNoise {
                 q: noise_q.unwrap_or_else(|| vec![0.0]),
                 qd: noise_qd.unwrap_or_else(|| vec![0.0]),
                 tau,

@@ -1,0 +1,89 @@
+//! Measured data: joint positions, velocities and efforts sampled over time,
+//! in the CSV format of the design notes (`t`, `q_<joint>`, `qd_<joint>`,
+//! `tau_<joint>`, matched by name; `.csv.gz` read as well).
+
+mod read;
+mod write;
+
+pub use read::{read_csv, read_csv_str, DataError};
+pub use write::write_csv;
+
+use nalgebra::SVector;
+
+/// Samples of a robot's motion as measured.
+///
+/// ```
+/// use dynamics_sim2real::data::Measured;
+/// let m = Measured::<1> {
+///     t: vec![0.0, 0.001],
+///     q: vec![[0.0].into(), [0.001].into()],
+///     qd: vec![[1.0].into(), [1.0].into()],
+///     tau: vec![[0.5].into(), [0.5].into()],
+///     qd_measured: true,
+///     warnings: vec![],
+/// };
+/// assert_eq!(m.len(), 2);
+/// assert!((m.duration() - 0.001).abs() < 1e-15);
+/// ```
+#[derive(Debug, Clone, Default, PartialEq)]
+pub struct Measured<const N: usize> {
+    /// Sample times, strictly increasing, s.
+    pub t: Vec<f64>,
+    /// Link-side positions.
+    pub q: Vec<SVector<f64, N>>,
+    /// Velocities (measured, or differentiated from q when the file has none).
+    pub qd: Vec<SVector<f64, N>>,
+    /// Efforts applied, held from each sample to the next.
+    pub tau: Vec<SVector<f64, N>>,
+    /// Whether `qd` came from the file.
+    pub qd_measured: bool,
+    /// What the reader ignored or repaired (extra columns, ...).
+    pub warnings: Vec<String>,
+}
+
+impl<const N: usize> Measured<N> {
+    /// Number of samples.
+    pub fn len(&self) -> usize {
+        self.t.len()
+    }
+
+    /// Whether there are no samples.
+    pub fn is_empty(&self) -> bool {
+        self.t.is_empty()
+    }
+
+    /// Time from the first sample to the last.
+    pub fn duration(&self) -> f64 {
+        match (self.t.first(), self.t.last()) {
+            (Some(a), Some(b)) => b - a,
+            _ => 0.0,
+        }
+    }
+
+    /// Mean sample interval.
+    pub fn sample_interval(&self) -> f64 {
+        if self.len() < 2 {
+            0.0
+        } else {
+            self.duration() / (self.len() - 1) as f64
+        }
+    }
+}
+
+/// Central differences (one-sided at the ends) of `q` over `t`.
+pub(crate) fn differentiate<const N: usize>(
+    t: &[f64],
+    q: &[SVector<f64, N>],
+) -> Vec<SVector<f64, N>> {
+    let n = t.len();
+    (0..n)
+        .map(|k| {
+            let (a, b) = (k.saturating_sub(1), (k + 1).min(n - 1));
+            if a == b {
+                SVector::zeros()
+            } else {
+                (q[b] - q[a]) / (t[b] - t[a])
+            }
+        })
+        .collect()
+}

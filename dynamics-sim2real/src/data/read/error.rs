@@ -1,0 +1,92 @@
+//! What can be wrong with a data file, each error naming the file.
+
+use thiserror::Error;
+
+/// Fewest samples a data file must hold.
+pub const MIN_SAMPLES: usize = 200;
+
+/// What is wrong with a data file. Every variant names the file.
+///
+/// ```
+/// use dynamics_sim2real::data::{read_csv_str, DataError};
+/// let mut text = String::from("t,q_j,tau_j\n");
+/// for k in 0..300 { text.push_str(&format!("{},0,0\n", k as f64 * 1e-3)); }
+/// let bad = text.replacen("0.005,0,0", "0.005,NaN,0", 1);
+/// match read_csv_str(&bad, &["j"], "run.csv") {
+///     Err(e @ DataError::BadNumber { line: 7, .. }) => {
+///         assert_eq!(e.to_string(), "run.csv:7: column `q_j`: `NaN` is not a finite number");
+///     }
+///     other => panic!("{other:?}"),
+/// }
+/// ```
+#[derive(Debug, Error)]
+pub enum DataError {
+    /// The file could not be opened or read.
+    #[error("{file}: {source}")]
+    Io {
+        /// The file.
+        file: String,
+        /// The cause.
+        source: std::io::Error,
+    },
+    /// The CSV syntax is broken.
+    #[error("{file}: {message}")]
+    Csv {
+        /// The file.
+        file: String,
+        /// What the CSV reader said.
+        message: String,
+    },
+    /// A needed column is missing.
+    #[error("{file}: no column `{column}`{hint}")]
+    MissingColumn {
+        /// The file.
+        file: String,
+        /// The column.
+        column: String,
+        /// ` (did you mean ...?)` or the joints the robot has.
+        hint: String,
+    },
+    /// A column names a joint the robot does not have.
+    #[error("{file}: column `{column}` names no joint of this robot (its joints: {joints})")]
+    UnknownJoint {
+        /// The file.
+        file: String,
+        /// The column.
+        column: String,
+        /// The robot's joints.
+        joints: String,
+    },
+    /// A cell is not a finite number.
+    #[error("{file}:{line}: column `{column}`: `{value}` is not a finite number")]
+    BadNumber {
+        /// The file.
+        file: String,
+        /// 1-based line.
+        line: usize,
+        /// The column.
+        column: String,
+        /// The cell.
+        value: String,
+    },
+    /// Time does not increase.
+    #[error("{file}:{line}: time {t} does not increase (previous sample at {previous})")]
+    TimeNotIncreasing {
+        /// The file.
+        file: String,
+        /// 1-based line.
+        line: usize,
+        /// Time at the line.
+        t: f64,
+        /// Time at the line before.
+        previous: f64,
+    },
+    /// Too few rows.
+    #[error("{file}: {rows} samples; at least {MIN_SAMPLES} are needed")]
+    TooFewSamples {
+        /// The file.
+        file: String,
+        /// Rows read.
+        rows: usize,
+    },
+}

@@ -1,0 +1,194 @@
+//! Reading measured data from CSV (plain or gzip), matching columns to the
+//! robot's joints by name and saying exactly what is wrong otherwise.
+//!
+//! - `error.rs`: [`DataError`], what can be wrong with a file;
+//! - `columns.rs`: the header matched to the joints;
+//! - here: the text read (gzip or not) and its rows parsed and checked.
+
+mod columns;
+mod error;
+
+pub use error::DataError;
+use error::MIN_SAMPLES;
+
+use std::io::Read;
+use std::path::Path;
+
+use nalgebra::SVector;
+
+use super::{differentiate, Measured};
+use columns::Columns;
+
+/// Reads a CSV file (`.csv` or `.csv.gz`) for a robot with joints `joints`.
+///
+/// ```
+/// use dynamics_sim2real::data::read_csv;
+/// let dir = std::env::temp_dir();
+/// let path = dir.join("dynamics-doc-read.csv");
+/// let mut text = String::from("t,q_j,tau_j\n");
+/// for k in 0..300 { text.push_str(&format!("{},{},1\n", k as f64 * 1e-3, k as f64 * 1e-3)); }
+/// std::fs::write(&path, text).unwrap();
+/// let m = read_csv(&path, &["j"]).unwrap();
+/// assert!((m.qd[100][0] - 1.0).abs() < 1e-9); // differentiated from q
+/// assert!(!m.qd_measured);
+/// ```
+pub fn read_csv<const N: usize>(path: &Path, joints: &[&str; N]) -> Result<Measured<N>, DataError> {
+    let file = path.display().to_string();
+    let io = |source| DataError::Io {
+        file: file.clone(),
+        source,
+    };
+    let bytes = std::fs::read(path).map_err(io)?;
+    let text = if bytes.starts_with(&[0x1f, 0x8b]) {
+        let mut s = String::new();
+        flate2::read::MultiGzDecoder::new(&bytes[..])
+            .read_to_string(&mut s)
+            .map_err(io)?;
+        s
+    } else {
+        String::from_utf8(bytes).map_err(|e| {
+            io(std::io::Error::new(
+                std::io::ErrorKind::InvalidData,
+                format!("not UTF-8 text ({e}); a gzip file must start with the gzip magic bytes"),
+            ))
+        })?
+    };
+    read_csv_str(&text, joints, &file)
+}
+
+/// Reads CSV text; `file` names it in errors.
+///
+/// ```
+/// use dynamics_sim2real::data::{read_csv_str, DataError};
+/// let mut text = String::from("t,q_elbow,qd_elbow,tau_elbow\n");
+/// for k in 0..300 { text.push_str(&format!("{},0.1,0,2.5\n", k as f64 * 1e-3)); }
+/// let m = read_csv_str(&text, &["elbow"], "inline").unwrap();
+/// assert_eq!((m.len(), m.qd_measured, m.tau[0][0]), (300, true, 2.5));
+/// // A joint the file does not have is named, with the columns it would need.
+/// let err = read_csv_str(&text, &["wrist"], "inline").unwrap_err();
+/// assert!(matches!(err, DataError::MissingColumn { ref column, .. } if column == "q_wrist"));
+/// ```
+pub fn read_csv_str<const N: usize>(
+    text: &str,
+    joints: &[&str; N],
+    file: &str,
+) -> Result<Measured<N>, DataError> {
+    let mut reader = csv::ReaderBuilder::new()
+        .trim(csv::Trim::All)
+        .from_reader(text.as_bytes());
+    let csv_err = |e: csv::Error| DataError::Csv {
+        file: file.to_string(),
+        message: e.to_string(),
+    };
+    let header: Vec<String> = reader
+        .headers()
+        .map_err(csv_err)?
+        .iter()
+        .map(str::to_string)
+        .collect();
+    let Columns {
+        t: t_col,
+        q: q_cols,
+        tau: tau_cols,
+        qd: qd_cols,
+        warnings,
+    } = Columns::find(&header, joints, file)?;
+    let mut m = Measured::<N> {
+        qd_measured: qd_cols.is_some(),
+        warnings,
+        ..Default::default()
+    };
+    for (row, record) in reader.records().enumerate() {
+        let record = record.map_err(csv_err)?;
+        let line = row + 2;
+        let cell = |c: usize| -> Result<f64, DataError> {
+            let value = record.get(c).unwrap_or("");
+            value
+                .parse::<f64>()
+                .ok()
+                .filter(|v| v.is_finite())
+                .ok_or_else(|| DataError::BadNumber {
+                    file: file.to_string(),
+                    line,
+                    column: header[c].clone(),
+                    value: value.to_string(),
+                })
+        };
+        let t = cell(t_col)?;
+        if let Some(&previous) = m.t.last() {
+            if t <= previous {
+                return Err(DataError::TimeNotIncreasing {
+                    file: file.to_string(),
+                    line,
+                    t,
+                    previous,
+                });
+            }
+        }
+        let vec = |cs: &[usize; N]| -> Result<SVector<f64, N>, DataError> {
+            let mut v = SVector::zeros();
+            for i in 0..N {
+                v[i] = cell(cs[i])?;
+            }
+            Ok(v)
+        };
+        m.t.push(t);
+        m.q.push(vec(&q_cols)?);
+        m.tau.push(vec(&tau_cols)?);
+        if let Some(c) = &qd_cols {
+            m.qd.push(vec(c)?);
+        }
+    }
+    if m.len() < MIN_SAMPLES {
+        return Err(DataError::TooFewSamples {
+            file: file.to_string(),
+            rows: m.len(),
+        });
+    }
+    if !m.qd_measured {
+        m.qd = differentiate(&m.t, &m.q);
+    }
+    Ok(m)
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    fn rows(n: usize, f: impl Fn(usize) -> String) -> String {
+        (0..n).map(f).collect()
+    }
+
+    #[test]
+    fn every_kind_of_bad_row_is_named() {
+        let ok = |k: usize| format!("{},0,0,1\n", k as f64 * 1e-3);
+        let e = read_csv_str::<1>(
+            &format!("t,q_j,qd_j,tau_j\n{}0.5,NaN,0,1\n", rows(3, ok)),
+            &["j"],
+            "a.csv",
+        )
+        .unwrap_err();
+        assert_eq!(
+            e.to_string(),
+            "a.csv:5: column `q_j`: `NaN` is not a finite number"
+        );
+        let e = read_csv_str::<1>(
+            &format!("t,q_j,qd_j,tau_j\n{}0.001,0,0,1\n", rows(3, ok)),
+            &["j"],
+            "a.csv",
+        )
+        .unwrap_err();
+        assert!(
+            e.to_string()
+                .starts_with("a.csv:5: time 0.001 does not increase"),
+            "{e}"
+        );
+        let e = read_csv_str::<1>(
+            &format!("t,q_j,qd_j,tau_j\n{}", rows(10, ok)),
+            &["j"],
+            "a.csv",
+        )
+        .unwrap_err();
+        assert!(e.to_string().contains("10 samples; at least 200"), "{e}");
+    }
+}

@@ -1,0 +1,280 @@
+//! Sim-to-real gap diagnosis: given a model and measured data, say WHERE
+//! the model and the robot disagree (joint, time windows, motion phase),
+//! WHICH unmodelled effect explains it (every candidate of the vocabulary
+//! fitted and ranked by a corrected information criterion), and HOW FAR
+//! the gap shrinks on held-out data once that effect is added.
+//!
+//! Method: the torque residual `tau - ID(q, qd, qdd)` along the measured
+//! motion, every signal smoothed by one Savitzky-Golay filter (40 ms
+//! half-width; accelerations from its derivative, never from double
+//! differencing), rows whitened by the residual's noise floor: one draw of
+//! the sensor noise (levels stated by the user, or estimated from the
+//! data) pushed through the same smoothing and inverse dynamics.
+//! Effects linear in their parameters (friction, rotor inertia, payload,
+//! resistance, encoder offset through the emitted perturbation Jacobian K,
+//! delay through the model effort's rate) are fitted by sign-constrained
+//! least squares on columns filtered like the efforts: friction laws are
+//! evaluated on a lightly smoothed velocity and then smoothed (the sign of
+//! a smoothed velocity switches sharply where the smoothed effort does
+//! not); columns built from the acceleration estimate are smoothed once
+//! more, so that they do not add its noise a second time (rotor inertia
+//! was otherwise taken for a stiff elastic joint). Elasticity and backlash
+//! are fitted by a grid search on a motor-side simulation driven by the
+//! measured effort (its link following the measured motion plus the
+//! effect of the transmitted effort's departure from the model), refined by a compass search on the logarithms of their
+//! parameters; their standard deviations come from the objective's
+//! curvature there (`spread`). Rotor inertia is fitted both ways (its acceleration column,
+//! and a rotor on a very stiff coupling simulated like the motor-side
+//! models, which see the effort's fast content the same way) and keeps the
+//! better. Candidates are ranked by AICc; a richer model nesting a
+//! simpler one at the same joint (Stribeck over Coulomb, elasticity or
+//! backlash over rotor inertia) must win by [`Options::nesting_margin`].
+
+mod analysis;
+mod basis;
+mod candidate;
+mod filter;
+mod fit;
+mod horizon;
+mod motor;
+mod motor_fit;
+mod noise;
+mod parallel;
+mod rank;
+mod refine;
+mod report;
+mod shrink;
+mod signals;
+mod spread;
+pub mod traces;
+mod verdict;
+mod windows;
+mod yardstick;
+
+pub use analysis::{Fit, Prepared};
+pub use candidate::Candidate;
+pub use filter::SavitzkyGolay;
+pub use fit::aicc;
+pub use motor::MotorGuess;
+pub use noise::SensorNoise;
+pub use report::*;
+
+use nalgebra::SVector;
+use thiserror::Error;
+
+use crate::data::Measured;
+use crate::effects::{EffectKind, Tip};
+use dynamics_runtime::Robot;
+
+/// Options of [`diagnose`].
+#[derive(Debug, Clone, PartialEq)]
+pub struct Options {
+    /// Candidate kinds (empty: all).
+    pub kinds: Vec<EffectKind>,
+    /// AICc improvement over the nominal model below which the verdict is
+    /// `none`.
+    pub none_margin: f64,
+    /// AICc difference under which two candidates are `ambiguous`.
+    pub ambiguity_margin: f64,
+    /// When no candidate qualifies, the verdict is `unexplained` rather than
+    /// `none` if some joint's torque residual RMS is at least this many
+    /// times its noise floor: the gap is real, the candidates miss it.
+    pub unexplained_ratio: f64,
+    /// AICc improvement a richer nested model must add over the simpler one
+    /// it contains to be preferred (10: "strong evidence" on the usual
+    /// scale of AIC differences).
+    pub nesting_margin: f64,
+    /// Threads (0: all cores).
+    pub threads: usize,
+    /// Sensor noise, when known: the torque residual's noise floor is then
+    /// what this noise makes of it (pushed through the same smoothing and
+    /// inverse dynamics) rather than what noise of the levels estimated
+    /// from the data makes of it.
+    pub noise: Option<SensorNoise>,
+}
+
+impl Default for Options {
+    fn default() -> Self {
+        Options {
+            kinds: vec![],
+            none_margin: 100.0,
+            ambiguity_margin: 10.0,
+            unexplained_ratio: 3.0,
+            nesting_margin: 10.0,
+            threads: 0,
+            noise: None,
+        }
+    }
+}
+
+/// Why a diagnosis could not run.
+#[derive(Debug, Error)]
+pub enum DiagnoseError {
+    /// A data set is too short for the filter.
+    #[error(
+        "{which} data: {samples} samples over {duration:.3} s are too few (need at least {need})"
+    )]
+    TooShort {
+        /// `training` or `held-out`.
+        which: &'static str,
+        /// Samples.
+        samples: usize,
+        /// Duration.
+        duration: f64,
+        /// Samples needed.
+        need: usize,
+    },
+    /// Stated sensor noise that cannot be used.
+    #[error("sensor noise `{sensor}`: {reason}")]
+    Noise {
+        /// `q`, `qd` or `tau`.
+        sensor: &'static str,
+        /// Why.
+        reason: String,
+    },
+    /// The sample interval is not uniform enough.
+    #[error("{which} data: the sample interval varies from {min:e} to {max:e} s; resample to a fixed rate")]
+    Irregular {
+        /// `training` or `held-out`.
+        which: &'static str,
+        /// Smallest interval.
+        min: f64,
+        /// Largest.
+        max: f64,
+    },
+}
+
+fn check<const N: usize>(m: &Measured<N>, which: &'static str) -> Result<(), DiagnoseError> {
+    let need = 200;
+    if m.len() < need {
+        return Err(DiagnoseError::TooShort {
+            which,
+            samples: m.len(),
+            duration: m.duration(),
+            need,
+        });
+    }
+    let (mut min, mut max) = (f64::INFINITY, 0.0f64);
+    for w in m.t.windows(2) {
+        min = min.min(w[1] - w[0]);
+        max = max.max(w[1] - w[0]);
+    }
+    if max > 1.5 * min {
+        return Err(DiagnoseError::Irregular { which, min, max });
+    }
+    Ok(())
+}
+
+/// Diagnoses the gap between `robot` and the measured `train` data, and
+/// checks the chosen effect on `holdout`; `progress(done, total)` is called
+/// as candidates are fitted.
+///
+/// ```
+/// use dynamics_sim2real::diagnose::{diagnose, Options, Report};
+/// use dynamics_runtime::Robot;
+/// use dynamics_sim2real::data::Measured;
+/// fn run<R: Robot<3> + Clone + Sync>(robot: &R, train: &Measured<3>, holdout: &Measured<3>) -> Report {
+///     diagnose(robot, train, holdout, &Options::default(), &|_, _| {}).expect("enough data")
+/// }
+/// ```
+pub fn diagnose<R: Robot<N> + Clone + Sync, const N: usize>(
+    robot: &R,
+    train: &Measured<N>,
+    holdout: &Measured<N>,
+    options: &Options,
+    progress: &(dyn Fn(usize, usize) + Sync),
+) -> Result<Report, DiagnoseError> {
+    check(train, "training")?;
+    check(holdout, "held-out")?;
+    let levels = options
+        .noise
+        .as_ref()
+        .map(SensorNoise::per_joint::<N>)
+        .transpose()?;
+    let (p, h) = std::thread::scope(|s| {
+        let h = s.spawn(|| Prepared::with_noise(robot, holdout, levels.as_ref()));
+        let p = Prepared::with_noise(robot, train, levels.as_ref());
+        (p, h.join())
+    });
+    let h = match h {
+        Ok(h) => h,
+        Err(e) => std::panic::resume_unwind(e),
+    };
+    let n = p.n();
+    let sse0 = p.sse(&p.sig.residual);
+    let aicc0 = aicc(sse0, n, 0);
+    let hsse0 = h.sse(&h.sig.residual);
+
+    // Fit every candidate, on all cores.
+    let candidates = Candidate::all::<N>(&options.kinds);
+    let fits = parallel::fit_all::<R, N>(&candidates, &p, options.threads, progress);
+
+    // Best grid variant per (kind, place), ranked by AICc, simpler nested
+    // models first unless the richer one wins clearly.
+    let best = rank::best_per_place(fits, n, options.nesting_margin);
+    let tip_name = Tip::of::<R, N>().name::<R, N>().to_string();
+    let excess = |sse: f64, sse0: f64, n: usize| -> f64 {
+        let gap0 = (sse0 - n as f64).max(1e-12);
+        ((sse0 - sse) / gap0).clamp(0.0, 1.0)
+    };
+    let ranked: Vec<Ranked> = best
+        .iter()
+        .map(|f| {
+            let hs = h.sse(&f.corrected(&h));
+            rank::ranked_entry::<R, N>(
+                f,
+                &tip_name,
+                aicc0,
+                n,
+                excess(f.sse, sse0, n),
+                excess(hs, hsse0, h.n()),
+            )
+        })
+        .collect();
+
+    // Verdict.
+    let gap = (0..N)
+        .map(|j| rms(&p, &p.sig.residual, j) / p.sig.floor[j])
+        .fold(0.0, f64::max);
+    let verdict = verdict::verdict(&ranked, gap, options);
+    let chosen = if verdict.names_effect() {
+        best.first()
+    } else {
+        None
+    };
+
+    // Where (training data, nominal model).
+    let pred = horizon::prediction_error(robot, &p, None);
+    let q_noise = yardstick::prediction_floor(robot, train, &p);
+    let joints = (0..N)
+        .map(|j| {
+            let rms = rms(&p, &p.sig.residual, j);
+            JointGap {
+                joint: R::JOINT_NAMES[j].to_string(),
+                torque_rms: rms,
+                torque_noise: p.sig.floor[j],
+                torque_ratio: rms / p.sig.floor[j],
+                prediction_rms: pred[j],
+                prediction_noise: q_noise[j],
+                prediction_ratio: pred[j] / q_noise[j],
+                windows: windows::windows(&p, &p.sig.residual, j, 3.0, 5),
+            }
+        })
+        .collect();
+
+    // How far it shrinks (held-out data).
+    let shrink = shrink::shrink(robot, holdout, &h, chosen);
+    Ok(Report {
+        robot: R::NAME.to_string(),
+        samples: [train.len(), holdout.len()],
+        where_: Where { joints },
+        which: Which { ranked, verdict },
+        shrink,
+    })
+}
+
+/// RMS of joint `j` of `r` over the rows in use.
+fn rms<const N: usize>(p: &Prepared<N>, r: &[SVector<f64, N>], j: usize) -> f64 {
+    let s: f64 = p.rows.iter().map(|&k| r[k][j].powi(2)).sum();
+    (s / p.rows.len().max(1) as f64).sqrt()
+}

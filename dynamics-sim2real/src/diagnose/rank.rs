@@ -1,0 +1,119 @@
+//! Ranking the fitted candidates: the best grid variant per (kind, place)
+//! by AICc, parsimony between nested models, and the report's entries.
+
+use super::analysis::Fit;
+use super::candidate::Candidate;
+use super::motor::MotorGuess;
+use super::report::{Parameter, Ranked};
+use dynamics_runtime::Robot;
+
+/// The best variant of each (kind, place), best AICc first; a richer model
+/// that contains a simpler one at the same joint (Stribeck contains
+/// Coulomb; elasticity and backlash contain a rigid rotor) must beat it by
+/// `nesting_margin`, or the simpler one goes first.
+pub fn best_per_place(fits: Vec<Fit>, n: usize, nesting_margin: f64) -> Vec<Fit> {
+    let mut best: Vec<Fit> = Vec::new();
+    for f in fits {
+        let key = (f.candidate.kind(), f.candidate.joint());
+        match best
+            .iter_mut()
+            .find(|b| (b.candidate.kind(), b.candidate.joint()) == key)
+        {
+            Some(b) if b.aicc(n) <= f.aicc(n) => {}
+            Some(b) => *b = f,
+            None => best.push(f),
+        }
+    }
+    best.sort_by(|a, b| a.aicc(n).total_cmp(&b.aicc(n)));
+    // Parsimony: a richer model that contains a simpler one at the same
+    // joint (Stribeck contains Coulomb; elasticity and backlash contain a
+    // rigid rotor) must beat it clearly, or the simpler one goes first.
+    if best.len() > 1 {
+        let top = best[0].candidate;
+        let simpler = match top {
+            Candidate::Stribeck(j, _) => Some(Candidate::Coulomb(j)),
+            Candidate::Elasticity(j) | Candidate::Backlash(j) => Some(Candidate::Armature(j)),
+            _ => None,
+        };
+        if let Some(s) = simpler {
+            if let Some(i) = best.iter().position(|f| f.candidate == s) {
+                let gain = best[i].aicc(n) - best[0].aicc(n);
+                if gain < nesting_margin {
+                    let f = best.remove(i);
+                    best.insert(0, f);
+                }
+            }
+        }
+    }
+    best
+}
+
+/// The report's entry of a fit: parameters with their spreads, share of
+/// the gap explained (training and held-out), AICc and its gain.
+pub fn ranked_entry<R: Robot<N>, const N: usize>(
+    f: &Fit,
+    tip: &str,
+    aicc0: f64,
+    n: usize,
+    share: f64,
+    holdout_share: f64,
+) -> Ranked {
+    let c = f.candidate;
+    let mut parameters: Vec<Parameter> = c
+        .linear_parameters()
+        .iter()
+        .zip(f.theta.iter().zip(&f.std))
+        .map(|((name, _), (v, s))| Parameter {
+            name: name.to_string(),
+            value: *v,
+            std: *s,
+        })
+        .collect();
+    match c {
+        Candidate::Stribeck(_, vs) => parameters.push(Parameter {
+            name: "vs".into(),
+            value: vs,
+            std: vs * 0.5,
+        }),
+        Candidate::Environment(alpha) => parameters.push(Parameter {
+            name: "alpha".into(),
+            value: alpha,
+            std: 0.25,
+        }),
+        _ => {}
+    }
+    if let (Some(g), false) = (f.motor, matches!(c, Candidate::Armature(_))) {
+        let mut push = |name: &str, value: f64, std: f64| {
+            parameters.push(Parameter {
+                name: name.into(),
+                value,
+                std,
+            })
+        };
+        let sd = f.motor_std.unwrap_or(MotorGuess {
+            jm: f64::INFINITY,
+            stiffness: f64::INFINITY,
+            damping: f64::INFINITY,
+            half_width: f64::INFINITY,
+        });
+        push("motor_inertia", g.jm, sd.jm);
+        if matches!(c, Candidate::Backlash(_)) {
+            push("half_width", g.half_width, sd.half_width);
+            push("contact_stiffness", g.stiffness, sd.stiffness);
+        } else {
+            push("stiffness", g.stiffness, sd.stiffness);
+            push("damping", g.damping, sd.damping);
+        }
+    }
+    let a = f.aicc(n);
+    Ranked {
+        kind: c.kind().name().to_string(),
+        joint: c.joint().map(|j| R::JOINT_NAMES[j].to_string()),
+        point: matches!(c, Candidate::Payload | Candidate::Environment(_)).then(|| tip.to_string()),
+        parameters,
+        share,
+        aicc: a,
+        delta_aicc: aicc0 - a,
+        holdout_share,
+    }
+}

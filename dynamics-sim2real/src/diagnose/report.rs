@@ -1,0 +1,158 @@
+//! The diagnosis report (serialised as the JSON documented in the README).
+
+use serde::Serialize;
+
+pub use super::windows::Window;
+
+/// The whole report.
+#[derive(Debug, Clone, Serialize)]
+pub struct Report {
+    /// Robot name.
+    pub robot: String,
+    /// Samples in the training and held-out data.
+    pub samples: [usize; 2],
+    /// Where the model and the data disagree.
+    #[serde(rename = "where")]
+    pub where_: Where,
+    /// Which effect explains it.
+    pub which: Which,
+    /// How far the gap shrinks on held-out data.
+    pub shrink: Shrink,
+}
+
+/// Where: per joint.
+#[derive(Debug, Clone, Serialize)]
+pub struct Where {
+    /// Per joint.
+    pub joints: Vec<JointGap>,
+}
+
+/// The gap at one joint (training data, nominal model).
+#[derive(Debug, Clone, Serialize)]
+pub struct JointGap {
+    /// Joint name.
+    pub joint: String,
+    /// RMS of the smoothed torque residual.
+    pub torque_rms: f64,
+    /// Its noise floor.
+    pub torque_noise: f64,
+    /// `torque_rms / torque_noise`.
+    pub torque_ratio: f64,
+    /// RMS short-horizon position prediction error.
+    pub prediction_rms: f64,
+    /// Its yardstick: the same error for an exact model (`yardstick.rs`).
+    pub prediction_noise: f64,
+    /// `prediction_rms / prediction_noise`.
+    pub prediction_ratio: f64,
+    /// Windows where the residual concentrates.
+    pub windows: Vec<Window>,
+}
+
+/// Which: ranking and verdict.
+#[derive(Debug, Clone, Serialize)]
+pub struct Which {
+    /// Candidates, best first.
+    pub ranked: Vec<Ranked>,
+    /// The verdict.
+    pub verdict: Verdict,
+}
+
+/// A fitted parameter.
+#[derive(Debug, Clone, Serialize)]
+pub struct Parameter {
+    /// Name.
+    pub name: String,
+    /// Value (SI).
+    pub value: f64,
+    /// Standard deviation (grid-searched parameters: half the grid step);
+    /// infinite (`null` in JSON) where the data do not determine it.
+    pub std: f64,
+}
+
+/// One ranked candidate.
+#[derive(Debug, Clone, Serialize)]
+pub struct Ranked {
+    /// Effect kind.
+    pub kind: String,
+    /// Joint, for joint effects.
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub joint: Option<String>,
+    /// Point, for tip effects.
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub point: Option<String>,
+    /// Fitted parameters.
+    pub parameters: Vec<Parameter>,
+    /// Share of the gap above noise explained on the training data.
+    pub share: f64,
+    /// Corrected Akaike information criterion.
+    pub aicc: f64,
+    /// AICc of the nominal model minus this one's (larger is better).
+    pub delta_aicc: f64,
+    /// Share of the held-out gap above noise it explains.
+    pub holdout_share: f64,
+}
+
+/// The verdict.
+#[derive(Debug, Clone, Serialize)]
+pub struct Verdict {
+    /// Effect kind (`none` when the model explains the data within noise,
+    /// `unexplained` when it does not and no candidate explains the gap).
+    pub kind: String,
+    /// Joint name, for joint effects.
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub joint: Option<String>,
+    /// Point, for tip effects.
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub point: Option<String>,
+    /// `clear`, `ambiguous`, `within_noise` or `unexplained`.
+    pub status: String,
+    /// The rival that these data cannot tell apart, when ambiguous.
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub rival: Option<Box<Ranked>>,
+    /// A motion that would separate the two, when ambiguous.
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub separating_motion: Option<String>,
+}
+
+impl Verdict {
+    /// Whether the verdict names an effect (the first of the ranking):
+    /// false for `none` and `unexplained`.
+    ///
+    /// ```
+    /// use dynamics_sim2real::diagnose::Verdict;
+    /// let v = Verdict { kind: "unexplained".into(), joint: None, point: None,
+    ///     status: "unexplained".into(), rival: None, separating_motion: None };
+    /// assert!(!v.names_effect());
+    /// ```
+    pub fn names_effect(&self) -> bool {
+        !matches!(self.kind.as_str(), "none" | "unexplained")
+    }
+}
+
+/// Shrink on held-out data.
+#[derive(Debug, Clone, Serialize)]
+pub struct Shrink {
+    /// Per joint.
+    pub joints: Vec<JointShrink>,
+    /// 1 - gap after / gap before, torque residual above noise.
+    pub torque_fraction: f64,
+    /// 1 - error after / error before, short-horizon simulation.
+    pub simulation_fraction: f64,
+    /// The overall figure (the torque fraction).
+    pub fraction: f64,
+}
+
+/// Before and after at one joint (held-out data).
+#[derive(Debug, Clone, Serialize)]
+pub struct JointShrink {
+    /// Joint name.
+    pub joint: String,
+    /// Torque residual RMS before.
+    pub torque_before: f64,
+    /// After.
+    pub torque_after: f64,
+    /// Short-horizon position error RMS before.
+    pub simulation_before: f64,
+    /// After.
+    pub simulation_after: f64,
+}

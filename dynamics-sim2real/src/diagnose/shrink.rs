@@ -1,0 +1,66 @@
+//! How far the gap shrinks on the held-out data once the chosen effect is
+//! added: the torque residual above noise and the short-horizon simulation
+//! error, per joint and overall.
+
+use nalgebra::SVector;
+
+use super::analysis::{Fit, Prepared};
+use super::report::{JointShrink, Shrink};
+use super::signals::robust_std;
+use super::{horizon, rms};
+use crate::data::Measured;
+use dynamics_runtime::Robot;
+
+/// The shrink on `holdout` (prepared as `h`) of the chosen fit (`None`:
+/// nothing added, no shrink).
+pub fn shrink<R: Robot<N> + Clone + Sync, const N: usize>(
+    robot: &R,
+    holdout: &Measured<N>,
+    h: &Prepared<N>,
+    chosen: Option<&Fit>,
+) -> Shrink {
+    let after = chosen.map(|f| f.corrected(h));
+    let effect = chosen.and_then(|f| f.effect());
+    let sim_before = horizon::prediction_error(robot, h, None);
+    let sim_after = match effect {
+        Some(e) => horizon::prediction_error(robot, h, Some(e)),
+        None => sim_before,
+    };
+    let hq_noise = position_noise(holdout, h);
+    let mut gap = [0.0f64; 4];
+    let shrink_joints = (0..N)
+        .map(|j| {
+            let before = rms(h, &h.sig.residual, j);
+            let aft = after.as_ref().map(|a| rms(h, a, j)).unwrap_or(before);
+            let above = |x: f64, floor: f64| (x * x - floor * floor).max(0.0).sqrt() / floor;
+            gap[0] += above(before, h.sig.floor[j]).powi(2);
+            gap[1] += above(aft, h.sig.floor[j]).powi(2);
+            gap[2] += above(sim_before[j], hq_noise[j]).powi(2);
+            gap[3] += above(sim_after[j], hq_noise[j]).powi(2);
+            JointShrink {
+                joint: R::JOINT_NAMES[j].to_string(),
+                torque_before: before,
+                torque_after: aft,
+                simulation_before: sim_before[j],
+                simulation_after: sim_after[j],
+            }
+        })
+        .collect();
+    let frac = |b: f64, a: f64| if b > 0.0 { 1.0 - (a / b).sqrt() } else { 0.0 };
+    let torque_fraction = frac(gap[0], gap[1]);
+    Shrink {
+        joints: shrink_joints,
+        torque_fraction,
+        simulation_fraction: frac(gap[2], gap[3]),
+        fraction: torque_fraction,
+    }
+}
+
+/// Position noise per joint: robust spread of raw minus smoothed positions.
+fn position_noise<const N: usize>(m: &Measured<N>, p: &Prepared<N>) -> SVector<f64, N> {
+    let (a, z) = p.sig.range;
+    SVector::from_fn(|j, _| {
+        let d: Vec<f64> = (a..z).map(|k| m.q[k][j] - p.sig.q[k][j]).collect();
+        robust_std(&d).max(1e-12)
+    })
+}

@@ -1,0 +1,119 @@
+//! The vocabulary of unmodelled effects (design notes, "the diagnosis
+//! vocabulary"): each kind's name as it appears in CSV truth files, JSON
+//! reports and on the command line.
+
+use std::fmt;
+use std::str::FromStr;
+
+/// What kind of unmodelled effect.
+///
+/// ```
+/// use dynamics_sim2real::effects::EffectKind;
+/// let k: EffectKind = "backlash".parse().unwrap();
+/// assert_eq!(k, EffectKind::Backlash);
+/// assert_eq!(k.to_string(), "backlash");
+/// assert!("glue".parse::<EffectKind>().is_err());
+/// ```
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Hash, PartialOrd, Ord)]
+pub enum EffectKind {
+    /// The model explains the data within noise.
+    None,
+    /// Coulomb friction `-Fc sign(qd)`.
+    CoulombFriction,
+    /// Viscous friction `-Fv qd`.
+    ViscousFriction,
+    /// Stribeck friction `-(Fc + (Fs - Fc) exp(-(qd/vs)^2)) sign(qd)`.
+    StribeckFriction,
+    /// Rotor inertia reflected to the joint.
+    Armature,
+    /// An extra point mass at the tip.
+    PayloadMass,
+    /// A two-mass joint: motor and link joined by a spring and a damper.
+    JointElasticity,
+    /// A dead zone of half-width delta between motor and link.
+    Backlash,
+    /// `F = -mu |v|^(alpha-1) v` at the tip (seed 001 sec. 3.4).
+    EnvironmentResistance,
+    /// The encoder reads `q + offset`.
+    EncoderOffset,
+    /// Positions and velocities are recorded `delay` seconds late.
+    TimeDelay,
+}
+
+impl EffectKind {
+    /// Every kind, `None` first.
+    pub const ALL: [EffectKind; 11] = [
+        EffectKind::None,
+        EffectKind::CoulombFriction,
+        EffectKind::ViscousFriction,
+        EffectKind::StribeckFriction,
+        EffectKind::Armature,
+        EffectKind::PayloadMass,
+        EffectKind::JointElasticity,
+        EffectKind::Backlash,
+        EffectKind::EnvironmentResistance,
+        EffectKind::EncoderOffset,
+        EffectKind::TimeDelay,
+    ];
+
+    /// The name of the vocabulary (`coulomb_friction`, ...).
+    pub fn name(self) -> &'static str {
+        match self {
+            EffectKind::None => "none",
+            EffectKind::CoulombFriction => "coulomb_friction",
+            EffectKind::ViscousFriction => "viscous_friction",
+            EffectKind::StribeckFriction => "stribeck_friction",
+            EffectKind::Armature => "armature",
+            EffectKind::PayloadMass => "payload_mass",
+            EffectKind::JointElasticity => "joint_elasticity",
+            EffectKind::Backlash => "backlash",
+            EffectKind::EnvironmentResistance => "environment_resistance",
+            EffectKind::EncoderOffset => "encoder_offset",
+            EffectKind::TimeDelay => "time_delay",
+        }
+    }
+
+    /// Where the effect sits.
+    pub fn place(self) -> PlaceKind {
+        match self {
+            EffectKind::None => PlaceKind::Nowhere,
+            EffectKind::PayloadMass | EffectKind::EnvironmentResistance => PlaceKind::Point,
+            EffectKind::TimeDelay => PlaceKind::All,
+            _ => PlaceKind::Joint,
+        }
+    }
+}
+
+/// Where an effect of some kind acts.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub enum PlaceKind {
+    /// Nowhere (`none`).
+    Nowhere,
+    /// At one joint.
+    Joint,
+    /// At a point (the tip).
+    Point,
+    /// On every measured signal.
+    All,
+}
+
+impl fmt::Display for EffectKind {
+    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
+        f.write_str(self.name())
+    }
+}
+
+/// An effect name outside the vocabulary.
+#[derive(Debug, Clone, PartialEq, Eq, thiserror::Error)]
+#[error("unknown effect `{0}`; known: none, coulomb_friction, viscous_friction, stribeck_friction, armature, payload_mass, joint_elasticity, backlash, environment_resistance, encoder_offset, time_delay")]
+pub struct UnknownEffect(pub String);
+
+impl FromStr for EffectKind {
+    type Err = UnknownEffect;
+    fn from_str(s: &str) -> Result<Self, Self::Err> {
+        EffectKind::ALL
+            .into_iter()
+            .find(|k| k.name() == s)
+            .ok_or_else(|| UnknownEffect(s.to_string()))
+    }
+}

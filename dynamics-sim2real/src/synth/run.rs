@@ -1,0 +1,183 @@
+//! One synthetic experiment: the plant with the withheld effects, the
+//! reference, the cascade controller built on the nominal model, and the
+//! sensors (noise, encoder offsets, delay).
+
+use nalgebra::SVector;
+
+use super::sensors::delayed;
+use super::{Excitation, Noise, Rng, Scales, SynthError, SynthOptions};
+use crate::data::Measured;
+use crate::effects::{Effect, Plant};
+use dynamics_runtime::control::Reference;
+use dynamics_runtime::ode::Tolerances;
+use dynamics_runtime::Robot;
+
+/// One experiment: the plant, the reference, the controller, the sensors.
+pub(super) struct Run<'a, R, const N: usize> {
+    robot: &'a R,
+    plant: Plant<R, N>,
+    reference: Excitation<N>,
+    pub(super) scales: Scales<N>,
+    opts: &'a SynthOptions<N>,
+    offset: SVector<f64, N>,
+    delay: f64,
+    /// Joints whose drive turns a motor side (elasticity, backlash): their
+    /// velocity loop reads the motor speed.
+    motor: [bool; N],
+
+    /// The random stream after the reference was drawn (sensor noise).
+    pub(super) rng: Rng,
+}
+
+impl<'a, R: Robot<N> + Clone, const N: usize> Run<'a, R, N> {
+    pub(super) fn new(
+        robot: &'a R,
+        effects: &[Effect],
+        opts: &'a SynthOptions<N>,
+    ) -> Result<Self, SynthError> {
+        if !(opts.rate.is_finite()
+            && opts.rate > 0.0
+            && opts.duration.is_finite()
+            && opts.duration > 0.0)
+        {
+            return Err(SynthError::Options(format!(
+                "duration ({}) and rate ({}) must be positive",
+                opts.duration, opts.rate
+            )));
+        }
+        let plant = Plant::new(robot.clone(), effects.to_vec())?;
+        let mut rng = Rng::new(opts.seed);
+        let reference = Excitation::new(
+            opts.excitation,
+            opts.home,
+            opts.amplitude,
+            opts.duration,
+            &mut rng,
+        );
+        let scales = Scales::of(robot, &reference, opts.duration);
+        let (mut offset, mut delay) = (SVector::<f64, N>::zeros(), 0.0);
+        let mut motor = [false; N];
+        for e in effects {
+            if let (true, Some(j)) = (e.has_motor(), e.joint()) {
+                motor[j.min(N - 1)] = true;
+            }
+            match *e {
+                Effect::EncoderOffset { joint, offset: o } => offset[joint] += o,
+                Effect::TimeDelay { delay: d } => delay += d,
+                _ => {}
+            }
+        }
+        Ok(Run {
+            robot,
+            plant,
+            reference,
+            scales,
+            opts,
+            offset,
+            delay,
+            motor,
+            rng,
+        })
+    }
+
+    /// Runs the experiment with sensor noise `noise`; returns what the
+    /// sensors recorded and, per joint, the RMS of the applied effort minus
+    /// the nominal inverse dynamics of the noise-free sensor readings, and
+    /// of what of it no rigid rotor explains at the motor joints.
+    #[allow(clippy::type_complexity)]
+    pub(super) fn record(
+        &self,
+        noise: Noise,
+        rng: &mut Rng,
+    ) -> Result<(Measured<N>, SVector<f64, N>, SVector<f64, N>), SynthError> {
+        let (robot, opts) = (self.robot, self.opts);
+        let dt = 1.0 / opts.rate;
+        let n = (opts.duration * opts.rate).round() as usize + 1;
+        let r0 = self.reference.at(0.0);
+        let mut sim = self.plant.start(r0.q, r0.qd);
+        let tol = Tolerances {
+            rtol: 1e-9,
+            atol: 1e-11,
+            ..Default::default()
+        };
+        let kp = opts.bandwidth * opts.bandwidth;
+        let kd = 2.0 * opts.bandwidth;
+        let mut truth: Vec<(SVector<f64, N>, SVector<f64, N>)> = Vec::with_capacity(n);
+        // Noise-free sensor readings and applied efforts, for the effect size.
+        let mut seen: Vec<(SVector<f64, N>, SVector<f64, N>)> = Vec::with_capacity(n);
+        let mut applied: Vec<SVector<f64, N>> = Vec::with_capacity(n);
+        let mut out = Measured::<N> {
+            qd_measured: true,
+            ..Default::default()
+        };
+        for k in 0..n {
+            let t = k as f64 * dt;
+            truth.push((sim.state.q, sim.state.qd));
+            // What the sensors report: late by `delay`, shifted by the offsets.
+            let (q_seen, qd_seen) = delayed(&truth, t - self.delay, dt, &truth[0]);
+            let q_seen = q_seen + self.offset;
+            seen.push((q_seen, qd_seen));
+            let q_meas = q_seen + rng.normal_vec(&SVector::repeat(noise.q));
+            let qd_meas = qd_seen + rng.normal_vec(&SVector::repeat(noise.qd));
+            let r: Reference<N> = self.reference.at(t);
+            // The drive's velocity loop: the motor encoder where there is
+            // a motor side, else the (one) joint speed.
+            let drive_qd = SVector::<f64, N>::from_fn(|j, _| {
+                if self.motor[j] {
+                    sim.state.qmd[j] + noise.qd * rng.normal()
+                } else {
+                    qd_meas[j]
+                }
+            });
+            let v = r.qdd + (r.q - q_meas) * kp + (r.qd - drive_qd) * kd;
+            let tau = robot.inverse_dynamics(&q_meas, &qd_meas, &v);
+            let mut tau_meas = tau;
+            for j in 0..N {
+                tau_meas[j] += noise.tau_relative * self.scales.peak_effort[j] * rng.normal();
+            }
+            for j in 0..N {
+                let error = (sim.state.q[j] - r.q[j]).abs();
+                // (NaN counts as off too.)
+                if error.is_nan() || error > 5.0 * opts.amplitude[j].abs() + 1e-3 {
+                    return Err(SynthError::Unstable { t, joint: j, error });
+                }
+            }
+            out.t.push(t);
+            out.q.push(q_meas);
+            out.qd.push(qd_meas);
+            out.tau.push(tau_meas);
+            applied.push(tau);
+            if k + 1 < n {
+                sim.advance(&self.plant, (k + 1) as f64 * dt, &tau, tol)?;
+            }
+        }
+        // The effort is held over each sample interval: around sample k the
+        // motion's mean acceleration (central difference of the velocity)
+        // answers the mean of the efforts held before and after it.
+        // Per joint: sum of gap^2, of gap * qdd and of qdd^2 (for the best
+        // rigid rotor at the motor joints).
+        let (mut sum, mut cross, mut acc) = (
+            SVector::<f64, N>::zeros(),
+            SVector::<f64, N>::zeros(),
+            SVector::<f64, N>::zeros(),
+        );
+        for k in 1..n.saturating_sub(1) {
+            let qdd = (seen[k + 1].1 - seen[k - 1].1) / (2.0 * dt);
+            let held = (applied[k - 1] + applied[k]) * 0.5;
+            let gap = held - robot.inverse_dynamics(&seen[k].0, &seen[k].1, &qdd);
+            sum += gap.component_mul(&gap);
+            cross += gap.component_mul(&qdd);
+            acc += qdd.component_mul(&qdd);
+        }
+        let count = n.saturating_sub(2).max(1) as f64;
+        let effect = (sum / count).map(f64::sqrt);
+        let distinct = SVector::<f64, N>::from_fn(|j, _| {
+            if self.motor[j] && acc[j] > 0.0 {
+                ((sum[j] - cross[j] * cross[j] / acc[j]).max(0.0) / count).sqrt()
+            } else {
+                effect[j]
+            }
+        });
+        Ok((out, effect, distinct))
+    }
+}
