@@ -34,6 +34,10 @@ pub enum Candidate {
     Elasticity(usize),
     /// Dead zone between motor and link.
     Backlash(usize),
+    /// Effort sensor scale at a joint (fitted as scale - 1).
+    EffortScale(usize),
+    /// Effort sensor offset at a joint.
+    EffortOffset(usize),
 }
 
 /// Stribeck velocities searched, rad/s.
@@ -68,6 +72,12 @@ impl Candidate {
             if want(EffectKind::Backlash) {
                 out.push(Candidate::Backlash(j));
             }
+            if want(EffectKind::EffortScale) {
+                out.push(Candidate::EffortScale(j));
+            }
+            if want(EffectKind::EffortOffset) {
+                out.push(Candidate::EffortOffset(j));
+            }
         }
         if want(EffectKind::PayloadMass) {
             out.push(Candidate::Payload);
@@ -94,6 +104,8 @@ impl Candidate {
             Candidate::TimeDelay => EffectKind::TimeDelay,
             Candidate::Elasticity(_) => EffectKind::JointElasticity,
             Candidate::Backlash(_) => EffectKind::Backlash,
+            Candidate::EffortScale(_) => EffectKind::EffortScale,
+            Candidate::EffortOffset(_) => EffectKind::EffortOffset,
         }
     }
 
@@ -106,7 +118,9 @@ impl Candidate {
             | Candidate::Armature(j)
             | Candidate::EncoderOffset(j)
             | Candidate::Elasticity(j)
-            | Candidate::Backlash(j) => Some(j),
+            | Candidate::Backlash(j)
+            | Candidate::EffortScale(j)
+            | Candidate::EffortOffset(j) => Some(j),
             _ => None,
         }
     }
@@ -122,6 +136,8 @@ impl Candidate {
             Candidate::Environment(_) => &[("mu", true)],
             Candidate::EncoderOffset(_) => &[("offset", false)],
             Candidate::TimeDelay => &[("delay", true)],
+            Candidate::EffortScale(_) => &[("scale_minus_one", false)],
+            Candidate::EffortOffset(_) => &[("offset", false)],
             Candidate::Elasticity(_) | Candidate::Backlash(_) => &[],
         }
     }
@@ -161,6 +177,8 @@ impl Candidate {
                     c[0] = sig.model_rate[k];
                 }
             }
+            Candidate::EffortScale(j) => c[0][j] = sig.model[k][j],
+            Candidate::EffortOffset(j) => c[0][j] = 1.0,
             Candidate::Elasticity(_) | Candidate::Backlash(_) => {}
         }
         c
@@ -189,6 +207,14 @@ impl Candidate {
                 offset: p(0),
             },
             Candidate::TimeDelay => Effect::TimeDelay { delay: p(0) },
+            Candidate::EffortScale(joint) => Effect::EffortScale {
+                joint,
+                scale: 1.0 + p(0),
+            },
+            Candidate::EffortOffset(joint) => Effect::EffortOffset {
+                joint,
+                offset: p(0),
+            },
             Candidate::Elasticity(_) | Candidate::Backlash(_) => return None,
         })
     }

@@ -15,27 +15,24 @@ pub const HORIZON: f64 = 0.1;
 pub const SPACING: f64 = 0.5;
 
 /// RMS position prediction error per joint over windows of [`HORIZON`]
-/// seconds, for the model with `effect` attached (none: the nominal model).
+/// seconds, for the model with `effects` attached (none: the nominal model).
 pub fn prediction_error<R: Robot<N> + Clone, const N: usize>(
     robot: &R,
     p: &Prepared<N>,
-    effect: Option<Effect>,
+    effects: &[Effect],
 ) -> SVector<f64, N> {
     let sig = &p.sig;
-    let (offset, delay) = match effect {
-        Some(Effect::EncoderOffset { joint, offset }) => {
-            let mut o = SVector::<f64, N>::zeros();
-            o[joint] = offset;
-            (o, 0.0)
+    let (mut offset, mut delay) = (SVector::<f64, N>::zeros(), 0.0);
+    for e in effects {
+        match *e {
+            Effect::EncoderOffset { joint, offset: o } if joint < N => offset[joint] += o,
+            Effect::TimeDelay { delay: d } => delay += d,
+            _ => {}
         }
-        Some(Effect::TimeDelay { delay }) => (SVector::zeros(), delay),
-        _ => (SVector::zeros(), 0.0),
-    };
-    let effects: Vec<Effect> = effect
-        .filter(|e| !matches!(e, Effect::EncoderOffset { .. } | Effect::TimeDelay { .. }))
-        .into_iter()
-        .collect();
-    let Ok(plant) = Plant::new(robot.clone(), effects) else {
+    }
+    let sensor: Vec<Effect> = effects.iter().copied().filter(Effect::is_sensor).collect();
+    let plant_effects: Vec<Effect> = effects.iter().copied().filter(|e| !e.is_sensor()).collect();
+    let Ok(plant) = Plant::new(robot.clone(), plant_effects) else {
         return SVector::repeat(f64::INFINITY);
     };
     let dt = sig.dt;
@@ -68,7 +65,12 @@ pub fn prediction_error<R: Robot<N> + Clone, const N: usize>(
         let mut ok = true;
         for k in k0..k0 + len {
             if sim
-                .advance(&plant, sig.t[k + 1], &sig.tau_raw[k], tol)
+                .advance(
+                    &plant,
+                    sig.t[k + 1],
+                    &Effect::applied_effort(&sensor, &sig.tau_raw[k]),
+                    tol,
+                )
                 .is_err()
             {
                 ok = false;

@@ -33,6 +33,8 @@
 mod analysis;
 mod basis;
 mod candidate;
+mod compound;
+mod explain;
 mod filter;
 mod fit;
 mod horizon;
@@ -40,6 +42,7 @@ mod motor;
 mod motor_fit;
 mod noise;
 mod parallel;
+mod pool;
 mod rank;
 mod refine;
 mod report;
@@ -84,6 +87,12 @@ pub struct Options {
     /// it contains to be preferred (10: "strong evidence" on the usual
     /// scale of AIC differences).
     pub nesting_margin: f64,
+    /// AICc improvement each effect after the first must add to the
+    /// compound explanation (the first must add `none_margin`).
+    pub add_margin: f64,
+    /// The compound explanation stops adding effects once the residual RMS
+    /// is within this many times the noise floor on every joint.
+    pub floor_ratio: f64,
     /// Threads (0: all cores).
     pub threads: usize,
     /// Sensor noise, when known: the torque residual's noise floor is then
@@ -101,6 +110,8 @@ impl Default for Options {
             ambiguity_margin: 10.0,
             unexplained_ratio: 3.0,
             nesting_margin: 10.0,
+            add_margin: 100.0,
+            floor_ratio: 1.1,
             threads: 0,
             noise: None,
         }
@@ -209,6 +220,10 @@ pub fn diagnose<R: Robot<N> + Clone + Sync, const N: usize>(
     let candidates = Candidate::all::<N>(&options.kinds);
     let fits = parallel::fit_all::<R, N>(&candidates, &p, options.threads, progress);
 
+    // The compound explanation over every fitted term.
+    let mut pool = pool::Pool::new(&fits, &p);
+    let explanation = compound::explain::<R, N>(&mut pool, &p, options);
+
     // Best grid variant per (kind, place), ranked by AICc, simpler nested
     // models first unless the richer one wins clearly.
     let best = rank::best_per_place(fits, n, options.nesting_margin);
@@ -237,14 +252,9 @@ pub fn diagnose<R: Robot<N> + Clone + Sync, const N: usize>(
         .map(|j| rms(&p, &p.sig.residual, j) / p.sig.floor[j])
         .fold(0.0, f64::max);
     let verdict = verdict::verdict(&ranked, gap, options);
-    let chosen = if verdict.names_effect() {
-        best.first()
-    } else {
-        None
-    };
 
     // Where (training data, nominal model).
-    let pred = horizon::prediction_error(robot, &p, None);
+    let pred = horizon::prediction_error(robot, &p, &[]);
     let q_noise = yardstick::prediction_floor(robot, train, &p);
     let joints = (0..N)
         .map(|j| {
@@ -262,15 +272,47 @@ pub fn diagnose<R: Robot<N> + Clone + Sync, const N: usize>(
         })
         .collect();
 
-    // How far it shrinks (held-out data).
-    let shrink = shrink::shrink(robot, holdout, &h, chosen);
+    // The explanation's entries and how far it shrinks the gap (held-out
+    // data).
+    let hold = explain::Holdout::new(&h, &pool, &explanation);
+    let (effects, steps) = explain::entries::<R, N>(&pool, &explanation, &hold, &tip_name, aicc0);
+    let all: Vec<usize> = (0..explanation.set.len()).collect();
+    let r = hold.residual(&all, &explanation.sol.theta);
+    let rms_fraction = explain::fraction(hold.plain(&hold_y(&hold)), hold.plain(&r));
+    let after = (!explanation.set.is_empty()).then(|| {
+        let mut v = vec![SVector::<f64, N>::zeros(); h.sig.t.len()];
+        for (i, &k) in h.rows.iter().enumerate() {
+            for j in 0..N {
+                v[k][j] = r[i * N + j] * h.sig.floor[j];
+            }
+        }
+        v
+    });
+    let shrink = shrink::shrink(
+        robot,
+        holdout,
+        &h,
+        after,
+        &explain::effects(&pool, &explanation),
+        rms_fraction,
+        steps,
+    );
     Ok(Report {
         robot: R::NAME.to_string(),
         samples: [train.len(), holdout.len()],
         where_: Where { joints },
-        which: Which { ranked, verdict },
+        which: Which {
+            ranked,
+            verdict,
+            effects,
+        },
         shrink,
     })
+}
+
+/// The nominal model's whitened held-out residual.
+fn hold_y<const N: usize>(hold: &explain::Holdout<N>) -> nalgebra::DVector<f64> {
+    hold.residual(&[], &[])
 }
 
 /// RMS of joint `j` of `r` over the rows in use.

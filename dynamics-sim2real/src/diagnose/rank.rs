@@ -63,10 +63,18 @@ pub fn ranked_entry<R: Robot<N>, const N: usize>(
         .linear_parameters()
         .iter()
         .zip(f.theta.iter().zip(&f.std))
-        .map(|((name, _), (v, s))| Parameter {
-            name: name.to_string(),
-            value: *v,
-            std: *s,
+        .map(|((name, _), (v, s))| match *name {
+            // Fitted as scale - 1, reported as the scale.
+            "scale_minus_one" => Parameter {
+                name: "scale".into(),
+                value: 1.0 + *v,
+                std: *s,
+            },
+            _ => Parameter {
+                name: name.to_string(),
+                value: *v,
+                std: *s,
+            },
         })
         .collect();
     match c {

@@ -48,13 +48,86 @@ pub struct JointGap {
     pub windows: Vec<Window>,
 }
 
-/// Which: ranking and verdict.
+/// Which: ranking, verdict and the compound explanation.
 #[derive(Debug, Clone, Serialize)]
 pub struct Which {
     /// Candidates, best first.
     pub ranked: Vec<Ranked>,
     /// The verdict.
     pub verdict: Verdict,
+    /// The effects that together explain the gap, in the order chosen
+    /// (empty when the model explains the data within noise or nothing
+    /// explains the gap).
+    pub effects: Vec<Explained>,
+}
+
+/// One effect of the compound explanation.
+#[derive(Debug, Clone, Serialize)]
+pub struct Explained {
+    /// Effect kind.
+    pub kind: String,
+    /// Joint, for joint effects.
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub joint: Option<String>,
+    /// Point, for tip effects.
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub point: Option<String>,
+    /// Parameters from the joint fit of the whole set, with their
+    /// standard deviations.
+    pub parameters: Vec<Parameter>,
+    /// Share of the training gap above noise it explains, in the order
+    /// chosen (the shares add up to the set's).
+    pub share: f64,
+    /// How much the held-out gap (whitened squared residual above noise)
+    /// grows, as a share of that gap, when this effect alone is left out of
+    /// the set (the others refitted on the training data).
+    pub holdout_contribution: f64,
+    /// When the effect is limited in time.
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub window: Option<EffectWindow>,
+    /// An effect the data cannot tell from this one within the set (the
+    /// two are one ambiguous pair).
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub ambiguous_with: Option<Rival>,
+}
+
+/// The time span of a time-limited effect.
+#[derive(Debug, Clone, Serialize)]
+pub struct EffectWindow {
+    /// Start, s.
+    pub start: f64,
+    /// End, s.
+    pub end: f64,
+}
+
+/// The other half of an ambiguous pair.
+#[derive(Debug, Clone, Serialize)]
+pub struct Rival {
+    /// Effect kind.
+    pub kind: String,
+    /// Joint, for joint effects.
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub joint: Option<String>,
+    /// Point, for tip effects.
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub point: Option<String>,
+}
+
+/// The held-out gap left after the first few effects of the explanation.
+#[derive(Debug, Clone, Serialize)]
+pub struct ShrinkStep {
+    /// Effects in the model (the first `effects` of the explanation).
+    pub effects: usize,
+    /// The effect this step added (`kind at place`).
+    pub added: String,
+    /// Torque gap above noise left (root of the sum over joints of the
+    /// squared residual RMS above the floor, in floor units).
+    pub torque_gap: f64,
+    /// 1 - gap left / gap of the nominal model.
+    pub torque_fraction: f64,
+    /// 1 - RMS of the raw effort residual over all joints (noise included)
+    /// / the nominal model's.
+    pub rms_fraction: f64,
 }
 
 /// A fitted parameter.
@@ -140,6 +213,11 @@ pub struct Shrink {
     pub simulation_fraction: f64,
     /// The overall figure (the torque fraction).
     pub fraction: f64,
+    /// 1 - RMS of the raw effort residual over all joints after / before
+    /// (noise included): the plain figure other tools report.
+    pub rms_fraction: f64,
+    /// The held-out gap left after each added effect of the explanation.
+    pub steps: Vec<ShrinkStep>,
 }
 
 /// Before and after at one joint (held-out data).

@@ -1,30 +1,35 @@
-//! How far the gap shrinks on the held-out data once the chosen effect is
-//! added: the torque residual above noise and the short-horizon simulation
-//! error, per joint and overall.
+//! How far the gap shrinks on the held-out data once the explanation's
+//! effects are added: the torque residual above noise and the
+//! short-horizon simulation error, per joint and overall.
 
 use nalgebra::SVector;
 
-use super::analysis::{Fit, Prepared};
-use super::report::{JointShrink, Shrink};
+use super::analysis::Prepared;
+use super::report::{JointShrink, Shrink, ShrinkStep};
 use super::signals::robust_std;
 use super::{horizon, rms};
 use crate::data::Measured;
+use crate::effects::Effect;
 use dynamics_runtime::Robot;
 
-/// The shrink on `holdout` (prepared as `h`) of the chosen fit (`None`:
-/// nothing added, no shrink).
+/// The shrink on `holdout` (prepared as `h`) of the explanation: `after`,
+/// the held-out torque residual it leaves at every sample (`None`: nothing
+/// added, no shrink), `effects` its effects, `rms_fraction` and `steps`
+/// the plain figure and the gap after each added effect (`explain.rs`).
 pub fn shrink<R: Robot<N> + Clone + Sync, const N: usize>(
     robot: &R,
     holdout: &Measured<N>,
     h: &Prepared<N>,
-    chosen: Option<&Fit>,
+    after: Option<Vec<SVector<f64, N>>>,
+    effects: &[Effect],
+    rms_fraction: f64,
+    steps: Vec<ShrinkStep>,
 ) -> Shrink {
-    let after = chosen.map(|f| f.corrected(h));
-    let effect = chosen.and_then(|f| f.effect());
-    let sim_before = horizon::prediction_error(robot, h, None);
-    let sim_after = match effect {
-        Some(e) => horizon::prediction_error(robot, h, Some(e)),
-        None => sim_before,
+    let sim_before = horizon::prediction_error(robot, h, &[]);
+    let sim_after = if effects.is_empty() {
+        sim_before
+    } else {
+        horizon::prediction_error(robot, h, effects)
     };
     let hq_noise = position_noise(holdout, h);
     let mut gap = [0.0f64; 4];
@@ -53,6 +58,8 @@ pub fn shrink<R: Robot<N> + Clone + Sync, const N: usize>(
         torque_fraction,
         simulation_fraction: frac(gap[2], gap[3]),
         fraction: torque_fraction,
+        rms_fraction,
+        steps,
     }
 }
 

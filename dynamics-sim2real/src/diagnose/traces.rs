@@ -185,6 +185,8 @@ fn candidate<R: Robot<N>, const N: usize>(r: &Ranked) -> Result<Candidate, Trace
         EffectKind::TimeDelay => Candidate::TimeDelay,
         EffectKind::JointElasticity => Candidate::Elasticity(joint()?),
         EffectKind::Backlash => Candidate::Backlash(joint()?),
+        EffectKind::EffortScale => Candidate::EffortScale(joint()?),
+        EffectKind::EffortOffset => Candidate::EffortOffset(joint()?),
         EffectKind::None => return Err(err("`none` is not an effect to fit".into())),
     })
 }

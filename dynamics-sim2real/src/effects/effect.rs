@@ -114,9 +114,68 @@ pub enum Effect {
         /// Delay, s.
         delay: f64,
     },
+    /// The effort sensor of `joint` reports `scale` times the applied
+    /// effort.
+    EffortScale {
+        /// Joint index.
+        joint: usize,
+        /// Measured over applied effort.
+        scale: f64,
+    },
+    /// The effort sensor of `joint` reports the applied effort plus
+    /// `offset`.
+    EffortOffset {
+        /// Joint index.
+        joint: usize,
+        /// Offset (N m or N).
+        offset: f64,
+    },
 }
 
 impl Effect {
+    /// The effort applied at the joints when the effort sensors of
+    /// `effects` report `measured` (effort scale and offset undone).
+    ///
+    /// ```
+    /// use dynamics_sim2real::effects::Effect;
+    /// let e = [Effect::EffortScale { joint: 0, scale: 2.0 }, Effect::EffortOffset { joint: 1, offset: 0.5 }];
+    /// let applied = Effect::applied_effort(&e, &nalgebra::Vector2::new(4.0, 1.0));
+    /// assert_eq!(applied, nalgebra::Vector2::new(2.0, 0.5));
+    /// ```
+    pub fn applied_effort<const N: usize>(
+        effects: &[Effect],
+        measured: &nalgebra::SVector<f64, N>,
+    ) -> nalgebra::SVector<f64, N> {
+        let mut out = *measured;
+        for e in effects {
+            if let Effect::EffortOffset { joint, offset } = *e {
+                if joint < N {
+                    out[joint] -= offset;
+                }
+            }
+        }
+        for e in effects {
+            if let Effect::EffortScale { joint, scale } = *e {
+                if joint < N && scale != 0.0 {
+                    out[joint] /= scale;
+                }
+            }
+        }
+        out
+    }
+
+    /// Whether the effect sits in the sensors (encoder offset, delay,
+    /// effort scale and offset) rather than in the plant.
+    pub fn is_sensor(&self) -> bool {
+        matches!(
+            self,
+            Effect::EncoderOffset { .. }
+                | Effect::TimeDelay { .. }
+                | Effect::EffortScale { .. }
+                | Effect::EffortOffset { .. }
+        )
+    }
+
     /// The kind of this effect.
     pub fn kind(&self) -> EffectKind {
         match self {
@@ -130,6 +189,8 @@ impl Effect {
             Effect::EnvironmentResistance { .. } => EffectKind::EnvironmentResistance,
             Effect::EncoderOffset { .. } => EffectKind::EncoderOffset,
             Effect::TimeDelay { .. } => EffectKind::TimeDelay,
+            Effect::EffortScale { .. } => EffectKind::EffortScale,
+            Effect::EffortOffset { .. } => EffectKind::EffortOffset,
         }
     }
 
@@ -142,7 +203,9 @@ impl Effect {
             | Effect::Armature { joint, .. }
             | Effect::JointElasticity { joint, .. }
             | Effect::Backlash { joint, .. }
-            | Effect::EncoderOffset { joint, .. } => Some(joint),
+            | Effect::EncoderOffset { joint, .. }
+            | Effect::EffortScale { joint, .. }
+            | Effect::EffortOffset { joint, .. } => Some(joint),
             _ => None,
         }
     }
@@ -269,6 +332,14 @@ impl Effect {
                 }
             }
             Effect::TimeDelay { delay } => check("delay", delay, false),
+            Effect::EffortScale { scale, .. } => check("scale", scale, true),
+            Effect::EffortOffset { offset, .. } => {
+                if offset.is_finite() {
+                    Ok(())
+                } else {
+                    Err("effort_offset: offset must be finite".into())
+                }
+            }
         }
     }
 }

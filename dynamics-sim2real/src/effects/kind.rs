@@ -38,11 +38,19 @@ pub enum EffectKind {
     EncoderOffset,
     /// Positions and velocities are recorded `delay` seconds late.
     TimeDelay,
+    /// The measured effort is `scale` times the applied one (a torque
+    /// constant or gear ratio that is off: efforts computed from motor
+    /// currents).
+    EffortScale,
+    /// The measured effort carries a constant `offset` (a sensor bias; with
+    /// Coulomb friction at the same joint, a friction level that depends on
+    /// the direction of motion).
+    EffortOffset,
 }
 
 impl EffectKind {
     /// Every kind, `None` first.
-    pub const ALL: [EffectKind; 11] = [
+    pub const ALL: [EffectKind; 13] = [
         EffectKind::None,
         EffectKind::CoulombFriction,
         EffectKind::ViscousFriction,
@@ -54,6 +62,8 @@ impl EffectKind {
         EffectKind::EnvironmentResistance,
         EffectKind::EncoderOffset,
         EffectKind::TimeDelay,
+        EffectKind::EffortScale,
+        EffectKind::EffortOffset,
     ];
 
     /// The name of the vocabulary (`coulomb_friction`, ...).
@@ -70,6 +80,8 @@ impl EffectKind {
             EffectKind::EnvironmentResistance => "environment_resistance",
             EffectKind::EncoderOffset => "encoder_offset",
             EffectKind::TimeDelay => "time_delay",
+            EffectKind::EffortScale => "effort_scale",
+            EffectKind::EffortOffset => "effort_offset",
         }
     }
 
@@ -105,7 +117,7 @@ impl fmt::Display for EffectKind {
 
 /// An effect name outside the vocabulary.
 #[derive(Debug, Clone, PartialEq, Eq, thiserror::Error)]
-#[error("unknown effect `{0}`; known: none, coulomb_friction, viscous_friction, stribeck_friction, armature, payload_mass, joint_elasticity, backlash, environment_resistance, encoder_offset, time_delay")]
+#[error("unknown effect `{0}`; known: none, coulomb_friction, viscous_friction, stribeck_friction, armature, payload_mass, joint_elasticity, backlash, environment_resistance, encoder_offset, time_delay, effort_scale, effort_offset")]
 pub struct UnknownEffect(pub String);
 
 impl FromStr for EffectKind {

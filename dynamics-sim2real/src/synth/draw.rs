@@ -91,6 +91,8 @@ impl<const N: usize> Scales<N> {
 /// | environment_resistance | mu so that the force at peak tip speed is 1-5 % of m_tip g, alpha 1-2.5 |
 /// | encoder_offset | 0.1-1 deg (revolute) or 0.1-1 mm, either sign |
 /// | time_delay | 1-10 ms |
+/// | effort_scale | 0.85-0.95 or 1.05-1.15 |
+/// | effort_offset | 0.5-3 % of the joint's peak effort, either sign |
 ///
 /// ```
 /// use dynamics_sim2real::effects::EffectKind;
@@ -196,5 +198,27 @@ pub fn draw_effect<const N: usize>(
         EffectKind::TimeDelay => Effect::TimeDelay {
             delay: rng.uniform(1e-3, 10e-3),
         },
+        EffectKind::EffortScale => {
+            let off = rng.uniform(0.05, 0.15);
+            Effect::EffortScale {
+                joint: j,
+                scale: if rng.uniform(0.0, 1.0) < 0.5 {
+                    1.0 - off
+                } else {
+                    1.0 + off
+                },
+            }
+        }
+        EffectKind::EffortOffset => {
+            let size = peak * rng.uniform(0.005, 0.03);
+            Effect::EffortOffset {
+                joint: j,
+                offset: if rng.uniform(0.0, 1.0) < 0.5 {
+                    -size
+                } else {
+                    size
+                },
+            }
+        }
     })
 }

@@ -12,12 +12,14 @@
 //! loop stable without the controller knowing about the effect (a damping
 //! loop closed across a lightly damped spring would not be).
 
+mod compound;
 mod draw;
 mod excitation;
 mod rng;
 mod run;
 mod sensors;
 
+pub use compound::{draw_compound, CompoundCase, MOTOR_RATIO};
 pub use draw::{draw_effect, Scales};
 pub use excitation::{Excitation, ExcitationKind};
 pub use rng::Rng;

@@ -24,6 +24,9 @@ pub(super) struct Run<'a, R, const N: usize> {
     /// Joints whose drive turns a motor side (elasticity, backlash): their
     /// velocity loop reads the motor speed.
     motor: [bool; N],
+    /// Effort-sensor effects (scale, offset): the plant is driven by what
+    /// the recorded command means once they are undone.
+    sensor: Vec<Effect>,
 
     /// The random stream after the reference was drawn (sensor noise).
     pub(super) rng: Rng,
@@ -67,7 +70,13 @@ impl<'a, R: Robot<N> + Clone, const N: usize> Run<'a, R, N> {
                 _ => {}
             }
         }
+        let sensor = effects
+            .iter()
+            .copied()
+            .filter(|e| matches!(e, Effect::EffortScale { .. } | Effect::EffortOffset { .. }))
+            .collect();
         Ok(Run {
+            sensor,
             robot,
             plant,
             reference,
@@ -148,7 +157,8 @@ impl<'a, R: Robot<N> + Clone, const N: usize> Run<'a, R, N> {
             out.tau.push(tau_meas);
             applied.push(tau);
             if k + 1 < n {
-                sim.advance(&self.plant, (k + 1) as f64 * dt, &tau, tol)?;
+                let drive = Effect::applied_effort(&self.sensor, &tau);
+                sim.advance(&self.plant, (k + 1) as f64 * dt, &drive, tol)?;
             }
         }
         // The effort is held over each sample interval: around sample k the

@@ -226,6 +226,8 @@ fn effect_for<R: Robot<N>, const N: usize>(
         Effect::EnvironmentResistance { .. } => Effect::EnvironmentResistance { mu: m, alpha: 2.0 },
         Effect::EncoderOffset { joint, .. } => Effect::EncoderOffset { joint, offset: m },
         Effect::TimeDelay { .. } => Effect::TimeDelay { delay: m },
+        Effect::EffortScale { joint, .. } => Effect::EffortScale { joint, scale: m },
+        Effect::EffortOffset { joint, .. } => Effect::EffortOffset { joint, offset: m },
     }))
 }
 

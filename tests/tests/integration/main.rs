@@ -1,6 +1,7 @@
 //! Integration tests, compiled into one binary (faster on two cores).
 
 mod clearance;
+mod compound;
 mod diagnosis;
 mod effects;
 mod elastic_grip;

@@ -1,0 +1,318 @@
+//! The compound explanation: the set of effects that together explain the
+//! gap, chosen over every term of the pool (every candidate of the
+//! vocabulary on every joint).
+//!
+//! Forward selection: each step makes the move that most lowers the
+//! corrected information criterion of the JOINT fit of the set (linear
+//! effects refitted together by sign-constrained least squares, motor
+//! sides as fixed columns): adding a term (it must gain
+//! [`Options::none_margin`] for the first, [`Options::add_margin`] for the
+//! others; a richer nested term, Stribeck over Coulomb or elasticity and
+//! backlash over a rotor, must beat its simpler one by
+//! [`Options::nesting_margin`]), or swapping a chosen term for another of
+//! its family at the same place (by the nesting margin). It stops when
+//! the residual is within the noise floor on every joint
+//! ([`Options::floor_ratio`]) or no move earns its margin. A backward pass
+//! then drops any effect whose removal costs less than the margin. The
+//! motor sides of the chosen set, and of every joint still above noise,
+//! are then searched again with the other effects' effort removed, and the
+//! selection resumes from the set (alternation, [`ROUNDS`] times).
+
+use nalgebra::SVector;
+
+use super::analysis::{fit, Prepared};
+use super::fit::aicc;
+use super::pool::{fixed_column, Pool, Solution};
+use super::Options;
+use crate::diagnose::candidate::Candidate;
+use dynamics_runtime::Robot;
+
+/// Rounds of selection and motor-side search.
+pub const ROUNDS: usize = 2;
+
+/// The chosen set, its joint fit and the rival of each effect.
+#[derive(Debug, Clone)]
+pub struct Explanation {
+    /// Term indices into the pool, in the order chosen.
+    pub set: Vec<usize>,
+    /// The joint fit of the whole set.
+    pub sol: Solution,
+    /// Per effect, a term the data cannot tell from it within the set
+    /// (swapped in for it, the criterion moves less than the ambiguity
+    /// margin).
+    pub rivals: Vec<Option<usize>>,
+}
+
+fn crit(pool: &Pool, s: &Solution) -> f64 {
+    aicc(s.sse, pool.n(), s.k)
+}
+
+/// Whether the residual of `set` is within `ratio` times the noise floor
+/// on every joint (rows are whitened by the floor).
+fn within_noise<const N: usize>(pool: &Pool, set: &[usize], sol: &Solution, ratio: f64) -> bool {
+    let r = pool.residual(set, sol);
+    let rows = (r.len() / N).max(1);
+    (0..N).all(|j| {
+        let ms: f64 = (0..rows).map(|i| r[i * N + j].powi(2)).sum::<f64>() / rows as f64;
+        ms <= ratio * ratio
+    })
+}
+
+/// Joints whose residual under `set` is above `ratio` times the floor.
+fn loud_joints<const N: usize>(
+    pool: &Pool,
+    set: &[usize],
+    sol: &Solution,
+    ratio: f64,
+) -> Vec<usize> {
+    let r = pool.residual(set, sol);
+    let rows = (r.len() / N).max(1);
+    (0..N)
+        .filter(|&j| {
+            let ms: f64 = (0..rows).map(|i| r[i * N + j].powi(2)).sum::<f64>() / rows as f64;
+            ms > ratio * ratio
+        })
+        .collect()
+}
+
+/// The simpler term a richer one nests at its place.
+fn simpler(c: Candidate) -> Option<fn(&Candidate) -> bool> {
+    match c {
+        Candidate::Stribeck(..) => Some(|s| matches!(s, Candidate::Coulomb(_))),
+        Candidate::Elasticity(_) | Candidate::Backlash(_) => {
+            Some(|s| matches!(s, Candidate::Armature(_)))
+        }
+        _ => None,
+    }
+}
+
+/// Forward selection from `set`, then the backward pass.
+fn select<const N: usize>(pool: &Pool, mut set: Vec<usize>, options: &Options) -> Vec<usize> {
+    let mut cur = crit(pool, &pool.solve(&set));
+    for _ in 0..(6 * N + 12) {
+        let sol = pool.solve(&set);
+        if !set.is_empty() && within_noise::<N>(pool, &set, &sol, options.floor_ratio) {
+            break;
+        }
+        // Every move: (criterion, new set, required gain, added term).
+        let mut best: Option<(f64, Vec<usize>, usize)> = None;
+        let mut adds: Vec<(usize, f64)> = Vec::new();
+        for t in 0..pool.terms.len() {
+            if set.contains(&t) {
+                continue;
+            }
+            let fam = pool.terms[t].family();
+            let (trial, need) = match set.iter().position(|&u| pool.terms[u].family() == fam) {
+                Some(i) => {
+                    let mut s = set.clone();
+                    s[i] = t;
+                    (s, options.nesting_margin)
+                }
+                None => {
+                    let mut s = set.clone();
+                    s.push(t);
+                    let need = if set.is_empty() {
+                        options.none_margin
+                    } else {
+                        options.add_margin
+                    };
+                    (s, need)
+                }
+            };
+            let c = crit(pool, &pool.solve(&trial));
+            if !c.is_finite() {
+                continue;
+            }
+            if trial.len() > set.len() {
+                adds.push((t, c));
+            }
+            if cur - c >= need && best.as_ref().is_none_or(|b| c < b.0) {
+                best = Some((c, trial, t));
+            }
+        }
+        let Some((mut c, mut trial, t)) = best else {
+            break;
+        };
+        // Parsimony: the simpler nested term at the same place, when the
+        // richer one does not beat it clearly.
+        let cand = pool.terms[t].fit.candidate;
+        if let (Some(is_simpler), true) = (simpler(cand), trial.len() > set.len()) {
+            let alt = adds
+                .iter()
+                .filter(|(u, _)| {
+                    let cu = pool.terms[*u].fit.candidate;
+                    is_simpler(&cu) && cu.joint() == cand.joint()
+                })
+                .min_by(|a, b| a.1.total_cmp(&b.1));
+            if let Some(&(u, cu)) = alt {
+                if cu - c < options.nesting_margin
+                    && cur - cu >= options.add_margin.min(options.none_margin)
+                {
+                    trial = set.clone();
+                    trial.push(u);
+                    c = cu;
+                }
+            }
+        }
+        set = trial;
+        cur = c;
+    }
+    // Backward: drop what costs less than its margin.
+    loop {
+        let full = crit(pool, &pool.solve(&set));
+        let weakest = (0..set.len())
+            .map(|i| {
+                let mut s = set.clone();
+                s.remove(i);
+                (i, crit(pool, &pool.solve(&s)) - full)
+            })
+            .min_by(|a, b| a.1.total_cmp(&b.1));
+        match weakest {
+            Some((i, cost)) => {
+                let need = if set.len() == 1 {
+                    options.none_margin
+                } else {
+                    options.add_margin
+                };
+                if cost < need {
+                    set.remove(i);
+                } else {
+                    break;
+                }
+            }
+            None => break,
+        }
+    }
+    set
+}
+
+/// `p` with the effort of the linear terms of `set` (fitted `sol`), except
+/// position `skip`, added to the model: what a motor side at one joint is
+/// searched against.
+pub fn without_others<const N: usize>(
+    p: &Prepared<N>,
+    pool: &Pool,
+    set: &[usize],
+    sol: &Solution,
+    skip: Option<usize>,
+) -> Prepared<N> {
+    let mut q = p.clone();
+    let (a, z) = p.sig.range;
+    for (i, &t) in set.iter().enumerate() {
+        let term = &pool.terms[t];
+        if Some(i) == skip || term.fixed.is_some() {
+            continue;
+        }
+        let c = term.fit.candidate;
+        for k in a..z {
+            let cols = c.columns(&p.sig, &p.basis, k);
+            let mut e = SVector::<f64, N>::zeros();
+            for (m, th) in sol.theta[i].iter().enumerate() {
+                e += cols[m] * *th;
+            }
+            q.sig.model[k] += e;
+            q.sig.residual[k] -= e;
+        }
+    }
+    q
+}
+
+/// Searches the motor side of term `t` again on `q` (the others' effort
+/// removed) and puts it in the pool when the search succeeds.
+fn research<R: Robot<N>, const N: usize>(pool: &mut Pool, t: usize, q: &Prepared<N>) {
+    let c = pool.terms[t].fit.candidate;
+    let f = fit::<R, N>(c, q);
+    if f.motor.is_some() && f.sse.is_finite() {
+        let col = fixed_column(&f, q);
+        pool.set_fixed(t, f, col);
+    }
+}
+
+/// The compound explanation of the residual of `p` over the terms of
+/// `pool` (whose motor-side columns are searched again as it goes).
+pub fn explain<R: Robot<N>, const N: usize>(
+    pool: &mut Pool,
+    p: &Prepared<N>,
+    options: &Options,
+) -> Explanation {
+    let mut set = select::<N>(pool, vec![], options);
+    for _ in 0..ROUNDS {
+        let sol = pool.solve(&set);
+        let loud = loud_joints::<N>(pool, &set, &sol, options.floor_ratio);
+        // Motor sides: those chosen, and all at joints still above noise.
+        let todo: Vec<usize> = (0..pool.terms.len())
+            .filter(|&t| {
+                let term = &pool.terms[t];
+                term.fixed.is_some()
+                    && (set.contains(&t)
+                        || term
+                            .fit
+                            .candidate
+                            .joint()
+                            .is_some_and(|j| loud.contains(&j)))
+            })
+            .collect();
+        if todo.is_empty() {
+            break;
+        }
+        let base = without_others(p, pool, &set, &sol, None);
+        for t in todo {
+            research::<R, N>(pool, t, &base);
+        }
+        let next = select::<N>(pool, set.clone(), options);
+        if next == set {
+            break;
+        }
+        set = next;
+    }
+    // Parsimony once more: a richer nested term the simpler one at its
+    // place now fits within the nesting margin gives way to it.
+    for i in 0..set.len() {
+        let me = pool.terms[set[i]].fit.candidate;
+        let Some(is_simpler) = simpler(me) else {
+            continue;
+        };
+        let full = crit(pool, &pool.solve(&set));
+        let alt = (0..pool.terms.len())
+            .filter(|&u| {
+                let c = pool.terms[u].fit.candidate;
+                is_simpler(&c) && c.joint() == me.joint()
+            })
+            .map(|u| {
+                let mut s = set.clone();
+                s[i] = u;
+                (u, crit(pool, &pool.solve(&s)))
+            })
+            .min_by(|a, b| a.1.total_cmp(&b.1));
+        if let Some((u, c)) = alt {
+            if c - full < options.nesting_margin {
+                set[i] = u;
+            }
+        }
+    }
+    let sol = pool.solve(&set);
+    let full = crit(pool, &sol);
+    let rivals = (0..set.len())
+        .map(|i| {
+            let me = pool.terms[set[i]].fit.candidate;
+            (0..pool.terms.len())
+                .filter(|t| !set.contains(t))
+                .filter(|&t| {
+                    let c = pool.terms[t].fit.candidate;
+                    (c.kind(), c.joint()) != (me.kind(), me.joint())
+                        && !set.iter().enumerate().any(|(m, &u)| {
+                            m != i && pool.terms[u].family() == pool.terms[t].family()
+                        })
+                })
+                .map(|t| {
+                    let mut s = set.clone();
+                    s[i] = t;
+                    (t, crit(pool, &pool.solve(&s)) - full)
+                })
+                .filter(|(_, d)| *d < options.ambiguity_margin)
+                .min_by(|a, b| a.1.total_cmp(&b.1))
+                .map(|(t, _)| t)
+        })
+        .collect();
+    Explanation { set, sol, rivals }
+}

@@ -1,0 +1,232 @@
+//! The compound explanation in the report's words: each effect with its
+//! parameters from the joint fit, its share of the training gap (in the
+//! order chosen), its held-out contribution (how much the held-out gap
+//! grows when it alone is left out of the set, the others refitted), and
+//! the held-out gap left after each added effect.
+
+use nalgebra::{DVector, SVector};
+
+use super::analysis::{Fit, Prepared};
+use super::compound::{without_others, Explanation};
+use super::pool::{fixed_column, linear_columns, Pool, Solution};
+use super::rank::ranked_entry;
+use super::report::{Explained, Rival, ShrinkStep};
+use crate::effects::Effect;
+use dynamics_runtime::Robot;
+
+/// One effect's held-out columns: its free ones and its fixed one.
+type Columns = (Vec<DVector<f64>>, Option<DVector<f64>>);
+
+/// The explanation's held-out side: the set's columns on the held-out rows.
+pub struct Holdout<'a, const N: usize> {
+    h: &'a Prepared<N>,
+    /// Per effect of the set: its free columns and its fixed one.
+    cols: Vec<Columns>,
+    y: DVector<f64>,
+}
+
+/// Effort scale of the plain measure (noise included): the raw effort
+/// minus the model, per row and joint.
+fn raw_residual<const N: usize>(h: &Prepared<N>) -> Vec<f64> {
+    let mut out = Vec::with_capacity(h.n());
+    for &k in &h.rows {
+        for j in 0..N {
+            let x = h.sig.tau_raw[k][j] - h.sig.model[k][j];
+            out.push(if x.is_finite() { x } else { 0.0 });
+        }
+    }
+    out
+}
+
+impl<'a, const N: usize> Holdout<'a, N> {
+    /// The columns of the chosen set on `h`.
+    pub fn new(h: &'a Prepared<N>, pool: &Pool, e: &Explanation) -> Self {
+        let hm = without_others(h, pool, &e.set, &e.sol, None);
+        let cols = e
+            .set
+            .iter()
+            .map(|&t| {
+                let term = &pool.terms[t];
+                match term.fixed {
+                    Some(_) => (
+                        vec![],
+                        Some(DVector::from_vec(fixed_column(&term.fit, &hm))),
+                    ),
+                    None => (
+                        linear_columns(term.fit.candidate, h)
+                            .into_iter()
+                            .map(DVector::from_vec)
+                            .collect(),
+                        None,
+                    ),
+                }
+            })
+            .collect();
+        let y = DVector::from_vec(super::pool::whitened(h, |k| h.sig.residual[k]));
+        Holdout { h, cols, y }
+    }
+
+    /// The whitened held-out residual of the effects at positions `which`
+    /// of the set, with parameters `theta` (one per position).
+    pub fn residual(&self, which: &[usize], theta: &[Vec<f64>]) -> DVector<f64> {
+        let mut r = self.y.clone();
+        for (i, &w) in which.iter().enumerate() {
+            let (free, fixed) = &self.cols[w];
+            for (c, th) in free.iter().zip(&theta[i]) {
+                if th.is_finite() {
+                    r.axpy(-th, c, 1.0);
+                }
+            }
+            if let Some(f) = fixed {
+                r -= f;
+            }
+        }
+        r
+    }
+
+    /// Per joint RMS of a whitened residual, in effort units.
+    pub fn joint_rms(&self, r: &DVector<f64>) -> SVector<f64, N> {
+        let rows = (r.len() / N).max(1);
+        SVector::from_fn(|j, _| {
+            let ms: f64 = (0..rows).map(|i| r[i * N + j].powi(2)).sum::<f64>() / rows as f64;
+            ms.sqrt() * self.h.sig.floor[j]
+        })
+    }
+
+    /// The above-noise torque gap (sum over joints of the squared RMS above
+    /// the floor, in floor units) of a residual.
+    pub fn gap(&self, r: &DVector<f64>) -> f64 {
+        let rms = self.joint_rms(r);
+        (0..N)
+            .map(|j| {
+                let f = self.h.sig.floor[j];
+                (rms[j] * rms[j] - f * f).max(0.0) / (f * f)
+            })
+            .sum()
+    }
+
+    /// The plain RMS of the raw effort residual over all joints once the
+    /// whitened smoothed residual `r` is left (what the effects removed is
+    /// taken from the raw residual).
+    pub fn plain(&self, r: &DVector<f64>) -> f64 {
+        let raw = raw_residual(self.h);
+        let mut s = 0.0;
+        for (i, x) in raw.iter().enumerate() {
+            let j = i % N;
+            let removed = (self.y[i] - r[i]) * self.h.sig.floor[j];
+            s += (x - removed).powi(2);
+        }
+        (s / raw.len().max(1) as f64).sqrt()
+    }
+}
+
+/// 1 - after / before, zero when there was nothing before.
+pub fn fraction(before: f64, after: f64) -> f64 {
+    if before > 0.0 && before.is_finite() && after.is_finite() {
+        1.0 - after / before
+    } else {
+        0.0
+    }
+}
+
+/// The fit of term `t` with the joint fit's parameters.
+pub fn joint_fit(pool: &Pool, t: usize, theta: &[f64], std: &[f64]) -> Fit {
+    let mut f = pool.terms[t].fit.clone();
+    if pool.terms[t].fixed.is_none() {
+        f.theta = theta.to_vec();
+        f.std = std.to_vec();
+    }
+    f
+}
+
+/// The effects of the set with their fitted parameters.
+pub fn effects(pool: &Pool, e: &Explanation) -> Vec<Effect> {
+    e.set
+        .iter()
+        .enumerate()
+        .filter_map(|(i, &t)| joint_fit(pool, t, &e.sol.theta[i], &e.sol.std[i]).effect())
+        .collect()
+}
+
+/// The report's entries and the held-out steps.
+pub fn entries<R: Robot<N>, const N: usize>(
+    pool: &Pool,
+    e: &Explanation,
+    hold: &Holdout<N>,
+    tip: &str,
+    aicc0: f64,
+) -> (Vec<Explained>, Vec<ShrinkStep>) {
+    let n = pool.n();
+    let sse0 = pool.yy;
+    let gap0 = (sse0 - n as f64).max(1e-12);
+    let all: Vec<usize> = (0..e.set.len()).collect();
+    let h_full = hold.residual(&all, &e.sol.theta);
+    let y = &hold.y;
+    let (hgap0, plain0) = (hold.gap(y), hold.plain(y));
+    let hsse = |r: &DVector<f64>| r.norm_squared();
+    let hgap_sse = (hsse(y) - y.len() as f64).max(1e-12);
+    // Prefixes: refitted on the training rows, checked on the held-out.
+    let mut steps = Vec::new();
+    let mut prev_sse = sse0;
+    let mut shares = Vec::new();
+    for i in 0..e.set.len() {
+        let which: Vec<usize> = (0..=i).collect();
+        let sol: Solution = pool.solve(&e.set[..=i]);
+        shares.push(((prev_sse - sol.sse) / gap0).clamp(0.0, 1.0));
+        prev_sse = sol.sse;
+        let r = hold.residual(&which, &sol.theta);
+        let c = pool.terms[e.set[i]].fit.candidate;
+        let place = c
+            .joint()
+            .map(|j| R::JOINT_NAMES[j].to_string())
+            .unwrap_or_else(|| tip.to_string());
+        let g = hold.gap(&r);
+        steps.push(ShrinkStep {
+            effects: i + 1,
+            added: format!("{} at {place}", c.kind().name()),
+            torque_gap: g.sqrt(),
+            torque_fraction: fraction(hgap0.sqrt(), g.sqrt()),
+            rms_fraction: fraction(plain0, hold.plain(&r)),
+        });
+    }
+    let full = hsse(&h_full);
+    let explained = e
+        .set
+        .iter()
+        .enumerate()
+        .map(|(i, &t)| {
+            // Held out without it, the others refitted on training.
+            let rest: Vec<usize> = e.set.iter().copied().filter(|&u| u != t).collect();
+            let which: Vec<usize> = (0..e.set.len()).filter(|&m| m != i).collect();
+            let sol = pool.solve(&rest);
+            let without = hsse(&hold.residual(&which, &sol.theta));
+            let contribution = (without - full) / hgap_sse;
+            let f = joint_fit(pool, t, &e.sol.theta[i], &e.sol.std[i]);
+            let r = ranked_entry::<R, N>(&f, tip, aicc0, n, shares[i], 0.0);
+            let rival = e.rivals[i].map(|u| {
+                let c = pool.terms[u].fit.candidate;
+                Rival {
+                    kind: c.kind().name().to_string(),
+                    joint: c.joint().map(|j| R::JOINT_NAMES[j].to_string()),
+                    point: (c.kind().place() == crate::effects::PlaceKind::Point)
+                        .then(|| tip.to_string()),
+                }
+            });
+            Explained {
+                kind: r.kind,
+                joint: r.joint,
+                point: r.point,
+                parameters: r.parameters,
+                share: shares[i],
+                holdout_contribution: if contribution.is_finite() {
+                    contribution
+                } else {
+                    0.0
+                },
+                window: None,
+                ambiguous_with: rival,
+            }
+        })
+        .collect();
+    (explained, steps)
+}

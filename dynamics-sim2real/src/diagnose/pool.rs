@@ -1,0 +1,297 @@
+//! The pool of candidate terms of a compound explanation, as whitened
+//! regressor columns over the fit's rows, and joint least-squares fits of
+//! any subset of them through one Gram matrix.
+//!
+//! An effect linear in its parameters is one or two free columns. A
+//! motor-side effect (elasticity, backlash, the stiff-rotor variant of
+//! armature) is a fixed column: what its simulation changes in the
+//! residual (measured minus transmitted effort at its joint), coefficient
+//! 1, searched again with the other effects' effort removed once chosen
+//! (`compound.rs`). Every subset is then solved from the Gram matrix
+//! `X^T X`, `X^T y` and `y^T y` built once, without touching the rows
+//! again.
+
+use nalgebra::{DMatrix, DVector, SVector};
+
+use super::analysis::{Fit, Prepared};
+use super::candidate::Candidate;
+
+/// One term of the pool: a fitted single candidate and its columns.
+#[derive(Debug, Clone)]
+pub struct Term {
+    /// The candidate's single fit (its motor-side parameters for a fixed
+    /// term).
+    pub fit: Fit,
+    /// Free columns (linear parameters), indices into the pool.
+    pub cols: Vec<usize>,
+    /// Which free columns must stay >= 0.
+    pub nonneg: Vec<bool>,
+    /// The fixed column of a motor-side term.
+    pub fixed: Option<usize>,
+    /// Parameters counted by the information criterion.
+    pub k: usize,
+}
+
+impl Term {
+    /// Exclusive family: at most one term of a family per place (Coulomb
+    /// and Stribeck; armature, elasticity and backlash; the grid variants
+    /// of one kind).
+    pub fn family(&self) -> (u8, Option<usize>) {
+        let c = self.fit.candidate;
+        let f = match c {
+            Candidate::Coulomb(_) | Candidate::Stribeck(..) => 0,
+            Candidate::Armature(_) | Candidate::Elasticity(_) | Candidate::Backlash(_) => 1,
+            Candidate::Viscous(_) => 2,
+            Candidate::Payload => 3,
+            Candidate::Environment(_) => 4,
+            Candidate::EncoderOffset(_) => 5,
+            Candidate::TimeDelay => 6,
+            Candidate::EffortScale(_) => 7,
+            Candidate::EffortOffset(_) => 8,
+        };
+        (f, c.joint())
+    }
+}
+
+/// Whitened columns, the Gram matrix and the terms.
+#[derive(Debug, Clone)]
+pub struct Pool {
+    /// Columns (rows x joints, whitened by the noise floor).
+    pub x: DMatrix<f64>,
+    /// The whitened residual.
+    pub y: DVector<f64>,
+    /// `X^T X`.
+    pub gram: DMatrix<f64>,
+    /// `X^T y`.
+    pub xty: DVector<f64>,
+    /// `y^T y`.
+    pub yy: f64,
+    /// The terms.
+    pub terms: Vec<Term>,
+}
+
+/// A joint fit of a subset of terms.
+#[derive(Debug, Clone)]
+pub struct Solution {
+    /// Per term of the subset (in its order), its free parameters.
+    pub theta: Vec<Vec<f64>>,
+    /// Their standard deviations.
+    pub std: Vec<Vec<f64>>,
+    /// Whitened residual sum of squares.
+    pub sse: f64,
+    /// Parameters counted.
+    pub k: usize,
+}
+
+/// Whitened column of the rows of `p` from per-sample efforts `f`.
+pub fn whitened<const N: usize>(p: &Prepared<N>, f: impl Fn(usize) -> SVector<f64, N>) -> Vec<f64> {
+    let mut out = Vec::with_capacity(p.n());
+    for &k in &p.rows {
+        let v = f(k);
+        for j in 0..N {
+            let x = v[j] / p.sig.floor[j];
+            out.push(if x.is_finite() { x } else { 0.0 });
+        }
+    }
+    out
+}
+
+/// The free columns of a linear candidate on the rows of `p`.
+pub fn linear_columns<const N: usize>(c: Candidate, p: &Prepared<N>) -> Vec<Vec<f64>> {
+    (0..c.linear_parameters().len())
+        .map(|i| whitened(p, |k| c.columns(&p.sig, &p.basis, k)[i]))
+        .collect()
+}
+
+/// The fixed column of a motor-side fit on the rows of `p`: the residual
+/// minus the residual it leaves.
+pub fn fixed_column<const N: usize>(f: &Fit, p: &Prepared<N>) -> Vec<f64> {
+    let after = f.corrected(p);
+    whitened(p, |k| p.sig.residual[k] - after[k])
+}
+
+impl Pool {
+    /// The pool of `fits` on `p` (every single fit, grid variants too).
+    pub fn new<const N: usize>(fits: &[Fit], p: &Prepared<N>) -> Pool {
+        let mut cols: Vec<Vec<f64>> = Vec::new();
+        let mut terms = Vec::new();
+        for f in fits {
+            if !f.sse.is_finite() {
+                continue;
+            }
+            let c = f.candidate;
+            if f.motor.is_some() {
+                let col = fixed_column(f, p);
+                if col.iter().all(|x| *x == 0.0) {
+                    continue;
+                }
+                cols.push(col);
+                terms.push(Term {
+                    fit: f.clone(),
+                    cols: vec![],
+                    nonneg: vec![],
+                    fixed: Some(cols.len() - 1),
+                    k: f.k,
+                });
+            } else if !c.linear_parameters().is_empty() {
+                let new = linear_columns(c, p);
+                if new.iter().all(|c| c.iter().all(|x| *x == 0.0)) {
+                    continue;
+                }
+                let at = cols.len();
+                cols.extend(new);
+                terms.push(Term {
+                    fit: f.clone(),
+                    cols: (at..cols.len()).collect(),
+                    nonneg: c.linear_parameters().iter().map(|p| p.1).collect(),
+                    fixed: None,
+                    k: f.k,
+                });
+            }
+        }
+        let n = p.n();
+        let x = DMatrix::from_fn(n, cols.len(), |r, c| cols[c][r]);
+        let y = DVector::from_vec(whitened(p, |k| p.sig.residual[k]));
+        let gram = x.tr_mul(&x);
+        let xty = x.tr_mul(&y);
+        let yy = y.norm_squared();
+        Pool {
+            x,
+            y,
+            gram,
+            xty,
+            yy,
+            terms,
+        }
+    }
+
+    /// Replaces the fixed column of term `t` (a motor side searched again).
+    pub fn set_fixed(&mut self, t: usize, fit: Fit, col: Vec<f64>) {
+        let Some(c) = self.terms[t].fixed else { return };
+        self.x.set_column(c, &DVector::from_vec(col));
+        let v = self.x.tr_mul(&self.x.column(c));
+        self.gram.set_column(c, &v);
+        self.gram.set_row(c, &v.transpose());
+        self.xty[c] = self.x.column(c).dot(&self.y);
+        self.terms[t].fit = fit;
+    }
+
+    /// Rows in the fit.
+    pub fn n(&self) -> usize {
+        self.y.len()
+    }
+
+    /// The joint least-squares fit of `set` (term indices), sign
+    /// constraints kept by dropping the most negative constrained
+    /// parameter and solving again.
+    pub fn solve(&self, set: &[usize]) -> Solution {
+        let mut free: Vec<(usize, usize, bool)> = Vec::new(); // (set pos, column, nonneg)
+        let mut fixed: Vec<usize> = Vec::new();
+        let mut k = 0;
+        for (i, &t) in set.iter().enumerate() {
+            let term = &self.terms[t];
+            k += term.k;
+            for (c, nn) in term.cols.iter().zip(&term.nonneg) {
+                free.push((i, *c, *nn));
+            }
+            fixed.extend(term.fixed);
+        }
+        // y' = y - sum of the fixed columns.
+        let mut yy = self.yy;
+        for &f in &fixed {
+            yy -= 2.0 * self.xty[f];
+            for &g in &fixed {
+                yy += self.gram[(f, g)];
+            }
+        }
+        let b: Vec<f64> = free
+            .iter()
+            .map(|&(_, c, _)| self.xty[c] - fixed.iter().map(|&f| self.gram[(c, f)]).sum::<f64>())
+            .collect();
+        let mut active: Vec<bool> = free
+            .iter()
+            .map(|&(_, c, _)| self.gram[(c, c)] > 0.0)
+            .collect();
+        let (theta, std, sse) = loop {
+            let idx: Vec<usize> = (0..free.len()).filter(|&i| active[i]).collect();
+            let m = idx.len();
+            if m == 0 {
+                break (vec![], vec![], yy);
+            }
+            let d: Vec<f64> = idx
+                .iter()
+                .map(|&i| self.gram[(free[i].1, free[i].1)].sqrt())
+                .collect();
+            let g = DMatrix::from_fn(m, m, |r, c| {
+                self.gram[(free[idx[r]].1, free[idx[c]].1)] / (d[r] * d[c])
+            });
+            let bv = DVector::from_fn(m, |r, _| b[idx[r]] / d[r]);
+            let Some(ch) = g.clone().cholesky() else {
+                active[idx[m - 1]] = false;
+                continue;
+            };
+            let z = ch.solve(&bv);
+            let worst = idx
+                .iter()
+                .zip(z.iter())
+                .filter(|(&i, &v)| free[i].2 && v < 0.0)
+                .min_by(|a, b| a.1.total_cmp(b.1))
+                .map(|(&i, _)| i);
+            if let Some(i) = worst {
+                active[i] = false;
+                continue;
+            }
+            let sse = (yy - 2.0 * z.dot(&bv) + (g * &z).dot(&z)).max(1e-12 * self.yy.max(1e-300));
+            let dof = (self.n() as f64 - m as f64).max(1.0);
+            let inv = ch.inverse();
+            let theta: Vec<(usize, f64, f64)> = (0..m)
+                .map(|r| {
+                    let s = (inv[(r, r)] * sse / dof).max(0.0).sqrt() / d[r];
+                    (idx[r], z[r] / d[r], s)
+                })
+                .collect();
+            break (
+                theta.iter().map(|t| (t.0, t.1)).collect::<Vec<_>>(),
+                theta.iter().map(|t| (t.0, t.2)).collect::<Vec<_>>(),
+                sse,
+            );
+        };
+        let mut th: Vec<Vec<f64>> = set
+            .iter()
+            .map(|&t| vec![0.0; self.terms[t].cols.len()])
+            .collect();
+        let mut sd = th.clone();
+        let mut pos = vec![0usize; set.len()];
+        for (i, &(s, ..)) in free.iter().enumerate() {
+            let at = pos[s];
+            pos[s] += 1;
+            if let Some(v) = theta.iter().find(|t| t.0 == i) {
+                th[s][at] = v.1;
+            }
+            if let Some(v) = std.iter().find(|t| t.0 == i) {
+                sd[s][at] = v.1;
+            }
+        }
+        Solution {
+            theta: th,
+            std: sd,
+            sse: if sse.is_finite() { sse } else { f64::INFINITY },
+            k,
+        }
+    }
+
+    /// The whitened residual left by `set` with parameters `sol`.
+    pub fn residual(&self, set: &[usize], sol: &Solution) -> DVector<f64> {
+        let mut r = self.y.clone();
+        for (i, &t) in set.iter().enumerate() {
+            let term = &self.terms[t];
+            for (c, th) in term.cols.iter().zip(&sol.theta[i]) {
+                r.axpy(-th, &self.x.column(*c), 1.0);
+            }
+            if let Some(f) = term.fixed {
+                r -= self.x.column(f);
+            }
+        }
+        r
+    }
+}
