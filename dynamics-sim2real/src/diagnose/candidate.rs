@@ -38,6 +38,10 @@ pub enum Candidate {
     EffortScale(usize),
     /// Effort sensor offset at a joint.
     EffortOffset(usize),
+    /// Inertial corrections of a link (index into `Robot::LINK_NAMES`):
+    /// columns from the inertial regressor (`links.rs`), only within the
+    /// compound explanation.
+    Inertial(usize),
 }
 
 /// Stribeck velocities searched, rad/s.
@@ -106,6 +110,7 @@ impl Candidate {
             Candidate::Backlash(_) => EffectKind::Backlash,
             Candidate::EffortScale(_) => EffectKind::EffortScale,
             Candidate::EffortOffset(_) => EffectKind::EffortOffset,
+            Candidate::Inertial(_) => EffectKind::InertialParameters,
         }
     }
 
@@ -138,7 +143,7 @@ impl Candidate {
             Candidate::TimeDelay => &[("delay", true)],
             Candidate::EffortScale(_) => &[("scale_minus_one", false)],
             Candidate::EffortOffset(_) => &[("offset", false)],
-            Candidate::Elasticity(_) | Candidate::Backlash(_) => &[],
+            Candidate::Elasticity(_) | Candidate::Backlash(_) | Candidate::Inertial(_) => &[],
         }
     }
 
@@ -179,7 +184,7 @@ impl Candidate {
             }
             Candidate::EffortScale(j) => c[0][j] = sig.model[k][j],
             Candidate::EffortOffset(j) => c[0][j] = 1.0,
-            Candidate::Elasticity(_) | Candidate::Backlash(_) => {}
+            Candidate::Elasticity(_) | Candidate::Backlash(_) | Candidate::Inertial(_) => {}
         }
         c
     }
@@ -215,7 +220,9 @@ impl Candidate {
                 joint,
                 offset: p(0),
             },
-            Candidate::Elasticity(_) | Candidate::Backlash(_) => return None,
+            Candidate::Elasticity(_) | Candidate::Backlash(_) | Candidate::Inertial(_) => {
+                return None
+            }
         })
     }
 }

@@ -186,8 +186,8 @@ fn select<const N: usize>(pool: &Pool, mut set: Vec<usize>, options: &Options) -
     set
 }
 
-/// `p` with the effort of the linear terms of `set` (fitted `sol`), except
-/// position `skip`, added to the model: what a motor side at one joint is
+/// `p` with the effort of the linear joint and tip terms of `set` (fitted
+/// `sol`), except position `skip`, added to the model: what a motor side at one joint is
 /// searched against.
 pub fn without_others<const N: usize>(
     p: &Prepared<N>,
@@ -200,7 +200,9 @@ pub fn without_others<const N: usize>(
     let (a, z) = p.sig.range;
     for (i, &t) in set.iter().enumerate() {
         let term = &pool.terms[t];
-        if Some(i) == skip || term.fixed.is_some() {
+        // (A link correction's columns exist on the fit's rows only: the
+        // motor sides are searched without it.)
+        if Some(i) == skip || term.fixed.is_some() || term.link.is_some() {
             continue;
         }
         let c = term.fit.candidate;

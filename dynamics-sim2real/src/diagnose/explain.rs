@@ -7,10 +7,12 @@
 use nalgebra::{DVector, SVector};
 
 use super::analysis::{Fit, Prepared};
+use super::candidate::Candidate;
 use super::compound::{without_others, Explanation};
+use super::links::{combined, delta, words};
 use super::pool::{fixed_column, linear_columns, Pool, Solution};
 use super::rank::ranked_entry;
-use super::report::{Explained, Rival, ShrinkStep};
+use super::report::{Explained, Parameter, Rival, ShrinkStep};
 use crate::effects::Effect;
 use dynamics_runtime::Robot;
 
@@ -40,13 +42,20 @@ fn raw_residual<const N: usize>(h: &Prepared<N>) -> Vec<f64> {
 
 impl<'a, const N: usize> Holdout<'a, N> {
     /// The columns of the chosen set on `h`.
-    pub fn new(h: &'a Prepared<N>, pool: &Pool, e: &Explanation) -> Self {
+    pub fn new(h: &'a Prepared<N>, links: &[Vec<Vec<f64>>], pool: &Pool, e: &Explanation) -> Self {
         let hm = without_others(h, pool, &e.set, &e.sol, None);
         let cols = e
             .set
             .iter()
             .map(|&t| {
                 let term = &pool.terms[t];
+                if let Some(b) = &term.link {
+                    let cols = links
+                        .get(b.link)
+                        .map(|lc| combined(lc, b))
+                        .unwrap_or_else(|| vec![vec![0.0; h.n()]; b.v.ncols()]);
+                    return (cols.into_iter().map(DVector::from_vec).collect(), None);
+                }
                 match term.fixed {
                     Some(_) => (
                         vec![],
@@ -120,6 +129,20 @@ impl<'a, const N: usize> Holdout<'a, N> {
     }
 }
 
+/// Where a candidate sits: its joint, or its point (the tip, or a link).
+fn place_of<R: Robot<N>, const N: usize>(
+    c: Candidate,
+    tip: &str,
+) -> (Option<String>, Option<String>) {
+    match c {
+        Candidate::Inertial(l) => (None, R::LINK_NAMES.get(l).map(|s| s.to_string())),
+        _ => (
+            c.joint().map(|j| R::JOINT_NAMES[j].to_string()),
+            (c.kind().place() == crate::effects::PlaceKind::Point).then(|| tip.to_string()),
+        ),
+    }
+}
+
 /// 1 - after / before, zero when there was nothing before.
 pub fn fraction(before: f64, after: f64) -> f64 {
     if before > 0.0 && before.is_finite() && after.is_finite() {
@@ -145,6 +168,7 @@ pub fn effects(pool: &Pool, e: &Explanation) -> Vec<Effect> {
         .iter()
         .enumerate()
         .filter_map(|(i, &t)| joint_fit(pool, t, &e.sol.theta[i], &e.sol.std[i]).effect())
+        .filter(|e| e.validate().is_ok())
         .collect()
 }
 
@@ -176,10 +200,8 @@ pub fn entries<R: Robot<N>, const N: usize>(
         prev_sse = sol.sse;
         let r = hold.residual(&which, &sol.theta);
         let c = pool.terms[e.set[i]].fit.candidate;
-        let place = c
-            .joint()
-            .map(|j| R::JOINT_NAMES[j].to_string())
-            .unwrap_or_else(|| tip.to_string());
+        let (j, pt) = place_of::<R, N>(c, tip);
+        let place = j.or(pt).unwrap_or_else(|| "all signals".into());
         let g = hold.gap(&r);
         steps.push(ShrinkStep {
             effects: i + 1,
@@ -202,21 +224,34 @@ pub fn entries<R: Robot<N>, const N: usize>(
             let without = hsse(&hold.residual(&which, &sol.theta));
             let contribution = (without - full) / hgap_sse;
             let f = joint_fit(pool, t, &e.sol.theta[i], &e.sol.std[i]);
-            let r = ranked_entry::<R, N>(&f, tip, aicc0, n, shares[i], 0.0);
+            let (joint, point) = place_of::<R, N>(f.candidate, tip);
+            let (parameters, description) = match &pool.terms[t].link {
+                Some(b) => link_parameters(
+                    b,
+                    &e.sol.theta[i],
+                    &e.sol.std[i],
+                    point.as_deref().unwrap_or("?"),
+                ),
+                None => (
+                    ranked_entry::<R, N>(&f, tip, aicc0, n, shares[i], 0.0).parameters,
+                    None,
+                ),
+            };
             let rival = e.rivals[i].map(|u| {
                 let c = pool.terms[u].fit.candidate;
+                let (joint, point) = place_of::<R, N>(c, tip);
                 Rival {
                     kind: c.kind().name().to_string(),
-                    joint: c.joint().map(|j| R::JOINT_NAMES[j].to_string()),
-                    point: (c.kind().place() == crate::effects::PlaceKind::Point)
-                        .then(|| tip.to_string()),
+                    joint,
+                    point,
                 }
             });
             Explained {
-                kind: r.kind,
-                joint: r.joint,
-                point: r.point,
-                parameters: r.parameters,
+                kind: f.candidate.kind().name().to_string(),
+                joint,
+                point,
+                description,
+                parameters,
                 share: shares[i],
                 holdout_contribution: if contribution.is_finite() {
                     contribution
@@ -229,4 +264,31 @@ pub fn entries<R: Robot<N>, const N: usize>(
         })
         .collect();
     (explained, steps)
+}
+
+/// A link correction's parameters (the minimum-norm change of the ten,
+/// with standard deviations through the combinations) and its words.
+fn link_parameters(
+    b: &super::links::LinkBasis,
+    theta: &[f64],
+    std: &[f64],
+    link: &str,
+) -> (Vec<Parameter>, Option<String>) {
+    let d = delta(b, theta);
+    let names = [
+        "d_m", "d_mcx", "d_mcy", "d_mcz", "d_ixx", "d_ixy", "d_iyy", "d_ixz", "d_iyz", "d_izz",
+    ];
+    let params = (0..10)
+        .map(|c| {
+            let var: f64 = (0..b.v.ncols())
+                .map(|r| (b.v[(c, r)] * std.get(r).copied().unwrap_or(0.0)).powi(2))
+                .sum();
+            Parameter {
+                name: names[c].into(),
+                value: d[c],
+                std: var.sqrt(),
+            }
+        })
+        .collect();
+    (params, Some(words(link, &d)))
 }

@@ -38,6 +38,7 @@ mod explain;
 mod filter;
 mod fit;
 mod horizon;
+mod links;
 mod motor;
 mod motor_fit;
 mod noise;
@@ -221,7 +222,17 @@ pub fn diagnose<R: Robot<N> + Clone + Sync, const N: usize>(
     let fits = parallel::fit_all::<R, N>(&candidates, &p, options.threads, progress);
 
     // The compound explanation over every fitted term.
-    let mut pool = pool::Pool::new(&fits, &p);
+    let with_links =
+        options.kinds.is_empty() || options.kinds.contains(&EffectKind::InertialParameters);
+    let (plinks, hlinks) = if with_links {
+        (
+            links::regressor_columns(robot, &p).unwrap_or_default(),
+            links::regressor_columns(robot, &h).unwrap_or_default(),
+        )
+    } else {
+        (vec![], vec![])
+    };
+    let mut pool = pool::Pool::new(&fits, &plinks, &p);
     let explanation = compound::explain::<R, N>(&mut pool, &p, options);
 
     // Best grid variant per (kind, place), ranked by AICc, simpler nested
@@ -274,7 +285,7 @@ pub fn diagnose<R: Robot<N> + Clone + Sync, const N: usize>(
 
     // The explanation's entries and how far it shrinks the gap (held-out
     // data).
-    let hold = explain::Holdout::new(&h, &pool, &explanation);
+    let hold = explain::Holdout::new(&h, &hlinks, &pool, &explanation);
     let (effects, steps) = explain::entries::<R, N>(&pool, &explanation, &hold, &tip_name, aicc0);
     let all: Vec<usize> = (0..explanation.set.len()).collect();
     let r = hold.residual(&all, &explanation.sol.theta);

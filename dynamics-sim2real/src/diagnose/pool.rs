@@ -15,6 +15,7 @@ use nalgebra::{DMatrix, DVector, SVector};
 
 use super::analysis::{Fit, Prepared};
 use super::candidate::Candidate;
+use super::links::{combined, link_basis, LinkBasis};
 
 /// One term of the pool: a fitted single candidate and its columns.
 #[derive(Debug, Clone)]
@@ -30,6 +31,8 @@ pub struct Term {
     pub fixed: Option<usize>,
     /// Parameters counted by the information criterion.
     pub k: usize,
+    /// A link correction's determined combinations.
+    pub link: Option<LinkBasis>,
 }
 
 impl Term {
@@ -48,6 +51,7 @@ impl Term {
             Candidate::TimeDelay => 6,
             Candidate::EffortScale(_) => 7,
             Candidate::EffortOffset(_) => 8,
+            Candidate::Inertial(l) => return (9, Some(l)),
         };
         (f, c.joint())
     }
@@ -111,8 +115,10 @@ pub fn fixed_column<const N: usize>(f: &Fit, p: &Prepared<N>) -> Vec<f64> {
 }
 
 impl Pool {
-    /// The pool of `fits` on `p` (every single fit, grid variants too).
-    pub fn new<const N: usize>(fits: &[Fit], p: &Prepared<N>) -> Pool {
+    /// The pool of `fits` on `p` (every single fit, grid variants too) and
+    /// of the link corrections whose whitened regressor columns are `links`
+    /// (`[link][parameter]`, see `links.rs`; empty: none).
+    pub fn new<const N: usize>(fits: &[Fit], links: &[Vec<Vec<f64>>], p: &Prepared<N>) -> Pool {
         let mut cols: Vec<Vec<f64>> = Vec::new();
         let mut terms = Vec::new();
         for f in fits {
@@ -132,6 +138,7 @@ impl Pool {
                     nonneg: vec![],
                     fixed: Some(cols.len() - 1),
                     k: f.k,
+                    link: None,
                 });
             } else if !c.linear_parameters().is_empty() {
                 let new = linear_columns(c, p);
@@ -146,8 +153,35 @@ impl Pool {
                     nonneg: c.linear_parameters().iter().map(|p| p.1).collect(),
                     fixed: None,
                     k: f.k,
+                    link: None,
                 });
             }
+        }
+        // Link inertial corrections: the combinations the data determine.
+        for (l, lc) in links.iter().enumerate() {
+            let Some(basis) = link_basis(l, lc) else {
+                continue;
+            };
+            let new = combined(lc, &basis);
+            let at = cols.len();
+            let r = new.len();
+            cols.extend(new);
+            terms.push(Term {
+                fit: Fit {
+                    candidate: Candidate::Inertial(l),
+                    theta: vec![],
+                    std: vec![],
+                    motor: None,
+                    motor_std: None,
+                    sse: f64::NAN,
+                    k: r,
+                },
+                cols: (at..cols.len()).collect(),
+                nonneg: vec![false; r],
+                fixed: None,
+                k: r,
+                link: Some(basis),
+            });
         }
         let n = p.n();
         let x = DMatrix::from_fn(n, cols.len(), |r, c| cols[c][r]);

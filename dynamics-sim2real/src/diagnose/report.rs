@@ -75,6 +75,10 @@ pub struct Explained {
     /// Parameters from the joint fit of the whole set, with their
     /// standard deviations.
     pub parameters: Vec<Parameter>,
+    /// The effect in words, where numbers alone say little (a link's
+    /// inertial correction).
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub description: Option<String>,
     /// Share of the training gap above noise it explains, in the order
     /// chosen (the shares add up to the set's).
     pub share: f64,

@@ -46,11 +46,15 @@ pub enum EffectKind {
     /// Coulomb friction at the same joint, a friction level that depends on
     /// the direction of motion).
     EffortOffset,
+    /// Corrections to a link's mass, first moments and inertia (the ten
+    /// parameters of `Robot::inertial_regressor`): a CAD model that is
+    /// off. Found by the diagnosis; the generator does not draw it.
+    InertialParameters,
 }
 
 impl EffectKind {
     /// Every kind, `None` first.
-    pub const ALL: [EffectKind; 13] = [
+    pub const ALL: [EffectKind; 14] = [
         EffectKind::None,
         EffectKind::CoulombFriction,
         EffectKind::ViscousFriction,
@@ -64,6 +68,7 @@ impl EffectKind {
         EffectKind::TimeDelay,
         EffectKind::EffortScale,
         EffectKind::EffortOffset,
+        EffectKind::InertialParameters,
     ];
 
     /// The name of the vocabulary (`coulomb_friction`, ...).
@@ -82,6 +87,7 @@ impl EffectKind {
             EffectKind::TimeDelay => "time_delay",
             EffectKind::EffortScale => "effort_scale",
             EffectKind::EffortOffset => "effort_offset",
+            EffectKind::InertialParameters => "inertial_parameters",
         }
     }
 
@@ -91,6 +97,7 @@ impl EffectKind {
             EffectKind::None => PlaceKind::Nowhere,
             EffectKind::PayloadMass | EffectKind::EnvironmentResistance => PlaceKind::Point,
             EffectKind::TimeDelay => PlaceKind::All,
+            EffectKind::InertialParameters => PlaceKind::Link,
             _ => PlaceKind::Joint,
         }
     }
@@ -105,6 +112,8 @@ pub enum PlaceKind {
     Joint,
     /// At a point (the tip).
     Point,
+    /// On a link's body.
+    Link,
     /// On every measured signal.
     All,
 }
@@ -117,7 +126,7 @@ impl fmt::Display for EffectKind {
 
 /// An effect name outside the vocabulary.
 #[derive(Debug, Clone, PartialEq, Eq, thiserror::Error)]
-#[error("unknown effect `{0}`; known: none, coulomb_friction, viscous_friction, stribeck_friction, armature, payload_mass, joint_elasticity, backlash, environment_resistance, encoder_offset, time_delay, effort_scale, effort_offset")]
+#[error("unknown effect `{0}`; known: none, coulomb_friction, viscous_friction, stribeck_friction, armature, payload_mass, joint_elasticity, backlash, environment_resistance, encoder_offset, time_delay, effort_scale, effort_offset, inertial_parameters")]
 pub struct UnknownEffect(pub String);
 
 impl FromStr for EffectKind {

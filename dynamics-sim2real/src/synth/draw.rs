@@ -117,7 +117,7 @@ pub fn draw_effect<const N: usize>(
     let free = scales.free_inertia[j].max(1e-9);
     let locked = scales.inertia[j].max(free);
     Some(match kind {
-        EffectKind::None => return None,
+        EffectKind::None | EffectKind::InertialParameters => return None,
         EffectKind::CoulombFriction => Effect::CoulombFriction {
             joint: j,
             fc: peak * rng.uniform(0.005, 0.03),
