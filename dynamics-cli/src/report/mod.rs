@@ -5,6 +5,7 @@
 //! effect, measured vs nominal vs corrected effort; the ranking), and
 //! `report.json`.
 
+pub mod explanation;
 mod figures;
 mod markdown;
 
@@ -82,7 +83,7 @@ pub fn render(report: &Report, traces: &Traces, options: &Options) -> Vec<(Strin
     let corrected = report.which.verdict.names_effect();
     let mut out = vec![(
         "report.md".to_string(),
-        markdown::markdown(report, traces, options, &joint_files),
+        markdown::markdown(report, traces, options, &joint_files) + &explanation::section(report),
     )];
     for (j, gap) in report.where_.joints.iter().enumerate() {
         let (Some(train), Some(hold)) = (traces.train.joints.get(j), traces.holdout.joints.get(j))
@@ -101,6 +102,9 @@ pub fn render(report: &Report, traces: &Traces, options: &Options) -> Vec<(Strin
         "ranking.svg".into(),
         figures::ranking(report, options.none_margin),
     ));
+    if !report.shrink.steps.is_empty() {
+        out.push(("explanation.svg".into(), explanation::chart(report)));
+    }
     out
 }
 

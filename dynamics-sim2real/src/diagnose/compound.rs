@@ -82,6 +82,9 @@ fn simpler(c: Candidate) -> Option<fn(&Candidate) -> bool> {
         Candidate::Elasticity(_) | Candidate::Backlash(_) => {
             Some(|s| matches!(s, Candidate::Armature(_)))
         }
+        // A point mass at the tip is an inertial change of the tip's link
+        // with one parameter instead of up to ten.
+        Candidate::Inertial(_) => Some(|s| matches!(s, Candidate::Payload)),
         _ => None,
     }
 }

@@ -190,7 +190,13 @@ pub fn entries<R: Robot<N>, const N: usize>(
     let hsse = |r: &DVector<f64>| r.norm_squared();
     let hgap_sse = (hsse(y) - y.len() as f64).max(1e-12);
     // Prefixes: refitted on the training rows, checked on the held-out.
-    let mut steps = Vec::new();
+    let mut steps = vec![ShrinkStep {
+        effects: 0,
+        added: "nominal model".into(),
+        torque_gap: hgap0.sqrt(),
+        torque_fraction: 0.0,
+        rms_fraction: 0.0,
+    }];
     let mut prev_sse = sse0;
     let mut shares = Vec::new();
     for i in 0..e.set.len() {
@@ -211,6 +217,9 @@ pub fn entries<R: Robot<N>, const N: usize>(
             rms_fraction: fraction(plain0, hold.plain(&r)),
         });
     }
+    if e.set.is_empty() {
+        steps.clear();
+    }
     let full = hsse(&h_full);
     let explained = e
         .set
@@ -225,7 +234,7 @@ pub fn entries<R: Robot<N>, const N: usize>(
             let contribution = (without - full) / hgap_sse;
             let f = joint_fit(pool, t, &e.sol.theta[i], &e.sol.std[i]);
             let (joint, point) = place_of::<R, N>(f.candidate, tip);
-            let (parameters, description) = match &pool.terms[t].link {
+            let (mut parameters, mut description) = match &pool.terms[t].link {
                 Some(b) => link_parameters(
                     b,
                     &e.sol.theta[i],
@@ -237,6 +246,20 @@ pub fn entries<R: Robot<N>, const N: usize>(
                     None,
                 ),
             };
+            // No NaN in a report: a parameter the fit could not make says so.
+            for p in parameters.iter_mut() {
+                if !p.value.is_finite() {
+                    p.value = 0.0;
+                    p.std = f64::INFINITY;
+                    description = Some(format!(
+                        "{}: the fit of `{}` could not be made",
+                        f.candidate.kind().name(),
+                        p.name
+                    ));
+                } else if p.std.is_nan() {
+                    p.std = f64::INFINITY;
+                }
+            }
             let rival = e.rivals[i].map(|u| {
                 let c = pool.terms[u].fit.candidate;
                 let (joint, point) = place_of::<R, N>(c, tip);
@@ -252,7 +275,11 @@ pub fn entries<R: Robot<N>, const N: usize>(
                 point,
                 description,
                 parameters,
-                share: shares[i],
+                share: if shares[i].is_finite() {
+                    shares[i]
+                } else {
+                    0.0
+                },
                 holdout_contribution: if contribution.is_finite() {
                     contribution
                 } else {

@@ -329,3 +329,82 @@ impl Pool {
         r
     }
 }
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::diagnose::fit::constrained_least_squares;
+
+    fn term(c: Candidate, cols: Vec<usize>, nonneg: Vec<bool>, fixed: Option<usize>) -> Term {
+        let k = cols.len().max(fixed.map_or(0, |_| 3));
+        Term {
+            fit: Fit {
+                candidate: c,
+                theta: vec![],
+                std: vec![],
+                motor: None,
+                motor_std: None,
+                sse: 0.0,
+                k,
+            },
+            cols,
+            nonneg,
+            fixed,
+            k,
+            link: None,
+        }
+    }
+
+    /// The Gram route against a direct least-squares fit of the same
+    /// columns, with a fixed column subtracted and a sign constraint that
+    /// becomes active.
+    #[test]
+    fn joint_fits_from_the_gram_match_direct_least_squares() {
+        let n = 300;
+        let c0: Vec<f64> = (0..n).map(|i| (i as f64 * 0.05).sin()).collect();
+        let c1: Vec<f64> = (0..n).map(|i| (i as f64 * 0.013).cos()).collect();
+        let c2: Vec<f64> = (0..n).map(|i| ((i % 7) as f64 - 3.0) * 0.1).collect();
+        let fixed: Vec<f64> = (0..n).map(|i| 0.3 * (i as f64 * 0.2).sin()).collect();
+        let mut rng = crate::synth::Rng::new(5);
+        // y = 2 c0 - 0.7 c1 + 1.5 c2 + fixed + noise.
+        let y: Vec<f64> = (0..n)
+            .map(|i| 2.0 * c0[i] - 0.7 * c1[i] + 1.5 * c2[i] + fixed[i] + 0.01 * rng.normal())
+            .collect();
+        let cols = [c0.clone(), c1.clone(), c2.clone(), fixed.clone()];
+        let x = DMatrix::from_fn(n, 4, |r, c| cols[c][r]);
+        let yv = DVector::from_vec(y.clone());
+        let pool = Pool {
+            gram: x.tr_mul(&x),
+            xty: x.tr_mul(&yv),
+            yy: yv.norm_squared(),
+            x,
+            y: yv.clone(),
+            terms: vec![
+                term(Candidate::Coulomb(0), vec![0], vec![true], None),
+                term(Candidate::Viscous(0), vec![1], vec![true], None),
+                term(Candidate::EffortOffset(0), vec![2], vec![false], None),
+                term(Candidate::Elasticity(1), vec![], vec![], Some(3)),
+            ],
+        };
+        // All four: the viscous coefficient wants -0.7, is held at 0.
+        let sol = pool.solve(&[0, 1, 2, 3]);
+        let y_minus_fixed = DVector::from_fn(n, |r, _| y[r] - fixed[r]);
+        let direct = constrained_least_squares(
+            &DMatrix::from_fn(n, 3, |r, c| cols[c][r]),
+            &y_minus_fixed,
+            &[true, true, false],
+        );
+        assert_eq!(sol.theta[1][0], 0.0);
+        for (t, d) in [(0, 0), (2, 2)] {
+            assert!((sol.theta[t][0] - direct.theta[d]).abs() < 1e-9, "{t}");
+            assert!((sol.std[t][0] / direct.std[d] - 1.0).abs() < 1e-6);
+        }
+        assert!((sol.sse / direct.sse - 1.0).abs() < 1e-9);
+        assert_eq!(sol.k, 1 + 1 + 1 + 3);
+        // The residual it leaves is the direct one.
+        let r = pool.residual(&[0, 1, 2, 3], &sol);
+        assert!((r.norm_squared() / direct.sse - 1.0).abs() < 1e-9);
+        // Without the fixed column the fit is worse.
+        assert!(pool.solve(&[0, 1, 2]).sse > sol.sse + 1.0);
+    }
+}

@@ -220,7 +220,9 @@ pub struct Shrink {
     /// 1 - RMS of the raw effort residual over all joints after / before
     /// (noise included): the plain figure other tools report.
     pub rms_fraction: f64,
-    /// The held-out gap left after each added effect of the explanation.
+    /// The held-out gap of the nominal model (`effects` 0) and the gap
+    /// left after each added effect of the explanation (empty when nothing
+    /// was added).
     pub steps: Vec<ShrinkStep>,
 }
 
