@@ -89,6 +89,19 @@ fn simpler(c: Candidate) -> Option<fn(&Candidate) -> bool> {
     }
 }
 
+/// What a richer term must gain over the simpler one it nests (or a term
+/// over another of its family it replaces): Stribeck's breakaway level is
+/// one more parameter on top of Coulomb friction, and must earn it like
+/// a first effect (a Stribeck curve at 0.01 rad/s otherwise reshapes
+/// the smooth sign of a large Coulomb friction); the motor sides and link
+/// corrections the nesting margin.
+fn nesting(c: Candidate, options: &Options) -> f64 {
+    match c {
+        Candidate::Stribeck(..) => options.none_margin.max(options.nesting_margin),
+        _ => options.nesting_margin,
+    }
+}
+
 /// Forward selection from `set`, then the backward pass.
 fn select<const N: usize>(pool: &Pool, mut set: Vec<usize>, options: &Options) -> Vec<usize> {
     let mut cur = crit(pool, &pool.solve(&set));
@@ -109,7 +122,7 @@ fn select<const N: usize>(pool: &Pool, mut set: Vec<usize>, options: &Options) -
                 Some(i) => {
                     let mut s = set.clone();
                     s[i] = t;
-                    (s, options.nesting_margin)
+                    (s, nesting(pool.terms[t].fit.candidate, options))
                 }
                 None => {
                     let mut s = set.clone();
@@ -148,7 +161,7 @@ fn select<const N: usize>(pool: &Pool, mut set: Vec<usize>, options: &Options) -
                 })
                 .min_by(|a, b| a.1.total_cmp(&b.1));
             if let Some(&(u, cu)) = alt {
-                if cu - c < options.nesting_margin
+                if cu - c < nesting(cand, options)
                     && cur - cu >= options.add_margin.min(options.none_margin)
                 {
                     trial = set.clone();
@@ -290,7 +303,7 @@ pub fn explain<R: Robot<N>, const N: usize>(
             })
             .min_by(|a, b| a.1.total_cmp(&b.1));
         if let Some((u, c)) = alt {
-            if c - full < options.nesting_margin {
+            if c - full < nesting(me, options) {
                 set[i] = u;
             }
         }

@@ -111,8 +111,8 @@ impl Default for Options {
             ambiguity_margin: 10.0,
             unexplained_ratio: 3.0,
             nesting_margin: 10.0,
-            add_margin: 100.0,
-            floor_ratio: 1.1,
+            add_margin: 40.0,
+            floor_ratio: 1.0,
             threads: 0,
             noise: None,
         }

@@ -38,17 +38,6 @@ fn env(name: &str, default: u64) -> u64 {
         .unwrap_or(default)
 }
 
-/// Home pose and amplitude per robot (as `dynamics synth` moves them).
-fn motion(name: &str) -> (Vec<f64>, Vec<f64>) {
-    match name {
-        "arm3r" => (vec![0.0, 0.4, -0.4], vec![0.6, 0.6, 0.6]),
-        "rrp-rigid" => (vec![0.0, 0.3, 0.05], vec![0.5, 0.5, 0.04]),
-        "mar" => (vec![0.0, 0.3, 0.05], vec![0.4, 0.5, 0.04]),
-        "ur5" => (vec![0.0, -1.2, 1.2, -1.5, -1.5, 0.0], vec![0.4; 6]),
-        _ => (vec![0.0, -0.4, 0.0, -2.0, 0.0, 1.7, 0.8], vec![0.35; 7]),
-    }
-}
-
 struct Outcome {
     robot: &'static str,
     case: CompoundCase,
@@ -85,7 +74,8 @@ fn case_on<R: Robot<N> + Clone + Sync, const N: usize>(
         ExcitationKind::PickPlace,
     ][rng.below(3)];
     let level = rng.uniform(0.5, 2.0);
-    let (home, amp) = motion(name);
+    let m = robots::builtin::motion(name);
+    let (home, amp) = (m.home, m.amplitude);
     let seed = 77 + base + i as u64 + 100_000 * rng.below(1000) as u64;
     let opts = SynthOptions::<N> {
         duration: 6.0,
