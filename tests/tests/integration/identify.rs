@@ -248,3 +248,51 @@ fn a_heavier_link_is_identified_through_its_efforts() {
         dynamics_sim2real::inertial::describe(id.links[2].link, &id.links[2].nominal, &fitted[2]);
     println!("{words}");
 }
+
+#[test]
+fn panda_friction_on_every_joint_is_recovered_and_the_gap_closes() {
+    let robot = robots::Panda::rigid();
+    let motion = robots::builtin::motion("panda");
+    let fc = [0.8, 0.8, 0.6, 0.6, 0.3, 0.3, 0.2];
+    let fv = [0.6, 0.6, 0.4, 0.4, 0.2, 0.2, 0.1];
+    let mut truth = Vec::new();
+    for j in 0..7 {
+        truth.push(Effect::CoulombFriction {
+            joint: j,
+            fc: fc[j],
+        });
+        truth.push(Effect::ViscousFriction {
+            joint: j,
+            fv: fv[j],
+        });
+    }
+    let opts = |seed| SynthOptions::<7> {
+        seed,
+        home: SVector::from_column_slice(&motion.home),
+        amplitude: SVector::from_column_slice(&motion.amplitude),
+        ..Default::default()
+    };
+    let train = synthesize(&robot, &truth, &opts(41)).expect("synthesizes");
+    let holdout = synthesize(&robot, &truth, &opts(42)).expect("synthesizes");
+    let id = identify(&robot, &train, &holdout, &Options::default()).expect("fits");
+    for (j, t) in id.joints.iter().enumerate() {
+        within(t.coulomb, fc[j], &format!("coulomb {}", t.joint));
+    }
+    assert!(id.shrink > 0.8, "shrink {}", id.shrink);
+    println!(
+        "panda: rank {} of {}, {} training rows, held-out shrink {:.3}",
+        id.rank, id.columns, id.train_rows, id.shrink
+    );
+    for t in &id.joints {
+        println!(
+            "  {}: coulomb {:.3} +- {:.3}, viscous {:.3} +- {:.3}, held-out {:.3} -> {:.3}",
+            t.joint,
+            t.coulomb.value,
+            t.coulomb.std.unwrap_or(f64::NAN),
+            t.viscous.value,
+            t.viscous.std.unwrap_or(f64::NAN),
+            t.holdout_before,
+            t.holdout_after
+        );
+    }
+}
