@@ -1,8 +1,8 @@
 //! Robots declared with `robot!` in a `#![no_std]` crate, every run-time
 //! output called: inverse dynamics, the mass matrix, the perturbation
 //! Jacobians, forward dynamics (Cholesky through nalgebra without std),
-//! parameters by name (and their error), program constraints, a
-//! controller.
+//! the inertial regressor, parameters by name (and their error), program
+//! constraints, a controller.
 //!
 //! The proof is the `#[panic_handler]` below: the standard library
 //! defines one too, so if anything in this crate's graph linked std (the
@@ -118,6 +118,18 @@ macro_rules! outputs {
                 u: &SVector<f64, $n>,
             ) -> Result<SVector<f64, $n>, DynamicsError> {
                 r.forward_dynamics(q, qd, u)
+            }
+
+            /// The inertial regressor, one N x 10 block per link of
+            /// `LINK_NAMES` (the caller's array: no heap).
+            pub fn inertial_regressor(
+                r: &$robot,
+                q: &SVector<f64, $n>,
+                qd: &SVector<f64, $n>,
+                qdd: &SVector<f64, $n>,
+                out: &mut [SMatrix<f64, $n, 10>],
+            ) -> Result<(), DynamicsError> {
+                r.inertial_regressor(q, qd, qdd, out)
             }
 
             /// Computed torque on the model: the effort for a reference.
