@@ -15,6 +15,7 @@
 
 mod joint;
 mod link;
+mod mimic;
 mod read;
 mod reader;
 mod tokens;

@@ -7,6 +7,7 @@ mod elastic_grip;
 mod environment;
 mod mar_eq10;
 mod mar_vibration;
+mod mimic;
 mod oracle;
 mod properties;
 mod simulate;
