@@ -162,3 +162,61 @@ fn substitute(s: &mut Scalar, with: &Scalar) {
         }
     }
 }
+
+#[cfg(test)]
+mod tests {
+    use quote::quote;
+
+    use super::*;
+    use crate::model::{build, Model};
+    use crate::parse;
+
+    fn model(tokens: proc_macro2::TokenStream) -> Model {
+        let mut cx = Ctxt::default();
+        let ast = parse::parse(tokens, &mut cx);
+        let m = build(ast, true, std::path::Path::new("."), &mut cx);
+        assert!(cx.check().is_ok());
+        m.expect("a valid model")
+    }
+
+    /// A mimic of a mimic composes to the independent joint, whatever the
+    /// declaration order; the mimics get no coordinate and their chains
+    /// name the leader's.
+    #[test]
+    fn chains_of_mimics_compose() {
+        let m = model(quote! {
+            pub robot R;
+            gravity = [0.0, 0.0, -9.81];
+            link base;
+            link a { mass = 1.0; }
+            link b { mass = 1.0; }
+            link c { mass = 1.0; }
+            joint j3 = revolute(b -> c) { axis = [0.0, 0.0, 1.0]; mimic = j2; multiplier = -2.0; offset = 0.3; }
+            joint j1 = revolute(base -> a) { axis = [0.0, 0.0, 1.0]; }
+            joint j2 = prismatic(a -> b) { transfer = [trans_x(2.0 * q)]; mimic = j1; multiplier = 0.5; offset = 0.1; }
+        });
+        let by = |n: &str| m.joints.iter().find(|j| j.name == n).expect("a joint");
+        assert_eq!(by("j1").coord, Some(0));
+        assert_eq!(m.coords().len(), 1);
+        let f = by("j3").follows.expect("j3 follows j1");
+        assert_eq!((f.coord, f.multiplier), (0, -1.0));
+        assert!((f.offset - 0.1).abs() < 1e-15);
+        // j2's `2 q` became `2 (0.5 q_0 + 0.1)`.
+        match &by("j2").chain[..] {
+            [Elem::Trans([x, _, _])] => {
+                assert!(x.moves() && !x.has_coord());
+                let want = Scalar::Bin(
+                    BinOp::Mul,
+                    Box::new(Scalar::Num(2.0)),
+                    Box::new(coupling(Follow {
+                        coord: 0,
+                        multiplier: 0.5,
+                        offset: 0.1,
+                    })),
+                );
+                assert_eq!(*x, want);
+            }
+            other => panic!("unexpected chain {other:?}"),
+        }
+    }
+}
