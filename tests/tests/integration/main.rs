@@ -10,5 +10,6 @@ mod mar_vibration;
 mod mimic;
 mod oracle;
 mod properties;
+mod regressor;
 mod simulate;
 mod urdf;
