@@ -3,8 +3,8 @@
 //! with joint k independent, restricted to `q = G q_red + offset`:
 //! `M_red = G^T M G`, `g_red = G^T g`, `tau_red = G^T tau`,
 //! `K_red = G^T K G`, `D_red = G^T D G` (G is constant), the Coriolis
-//! matrix `G^T C G`, the same energies, frame poses, and point Jacobians
-//! `J G`. The twins are separate `robot!` expansions; the coupling matrix
+//! matrix `G^T C G`, the inertial regressor `G^T Y`, the same energies,
+//! frame poses, and point Jacobians `J G`. The twins are separate `robot!` expansions; the coupling matrix
 //! G is written out here by hand (chains composed on paper).
 
 use dynamics_macros::robot;
@@ -176,6 +176,16 @@ fn projected<R, F, const N: usize, const M: usize>(
             .parameter_sensitivity(kf, &fq, &fqd, &fqdd)
             .expect("a parameter");
         close(&format!("dF/d{name}"), sr, gt * sf);
+    }
+    assert_eq!(R::LINK_NAMES, F::LINK_NAMES);
+    let mut yr = vec![SMatrix::<f64, N, 10>::zeros(); R::LINK_NAMES.len()];
+    let mut yf = vec![SMatrix::<f64, M, 10>::zeros(); F::LINK_NAMES.len()];
+    red.inertial_regressor(&q, &qd, &qdd, &mut yr)
+        .expect("one block per link");
+    free.inertial_regressor(&fq, &fqd, &fqdd, &mut yf)
+        .expect("one block per link");
+    for (l, (a, b)) in yr.iter().zip(&yf).enumerate() {
+        close(&format!("Y_{}", R::LINK_NAMES[l]), *a, gt * b);
     }
     let energy = |e: f64| SMatrix::<f64, 1, 1>::new(e);
     close(
