@@ -76,18 +76,21 @@ pub fn joint(
 ) -> Option<JointDecl> {
     let name = r.attr(node, "name", "joint")?;
     let kind = r.attr(node, "type", &format!("joint `{name}`"))?;
+    let line = Reader::line(node);
     let link_of = |tag: &str, r: &mut Reader| -> Option<String> {
         let el = node.children().find(|c| c.has_tag_name(tag));
         match el.and_then(|e| e.attribute("link")) {
             Some(l) if link_names.contains(l) => Some(l.to_string()),
             Some(l) => {
                 r.error(format!(
-                    "joint `{name}`: <{tag} link=\"{l}\"> names an unknown link"
+                    "joint `{name}` (line {line}): <{tag} link=\"{l}\"> names an unknown link"
                 ));
                 None
             }
             None => {
-                r.error(format!("joint `{name}`: missing <{tag} link=\"...\"/>"));
+                r.error(format!(
+                    "joint `{name}` (line {line}): missing <{tag} link=\"...\"/>"
+                ));
                 None
             }
         }
@@ -97,7 +100,7 @@ pub fn joint(
     };
     if let Some(other) = out.children.insert(child.clone(), name.to_string()) {
         r.error(format!(
-            "joint `{name}`: link `{child}` is already the child of joint `{other}` (closed loops are not supported)"
+            "joint `{name}` (line {line}): link `{child}` is already the child of joint `{other}` (closed loops are not supported)"
         ));
         return None;
     }
@@ -115,8 +118,7 @@ pub fn joint(
                 _ => "",
             };
             r.error(format!(
-                "joint `{name}` (line {}): type \"{other}\" is not supported (revolute, continuous, prismatic, fixed){why}",
-                Reader::line(node)
+                "joint `{name}` (line {line}): type \"{other}\" is not supported (revolute, continuous, prismatic, fixed){why}"
             ));
             return None;
         }
@@ -145,7 +147,7 @@ pub fn joint(
         };
         if axis.iter().map(|x| x * x).sum::<f64>().sqrt() < 1e-12 {
             r.error(format!(
-                "joint `{name}`: <axis xyz=\"0 0 0\"> has zero length"
+                "joint `{name}` (line {line}): <axis xyz=\"0 0 0\"> has zero length"
             ));
             return None;
         }
