@@ -8,6 +8,7 @@ mod environment;
 mod identify;
 mod mar_eq10;
 mod mar_vibration;
+mod mimic;
 mod oracle;
 mod properties;
 mod regressor;
