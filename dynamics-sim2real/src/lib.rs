@@ -7,6 +7,7 @@
 //! | [`effects`] | unmodelled effects attached to a robot at run time: friction laws, rotor inertia, payload, environment resistance, elastic joints and backlash, encoder offsets, delays ([`effects::Plant`]) |
 //! | [`synth`] | the data generator: a robot with withheld effects under a tracking controller, with sensor noise |
 //! | [`data`] | measured data: CSV files in and out ([`data::Measured`]) |
+//! | [`Warning`] | what the reader repaired and what the data cannot show, with place and figure |
 //! | [`diagnose`] | the gap diagnosis: where the model misses, which effects explain it, how far the gap shrinks on held-out data |
 //!
 //! `dynamics-runtime` stays the small runtime the generated code needs.
@@ -15,3 +16,6 @@ pub mod data;
 pub mod diagnose;
 pub mod effects;
 pub mod synth;
+mod warning;
+
+pub use warning::Warning;

@@ -32,8 +32,8 @@ fn diagnose_for<R: Robot<N> + Clone + Sync, const N: usize>(
 ) -> Result<(Report, Vec<String>), GapError> {
     let a = read_csv(train, &R::JOINT_NAMES)?;
     let b = read_csv(holdout, &R::JOINT_NAMES)?;
-    let mut warnings = a.warnings.clone();
-    warnings.extend(b.warnings.iter().cloned());
+    let mut warnings: Vec<String> = a.warnings.iter().map(ToString::to_string).collect();
+    warnings.extend(b.warnings.iter().map(ToString::to_string));
     let report = diagnose(robot, &a, &b, options, progress)?;
     Ok((report, warnings))
 }
