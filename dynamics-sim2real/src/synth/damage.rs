@@ -76,8 +76,11 @@ impl Damage {
             return;
         }
         let repeats = (self.repeats * n as f64).round() as usize;
-        for i in 0..repeats {
-            let k = 1 + rng.below(n - 1);
+        // In time order, so that a row repeats the row before as written.
+        let mut rows: Vec<(usize, usize)> =
+            (0..repeats).map(|i| (1 + rng.below(n - 1), i)).collect();
+        rows.sort_unstable();
+        for (k, i) in rows {
             match i % 3 {
                 0 => {
                     m.q[k] = m.q[k - 1];

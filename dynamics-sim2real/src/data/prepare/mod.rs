@@ -245,8 +245,9 @@ fn grid<const N: usize>(
     // Sum of the interpolation's white-noise variance factor, and count.
     let (mut variance, mut counted) = (0.0, 0usize);
     let mut hole = vec![false; len];
-    // Line of the first sample after each grid point's hole.
-    let mut hole_line = vec![0usize; len];
+    // Per grid point in a hole: the line of the first sample after it, and
+    // the times of the samples either side.
+    let mut hole_at = vec![(0usize, 0.0, 0.0); len];
     let mut out = Measured::<N> {
         t: t.clone(),
         q: vec![SVector::zeros(); len],
@@ -266,7 +267,13 @@ fn grid<const N: usize>(
                 i += 1;
             }
             let (a, b) = (valid[i], valid[(i + 1).min(valid.len() - 1)]);
-            let value = if m.t[a] > tg || a == b {
+            // A grid point on a valid sample (to rounding) is that sample.
+            let on = [a, b]
+                .into_iter()
+                .find(|&s| (m.t[s] - tg).abs() <= 1e-6 * dt);
+            let value = if let Some(s) = on {
+                x[s]
+            } else if m.t[a] > tg || a == b {
                 // Before the first valid sample or after the last: the nearest.
                 missing[g] = true;
                 x[if m.t[a] > tg { a } else { b }]
@@ -274,7 +281,9 @@ fn grid<const N: usize>(
                 let span = m.t[b] - m.t[a];
                 if span >= hole_span {
                     hole[g] = true;
-                    hole_line[g] = hole_line[g].max(b + 2);
+                    if b + 2 > hole_at[g].0 {
+                        hole_at[g] = (b + 2, m.t[a], m.t[b]);
+                    }
                 } else if span > ordinary || b > a + 1 {
                     missing[g] = true;
                 } else {
@@ -307,13 +316,15 @@ fn grid<const N: usize>(
             g += 1;
         }
         out.holes.push((start, g));
-        let line = hole_line[start..g].iter().copied().max().unwrap_or(0);
-        let k = line.saturating_sub(2).min(m.len() - 1);
+        let (line, start, end) = hole_at[start..g]
+            .iter()
+            .copied()
+            .fold((0, 0.0, 0.0), |best, h| if h.0 > best.0 { h } else { best });
         warnings.push(Warning::Hole {
             file: file.to_string(),
             line,
-            start: m.t[k.saturating_sub(1)],
-            end: m.t[k],
+            start,
+            end,
         });
     }
     for (mg, h) in missing.iter_mut().zip(&hole) {
