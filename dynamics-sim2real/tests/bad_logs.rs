@@ -255,7 +255,7 @@ fn too_many_glitches_are_an_error() {
     let e = read(&(lines.join("\n") + "\n"), "a.csv").unwrap_err();
     assert_eq!(
         e.to_string(),
-        "a.csv: column `tau_j1`: 79 of 4001 samples are glitches (far off their signal's course); more than 1 % is not a log to diagnose"
+        "a.csv: column `tau_j1`: 79 of 4001 samples are glitches (far off their signal's course); more than 1 % (and 10) is not a log to diagnose"
     );
 }
 

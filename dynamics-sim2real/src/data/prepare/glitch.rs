@@ -16,6 +16,9 @@
 /// deviations), a 50-sigma spike always is.
 pub const THRESHOLD: f64 = 15.0;
 
+/// Samples per block of the local scale.
+const BLOCK: usize = 32;
+
 /// The glitches of one channel `x` at times `t`: (index, departure in
 /// robust standard deviations).
 pub(super) fn glitches(t: &[f64], x: &[f64]) -> Vec<(usize, f64)> {
@@ -47,24 +50,44 @@ pub(super) fn glitches(t: &[f64], x: &[f64]) -> Vec<(usize, f64)> {
             (x[k] - left).abs().min((x[k] - right).abs())
         })
         .collect();
-    let mut sorted: Vec<f64> = dev[3..n - 3]
-        .iter()
-        .map(|d| if d.is_nan() { f64::INFINITY } else { *d })
-        .collect();
+    let clean = |d: &f64| if d.is_nan() { f64::INFINITY } else { *d };
+    let mut sorted: Vec<f64> = dev[3..n - 3].iter().map(clean).collect();
     let m = sorted.len() / 2;
     let mad = *sorted.select_nth_unstable_by(m, f64::total_cmp).1;
+    // Where the signal turns fast (a slow rate, a reversal), its departures
+    // are larger than the channel's median: the local median (over blocks
+    // of BLOCK samples, the largest of a block and its neighbours) raises
+    // the scale there; a lone spike barely moves its block's median.
+    let blocks: Vec<f64> = dev
+        .chunks(BLOCK)
+        .map(|c| {
+            let mut v: Vec<f64> = c.iter().map(clean).collect();
+            let h = v.len() / 2;
+            *v.select_nth_unstable_by(h, f64::total_cmp).1
+        })
+        .collect();
+    let local = |k: usize| -> f64 {
+        let b = k / BLOCK;
+        blocks[b.saturating_sub(1)..(b + 2).min(blocks.len())]
+            .iter()
+            .copied()
+            .fold(0.0, f64::max)
+    };
     let quantum = x
         .windows(2)
         .map(|w| (w[1] - w[0]).abs())
         .filter(|d| *d > 0.0)
         .fold(f64::INFINITY, f64::min);
-    let scale = (1.4826 * mad)
-        .max(if quantum.is_finite() { quantum } else { 0.0 })
-        .max(1e-300);
+    let floor = if quantum.is_finite() { quantum } else { 0.0 };
+    let scale = |k: usize| (1.4826 * mad.max(local(k))).max(floor).max(1e-300);
     dev.iter()
         .enumerate()
         .filter_map(|(k, d)| {
-            let s = if d.is_nan() { f64::INFINITY } else { d / scale };
+            let s = if d.is_nan() {
+                f64::INFINITY
+            } else {
+                d / scale(k)
+            };
             (s > THRESHOLD).then_some((k, s))
         })
         .collect()

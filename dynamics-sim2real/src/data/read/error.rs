@@ -107,7 +107,7 @@ pub enum DataError {
         ratio: Option<f64>,
     },
     /// Too many samples of a column are glitches.
-    #[error("{file}: column `{column}`: {count} of {rows} samples are glitches (far off their signal's course); more than {} % is not a log to diagnose", crate::data::MAX_GLITCH_FRACTION * 100.0)]
+    #[error("{file}: column `{column}`: {count} of {rows} samples are glitches (far off their signal's course); more than {} % (and {}) is not a log to diagnose", crate::data::MAX_GLITCH_FRACTION * 100.0, crate::data::MIN_GLITCHES_REFUSED)]
     TooManyGlitches {
         /// The file.
         file: String,
