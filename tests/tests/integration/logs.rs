@@ -2,10 +2,11 @@
 //! the vocabulary in turn, and controls, under one or two of the damages of
 //! real logs (a jittered clock, repeated rows, holes, glitches, a 100 Hz
 //! rate), drawn at random; the diagnoser gets the CSV files only. Targets:
-//! effect named first in >= 95 % of identifiable cases, joint right in
-//! >= 95 % of those, controls `none`, median held-out shrink >= 0.9, and
-//! every damage present named by a warning. `LOGS_SEED_BASE=N` draws
-//! other cases (the default base 0 was the one looked at while building).
+//! the effect named first in at least 95 % of identifiable cases, the joint
+//! right in at least 95 % of those, controls `none`, median held-out shrink
+//! at least 0.9, and every damage present named by a warning.
+//! `LOGS_SEED_BASE=N` draws other cases (base 0 was the one looked at while
+//! building).
 
 use dynamics_cli::gap::{Recording, SynthRequest, Truth};
 use dynamics_sim2real::diagnose::Options;
