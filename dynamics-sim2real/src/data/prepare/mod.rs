@@ -59,12 +59,12 @@ const GLITCHES_LISTED: usize = 20;
 /// use dynamics_sim2real::Warning;
 /// let n = 400;
 /// // A 1 kHz clock with +-30 % jitter, a smooth motion, one glitch.
-/// let mut t = vec![0.0];
+/// let mut t: Vec<f64> = vec![0.0];
 /// for k in 1..n { t.push(t[k - 1] + 1e-3 * [0.7, 1.0, 1.3][k % 3]); }
 /// let mut m = Measured::<1> {
-///     q: t.iter().map(|t| [t.sin()].into()).collect(),
-///     qd: t.iter().map(|t| [t.cos()].into()).collect(),
-///     tau: t.iter().map(|t| [2.0 * t].into()).collect(),
+///     q: t.iter().map(|&t| [t.sin()].into()).collect(),
+///     qd: t.iter().map(|&t| [t.cos()].into()).collect(),
+///     tau: t.iter().map(|&t| [2.0 * t].into()).collect(),
 ///     t,
 ///     qd_measured: true,
 ///     ..Default::default()
