@@ -5,6 +5,7 @@ mod diagnosis;
 mod effects;
 mod elastic_grip;
 mod environment;
+mod identify;
 mod logs;
 mod mar_eq10;
 mod mar_vibration;
