@@ -87,6 +87,24 @@ enum Command {
         /// Where to write the truth (JSON); default: none written.
         #[arg(long)]
         truth: Option<PathBuf>,
+        /// Sample rate, Hz.
+        #[arg(long, default_value_t = 1000.0)]
+        rate: f64,
+        /// Clock jitter: each interval times a factor in 1 +- this (0.3: +-30 %).
+        #[arg(long, default_value_t = 0.0)]
+        jitter: f64,
+        /// Fraction of rows whose values (whole row, positions or efforts) repeat the previous row's.
+        #[arg(long, default_value_t = 0.0)]
+        repeats: f64,
+        /// Holes of 0.1 s (rows missing).
+        #[arg(long, default_value_t = 0)]
+        holes: usize,
+        /// Glitches (1e300, a 50-sigma spike, a sign flipped).
+        #[arg(long, default_value_t = 0)]
+        glitches: usize,
+        /// How late the position channel is against velocity and effort, s.
+        #[arg(long, default_value_t = 0.0)]
+        q_late: f64,
     },
     /// Diagnose the gap between a robot's model and measured data: where, which effect, how far it shrinks.
     /// Without files: a built-in case (arm3r with a withheld effect, generated in memory).
@@ -196,7 +214,24 @@ fn main() -> ExitCode {
             noise_tau,
             out,
             truth,
+            rate,
+            jitter,
+            repeats,
+            holes,
+            glitches,
+            q_late,
         } => AnyRobot::by_name(&robot).map_err(Into::into).and_then(|r| {
+            let recording = dynamics_cli::gap::Recording {
+                rate,
+                damage: dynamics_sim2real::synth::Damage {
+                    jitter,
+                    repeats,
+                    holes,
+                    glitches,
+                    q_late,
+                    ..Default::default()
+                },
+            };
             each_robot!(&r, r => synth_cmd(
                 r,
                 &robots::builtin::motion(&robot),
@@ -210,6 +245,7 @@ fn main() -> ExitCode {
                 [noise_q, noise_qd, noise_tau],
                 &out,
                 truth,
+                &recording,
             ))
         }),
         Command::Diagnose {
