@@ -98,6 +98,7 @@ pub fn synth_cmd<R: Robot<N> + Clone, const N: usize>(
     noise: [f64; 3],
     out: &std::path::Path,
     truth: Option<PathBuf>,
+    recording: &crate::gap::Recording,
 ) -> Res {
     use dynamics_sim2real::synth::Noise;
     let kind = effect.map(|e| e.parse()).transpose()?;
@@ -115,7 +116,7 @@ pub fn synth_cmd<R: Robot<N> + Clone, const N: usize>(
             tau_relative: noise[2],
         },
     };
-    let data = crate::gap::synth(robot, motion, &req)?;
+    let data = crate::gap::synth_recorded(robot, motion, &req, recording)?;
     let stem = out.file_stem().and_then(|s| s.to_str()).unwrap_or("data");
     let hold = out.with_file_name(format!("{stem}-holdout.csv"));
     std::fs::write(out, &data.train).map_err(|e| format!("{}: {e}", out.display()))?;

@@ -7,11 +7,19 @@
 //! | [`effects`] | unmodelled effects attached to a robot at run time: friction laws, rotor inertia, payload, environment resistance, elastic joints and backlash, encoder offsets, delays ([`effects::Plant`]) |
 //! | [`synth`] | the data generator: a robot with withheld effects under a tracking controller, with sensor noise |
 //! | [`data`] | measured data: CSV files in and out ([`data::Measured`]) |
+//! | [`Warning`] | what the reader repaired and what the data cannot show, with place and figure |
 //! | [`diagnose`] | the gap diagnosis: where the model misses, which effects explain it, how far the gap shrinks on held-out data |
+//! | [`identify`] | the plain least-squares identification baseline: friction, offsets, rotor inertia and link inertial parameters (base parameters), held-out shrink |
+//! | [`inertial`] | a link's ten inertial parameters: mass properties, corrections in words, physical consistency |
 //!
 //! `dynamics-runtime` stays the small runtime the generated code needs.
 
 pub mod data;
 pub mod diagnose;
 pub mod effects;
+pub mod identify;
+pub mod inertial;
 pub mod synth;
+mod warning;
+
+pub use warning::Warning;

@@ -56,6 +56,12 @@ pub fn synth(req: &SynthRequest) -> Result<SynthOutput, GapError> {
     crate::each_robot!(&robot(&req.robot)?, r => gap::synth(r, &motion, req))
 }
 
+/// [`gap::synth_recorded`] for the built-in robot `req.robot`.
+pub fn synth_recorded(req: &SynthRequest, rec: &gap::Recording) -> Result<SynthOutput, GapError> {
+    let motion = motion(&req.robot);
+    crate::each_robot!(&robot(&req.robot)?, r => gap::synth_recorded(r, &motion, req, rec))
+}
+
 /// [`gap::diagnose_files`] for the built-in robot `name`.
 pub fn diagnose_files(
     name: &str,

@@ -11,7 +11,8 @@ use dynamics_sim2real::diagnose::{diagnose, Options, Report};
 use super::GapError;
 
 /// Diagnoses `train` against `holdout` (CSV files) for `robot`; the
-/// warnings of reading the files come back beside the report.
+/// report's warnings (reading and preparing the files, what the data
+/// cannot show) come back beside it as the sentences to print.
 pub fn diagnose_files<R: Robot<N> + Clone + Sync, const N: usize>(
     robot: &R,
     train: &Path,
@@ -21,9 +22,8 @@ pub fn diagnose_files<R: Robot<N> + Clone + Sync, const N: usize>(
 ) -> Result<(Report, Vec<String>), GapError> {
     let a = read_csv(train, &R::JOINT_NAMES)?;
     let b = read_csv(holdout, &R::JOINT_NAMES)?;
-    let mut warnings = a.warnings.clone();
-    warnings.extend(b.warnings.iter().cloned());
     let report = diagnose(robot, &a, &b, options, progress)?;
+    let warnings = report.warnings.iter().map(ToString::to_string).collect();
     Ok((report, warnings))
 }
 

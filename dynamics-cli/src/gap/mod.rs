@@ -6,7 +6,7 @@ mod files;
 mod synth;
 
 pub use files::{diagnose_files, traces_files};
-pub use synth::{synth, Motion, SynthOutput, SynthRequest, Truth};
+pub use synth::{synth, synth_recorded, Motion, Recording, SynthOutput, SynthRequest, Truth};
 
 use dynamics_sim2real::data::DataError;
 use dynamics_sim2real::diagnose::traces::TracesError;

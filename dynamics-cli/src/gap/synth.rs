@@ -7,8 +7,8 @@ use dynamics_runtime::Robot;
 use dynamics_sim2real::data::{write_csv, Measured};
 use dynamics_sim2real::effects::{Effect, EffectKind, PlaceKind, Tip};
 use dynamics_sim2real::synth::{
-    draw_effect, synthesize, synthesize_with_size, Excitation, ExcitationKind, Noise, Rng, Scales,
-    SynthOptions,
+    draw_effect, synthesize, synthesize_with_size, Damage, Excitation, ExcitationKind, Noise, Rng,
+    Scales, SynthOptions,
 };
 use nalgebra::SVector;
 use serde::{Deserialize, Serialize};
@@ -86,9 +86,43 @@ pub struct Motion {
     pub amplitude: Vec<f64>,
 }
 
-fn options<const N: usize>(motion: &Motion, req: &SynthRequest, seed: u64) -> SynthOptions<N> {
+/// How the sensors record: the sample rate and what real logs carry
+/// (`dynamics synth --rate --jitter --repeats --holes --glitches
+/// --q-late`).
+///
+/// ```
+/// use dynamics_cli::gap::Recording;
+/// let r = Recording::default();
+/// assert_eq!(r.rate, 1000.0);
+/// assert!(!r.damage.any());
+/// ```
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct Recording {
+    /// Sample rate, Hz.
+    pub rate: f64,
+    /// Damage to the log.
+    pub damage: Damage,
+}
+
+impl Default for Recording {
+    fn default() -> Self {
+        Recording {
+            rate: 1000.0,
+            damage: Damage::default(),
+        }
+    }
+}
+
+fn options<const N: usize>(
+    motion: &Motion,
+    req: &SynthRequest,
+    seed: u64,
+    rec: &Recording,
+) -> SynthOptions<N> {
     let (home, amp) = (&motion.home, &motion.amplitude);
     SynthOptions {
+        rate: rec.rate,
+        damage: rec.damage,
         duration: req.duration,
         excitation: req.excitation,
         home: SVector::from_fn(|i, _| home.get(i).copied().unwrap_or(0.0)),
@@ -192,6 +226,11 @@ fn effect_for<R: Robot<N>, const N: usize>(
             vs: 0.05,
         },
         Effect::Armature { joint, .. } => Effect::Armature { joint, inertia: m },
+        // The magnitude is the mass change (never drawn here yet).
+        Effect::InertialParameters { link, mut delta } => {
+            delta[0] = m;
+            Effect::InertialParameters { link, delta }
+        }
         Effect::PayloadMass { .. } => Effect::PayloadMass { mass: m },
         Effect::JointElasticity {
             joint,
@@ -267,6 +306,22 @@ pub fn synth<R: Robot<N> + Clone, const N: usize>(
     motion: &Motion,
     req: &SynthRequest,
 ) -> Result<SynthOutput, GapError> {
+    synth_recorded(robot, motion, req, &Recording::default())
+}
+
+/// [`synth`] with the sensors recording as `rec` says (rate, damage).
+pub fn synth_recorded<R: Robot<N> + Clone, const N: usize>(
+    robot: &R,
+    motion: &Motion,
+    req: &SynthRequest,
+    rec: &Recording,
+) -> Result<SynthOutput, GapError> {
+    if !(rec.rate.is_finite() && rec.rate >= 50.0) {
+        return Err(GapError::Request(format!(
+            "rate must be at least 50 Hz, got {}",
+            rec.rate
+        )));
+    }
     if !(req.duration.is_finite() && req.duration >= 0.5) {
         return Err(GapError::Request(format!(
             "duration must be at least 0.5 s, got {}",
@@ -274,10 +329,10 @@ pub fn synth<R: Robot<N> + Clone, const N: usize>(
         )));
     }
     let mut rng = Rng::new(req.seed.wrapping_mul(0x9E37_79B9).wrapping_add(17));
-    let train_opts = options::<N>(motion, req, req.seed);
+    let train_opts = options::<N>(motion, req, req.seed, rec);
     let effect = effect_for(robot, req, &train_opts, &mut rng)?;
     let effects: Vec<Effect> = effect.into_iter().collect();
-    let hold_opts = options::<N>(motion, req, req.seed.wrapping_add(1_000_003));
+    let hold_opts = options::<N>(motion, req, req.seed.wrapping_add(1_000_003), rec);
     let to_csv = |m: &Measured<N>| -> String {
         let mut out = Vec::new();
         let _ = write_csv(&mut out, m, &R::JOINT_NAMES);

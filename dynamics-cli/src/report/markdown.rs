@@ -138,6 +138,15 @@ pub fn markdown(
         }
     }
 
+    // What the data preparation repaired and what the data cannot show.
+    if !report.warnings.is_empty() {
+        let _ = writeln!(s, "## Warnings (the data as recorded)\n");
+        for w in &report.warnings {
+            let _ = writeln!(s, "- {w}");
+        }
+        let _ = writeln!(s);
+    }
+
     // Where.
     let _ = writeln!(s, "## Where (training data, nominal model)\n");
     let mut order: Vec<_> = report.where_.joints.iter().collect();

@@ -2,11 +2,17 @@
 //! in the CSV format of the design notes (`t`, `q_<joint>`, `qd_<joint>`,
 //! `tau_<joint>`, matched by name; `.csv.gz` read as well).
 
+mod prepare;
 mod read;
 mod write;
 
+pub use prepare::{
+    prepare, GLITCH_THRESHOLD, HOLE_PERIODS, MAX_GLITCH_FRACTION, MIN_GLITCHES_REFUSED,
+};
 pub use read::{read_csv, read_csv_str, DataError};
 pub use write::write_csv;
+
+use crate::Warning;
 
 use nalgebra::SVector;
 
@@ -20,7 +26,7 @@ use nalgebra::SVector;
 ///     qd: vec![[1.0].into(), [1.0].into()],
 ///     tau: vec![[0.5].into(), [0.5].into()],
 ///     qd_measured: true,
-///     warnings: vec![],
+///     ..Default::default()
 /// };
 /// assert_eq!(m.len(), 2);
 /// assert!((m.duration() - 0.001).abs() < 1e-15);
@@ -37,8 +43,23 @@ pub struct Measured<const N: usize> {
     pub tau: Vec<SVector<f64, N>>,
     /// Whether `qd` came from the file.
     pub qd_measured: bool,
-    /// What the reader ignored or repaired (extra columns, ...).
-    pub warnings: Vec<String>,
+    /// What the reader ignored or repaired (extra columns, glitches, holes, ...).
+    pub warnings: Vec<Warning>,
+    /// Per sample, whether it was not measured but filled ([`prepare`]:
+    /// repeated, glitched, or in a hole); empty when every sample was.
+    pub missing: Vec<bool>,
+    /// Index ranges `[start, end)` of the holes ([`prepare`]): the record's
+    /// segments lie between them.
+    pub holes: Vec<(usize, usize)>,
+    /// The joints' names in column order, when known (the reader sets them).
+    pub joints: Vec<String>,
+    /// Whether [`prepare`] made these samples (the reader's output is).
+    pub prepared: bool,
+    /// By how much the grid's linear interpolation scaled the variance of
+    /// white sensor noise, on average over the grid (`(1 - a)^2 + a^2` at
+    /// fraction `a` between two samples; 1 when nothing was interpolated,
+    /// 0 read as 1): the noise-level estimate is divided by it.
+    pub interpolation_variance: f64,
 }
 
 impl<const N: usize> Measured<N> {
@@ -57,6 +78,20 @@ impl<const N: usize> Measured<N> {
         match (self.t.first(), self.t.last()) {
             (Some(a), Some(b)) => b - a,
             _ => 0.0,
+        }
+    }
+
+    /// Whether sample `k` was measured (not filled by [`prepare`]).
+    pub fn measured(&self, k: usize) -> bool {
+        !self.missing.get(k).copied().unwrap_or(false)
+    }
+
+    /// [`Measured::interpolation_variance`], 0 read as 1.
+    pub fn noise_variance_factor(&self) -> f64 {
+        if self.interpolation_variance > 0.0 {
+            self.interpolation_variance
+        } else {
+            1.0
         }
     }
 

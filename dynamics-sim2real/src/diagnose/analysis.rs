@@ -52,7 +52,10 @@ impl<const N: usize> Prepared<N> {
         let basis = Basis::new(robot, &sig);
         let h = sig.sg.half();
         let (a, z) = sig.range;
-        let rows = (a + h..z.saturating_sub(h)).step_by(h.max(1)).collect();
+        let rows = (a + h..z.saturating_sub(h))
+            .step_by(h.max(1))
+            .filter_map(|k| row_near(&sig, k, h))
+            .collect();
         Prepared {
             sig,
             basis,
@@ -77,6 +80,12 @@ impl<const N: usize> Prepared<N> {
     pub fn n(&self) -> usize {
         self.rows.len() * N
     }
+}
+
+/// The usable sample nearest after `k` within a row spacing, if any (a
+/// row skips a filled sample but not a whole stretch of them).
+fn row_near<const N: usize>(sig: &Signals<N>, k: usize, h: usize) -> Option<usize> {
+    (k..k + h.max(1)).find(|&i| sig.mask.usable(i))
 }
 
 /// A fitted candidate.

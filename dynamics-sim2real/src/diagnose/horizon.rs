@@ -49,6 +49,10 @@ pub fn prediction_error<R: Robot<N> + Clone, const N: usize>(
     let mut count = 0usize;
     let mut k0 = a;
     while k0 + shift + len < z {
+        if !sig.mask.clear(k0, k0 + shift + len + 1) {
+            k0 += step;
+            continue;
+        }
         // True state at t0 is what the sensors show `delay` later.
         let q0 = sig.q[k0 + shift] - offset;
         let mut sim = plant.start(q0, sig.qd[k0 + shift]);

@@ -47,11 +47,13 @@ mod pool;
 mod rank;
 mod refine;
 mod report;
+mod segments;
 mod shrink;
 mod signals;
 mod spread;
 pub mod traces;
 mod verdict;
+mod visibility;
 mod windows;
 mod yardstick;
 
@@ -62,12 +64,14 @@ pub use fit::aicc;
 pub use motor::MotorGuess;
 pub use noise::SensorNoise;
 pub use report::*;
+pub(crate) use signals::Signals;
 
 use nalgebra::SVector;
 use thiserror::Error;
 
-use crate::data::Measured;
+use crate::data::{prepare, DataError, Measured};
 use crate::effects::{EffectKind, Tip};
+use crate::Warning;
 use dynamics_runtime::Robot;
 
 /// Options of [`diagnose`].
@@ -144,15 +148,22 @@ pub enum DiagnoseError {
         /// Why.
         reason: String,
     },
-    /// The sample interval is not uniform enough.
-    #[error("{which} data: the sample interval varies from {min:e} to {max:e} s; resample to a fixed rate")]
-    Irregular {
+    /// The data could not be prepared (too many glitches, time in
+    /// milliseconds, ...).
+    #[error(transparent)]
+    Data(#[from] DataError),
+    /// No joint moves: there is nothing to identify.
+    #[error("training data: no joint moves; nothing about the robot can be identified from them")]
+    NoMotion,
+    /// The effort column of a joint has the wrong sign.
+    #[error("{which} data: joint {joint}: the measured effort correlates negatively with the nominal model's (r = {correlation:.2}): is the effort column's sign flipped?")]
+    EffortSign {
         /// `training` or `held-out`.
         which: &'static str,
-        /// Smallest interval.
-        min: f64,
-        /// Largest.
-        max: f64,
+        /// The joint.
+        joint: String,
+        /// Correlation of the measured and the model's smoothed efforts.
+        correlation: f64,
     },
 }
 
@@ -166,15 +177,19 @@ fn check<const N: usize>(m: &Measured<N>, which: &'static str) -> Result<(), Dia
             need,
         });
     }
-    let (mut min, mut max) = (f64::INFINITY, 0.0f64);
-    for w in m.t.windows(2) {
-        min = min.min(w[1] - w[0]);
-        max = max.max(w[1] - w[0]);
-    }
-    if max > 1.5 * min {
-        return Err(DiagnoseError::Irregular { which, min, max });
-    }
     Ok(())
+}
+
+/// `m` prepared (`data::prepare`) unless it is already.
+fn prepared<'a, const N: usize>(
+    m: &'a Measured<N>,
+    which: &str,
+) -> Result<std::borrow::Cow<'a, Measured<N>>, DataError> {
+    Ok(if m.prepared {
+        std::borrow::Cow::Borrowed(m)
+    } else {
+        std::borrow::Cow::Owned(prepare(m, which)?)
+    })
 }
 
 /// Diagnoses the gap between `robot` and the measured `train` data, and
@@ -196,6 +211,10 @@ pub fn diagnose<R: Robot<N> + Clone + Sync, const N: usize>(
     options: &Options,
     progress: &(dyn Fn(usize, usize) + Sync),
 ) -> Result<Report, DiagnoseError> {
+    // Data as recorded: repeats and glitches marked, a uniform grid, holes
+    // (`data::prepare`; data read from a file come prepared already).
+    let train = &*prepared(train, "training")?;
+    let holdout = &*prepared(holdout, "held-out")?;
     check(train, "training")?;
     check(holdout, "held-out")?;
     let levels = options
@@ -212,13 +231,23 @@ pub fn diagnose<R: Robot<N> + Clone + Sync, const N: usize>(
         Ok(h) => h,
         Err(e) => std::panic::resume_unwind(e),
     };
+    let mut warnings: Vec<Warning> = train.warnings.clone();
+    warnings.extend(holdout.warnings.iter().cloned());
+    visibility::effort_sign(&p, &R::JOINT_NAMES, "training")?;
+    visibility::effort_sign(&h, &R::JOINT_NAMES, "held-out")?;
+    let excitation = visibility::excitation(&p, &R::JOINT_NAMES, &mut warnings)?;
     let n = p.n();
     let sse0 = p.sse(&p.sig.residual);
     let aicc0 = aicc(sse0, n, 0);
     let hsse0 = h.sse(&h.sig.residual);
 
     // Fit every candidate, on all cores.
-    let candidates = Candidate::all::<N>(&options.kinds);
+    let candidates = visibility::identifiable(
+        Candidate::all::<N>(&options.kinds),
+        &excitation,
+        p.sig.dt,
+        &mut warnings,
+    );
     let fits = parallel::fit_all::<R, N>(&candidates, &p, options.threads, progress);
 
     // The compound explanation over every fitted term.
@@ -318,6 +347,7 @@ pub fn diagnose<R: Robot<N> + Clone + Sync, const N: usize>(
             effects,
         },
         shrink,
+        warnings,
     })
 }
 

@@ -43,9 +43,28 @@ impl MotorGuess {
     }
 }
 
+/// Highest frequency of a signature that data sampled every `dt` show:
+/// four samples a period (the motor-side simulation's two sub-steps a
+/// sample keep its Runge-Kutta steps stable there, and a resonance is seen
+/// as a resonance, not an alias).
+pub fn signature_limit(dt: f64) -> f64 {
+    0.25 / dt
+}
+
+/// Resonance (elasticity) or contact (backlash) frequency of `g`, Hz.
+pub fn motor_frequency(g: &MotorGuess, inertia: f64) -> f64 {
+    (g.stiffness * (1.0 / g.jm + 1.0 / inertia)).sqrt() / (2.0 * PI)
+}
+
 /// The grid of motor-side parameters searched at a joint of own inertia
-/// `inertia`.
-pub fn motor_grid(backlash: bool, inertia: f64, revolute: bool) -> Vec<MotorGuess> {
+/// `inertia`, at frequencies up to `limit` Hz ([`signature_limit`]).
+pub fn motor_grid(backlash: bool, inertia: f64, revolute: bool, limit: f64) -> Vec<MotorGuess> {
+    let mut out = all_motor_grid(backlash, inertia, revolute);
+    out.retain(|g| motor_frequency(g, inertia) <= limit * (1.0 + 1e-9));
+    out
+}
+
+fn all_motor_grid(backlash: bool, inertia: f64, revolute: bool) -> Vec<MotorGuess> {
     let mut out = Vec::new();
     for ratio in [0.05, 0.1, 0.2, 0.4] {
         let jm = ratio * inertia;
@@ -97,15 +116,22 @@ pub fn motor_grid(backlash: bool, inertia: f64, revolute: bool) -> Vec<MotorGues
 /// ratio 0.02-0.3 (a resonance the data can show is lightly damped; a
 /// heavily damped "spring" is only a filter on the effort), half-width
 /// 0.25-30 arcmin (revolute) or 5-600 um.
-pub fn motor_feasible(g: &MotorGuess, backlash: bool, inertia: f64, revolute: bool) -> bool {
+/// (and at most `limit` Hz, [`signature_limit`]).
+pub fn motor_feasible(
+    g: &MotorGuess,
+    backlash: bool,
+    inertia: f64,
+    revolute: bool,
+    limit: f64,
+) -> bool {
     let ratio = g.jm / inertia;
-    let f = (g.stiffness * (1.0 / g.jm + 1.0 / inertia)).sqrt() / (2.0 * PI);
+    let f = motor_frequency(g, inertia);
     let zeta = g.damping / (2.0 * (g.stiffness * g.jm).sqrt());
-    let (f_lo, f_hi) = if backlash { (20.0, 160.0) } else { (3.0, 45.0) };
+    let (f_lo, f_hi): (f64, f64) = if backlash { (20.0, 160.0) } else { (3.0, 45.0) };
     let unit = if revolute { PI / 180.0 / 60.0 } else { 2e-5 };
     let width_ok = !backlash || (0.249 * unit..=30.01 * unit).contains(&g.half_width);
     (0.0499..=0.4001).contains(&ratio)
-        && (f_lo..=f_hi).contains(&f)
+        && (f_lo..=f_hi.min(limit)).contains(&f)
         && (0.02..=0.3).contains(&zeta)
         && width_ok
 }

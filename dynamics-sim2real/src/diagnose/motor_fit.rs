@@ -5,7 +5,9 @@
 
 use super::analysis::{whitened_nominal, Fit, Prepared};
 use super::candidate::Candidate;
-use super::motor::{motor_feasible, motor_grid, motor_transmitted_raw, MotorGuess};
+use super::motor::{
+    motor_feasible, motor_grid, motor_transmitted_raw, signature_limit, MotorGuess,
+};
 use super::refine::refine;
 use super::spread::motor_std;
 use dynamics_runtime::{JointKind, Robot};
@@ -59,12 +61,18 @@ pub(super) fn stiff_rotor<const N: usize>(linear: Fit, j: usize, p: &Prepared<N>
         .max(1e-3 * inertia);
     // The coupling that fits best at the linear fit's inertia (the
     // couplings barely move the inertia), then the inertia at it.
+    // Only couplings the rate shows (none at 100 Hz: the linear fit).
+    let limit = signature_limit(p.sig.dt);
     let f = STIFF_ROTOR
         .0
         .into_iter()
+        .filter(|&f| f <= limit)
         .map(|f| (f, cost(&guess(start, f))))
         .min_by(|a, b| a.1.total_cmp(&b.1))
-        .map_or(STIFF_ROTOR.0[0], |(f, _)| f);
+        .map(|(f, _)| f);
+    let Some(f) = f else {
+        return linear;
+    };
     let mut jm = start;
     let mut c_best = cost(&guess(jm, f));
     let mut step = 0.35f64;
@@ -106,6 +114,7 @@ pub(super) fn fit_motor<R: Robot<N>, const N: usize>(c: Candidate, p: &Prepared<
     // Whitened SSE with the motor side `g` at joint j (smoothing only the
     // rows' windows of the transmitted effort).
     let inertia = p.basis.inertia[j];
+    let limit = signature_limit(p.sig.dt);
     let rows = |g: &MotorGuess| -> Vec<f64> {
         let t = motor_transmitted_raw(&p.sig, j, g, backlash, inertia);
         p.rows
@@ -114,7 +123,7 @@ pub(super) fn fit_motor<R: Robot<N>, const N: usize>(c: Candidate, p: &Prepared<
             .collect()
     };
     let cost = |g: &MotorGuess| -> f64 {
-        if !motor_feasible(g, backlash, inertia, revolute) {
+        if !motor_feasible(g, backlash, inertia, revolute, limit) {
             return f64::INFINITY;
         }
         let sse_j: f64 = rows(g).iter().map(|r| r * r).sum();
@@ -126,7 +135,7 @@ pub(super) fn fit_motor<R: Robot<N>, const N: usize>(c: Candidate, p: &Prepared<
         }
     };
     let mut start: Option<(MotorGuess, f64)> = None;
-    for g in motor_grid(backlash, inertia, revolute) {
+    for g in motor_grid(backlash, inertia, revolute, limit) {
         let sse = cost(&g);
         if sse < start.map_or(f64::INFINITY, |s| s.1) {
             start = Some((g, sse));

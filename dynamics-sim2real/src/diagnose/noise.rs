@@ -93,11 +93,13 @@ pub(super) fn known_floor<R: Robot<N>, const N: usize>(
     let shaken = Signals::new(robot, &noisy);
     let (a, z) = sig.range;
     let mut sum = SVector::<f64, N>::zeros();
-    for k in a..z {
+    let mut count = 0usize;
+    for k in (a..z).filter(|&k| sig.mask.usable(k)) {
         let d = shaken.residual[k] - sig.residual[k];
         sum += d.component_mul(&d);
+        count += 1;
     }
-    (sum / (z - a).max(1) as f64).map(|s| s.sqrt().max(1e-12))
+    (sum / count.max(1) as f64).map(|s| s.sqrt().max(1e-12))
 }
 
 /// The sensors' per-sample noise levels (q, qd, tau per joint) estimated
@@ -112,13 +114,17 @@ pub(super) fn sensor_levels<const N: usize>(
     let h = sg.half();
     let (a, z) = sig.range;
     let w0 = sg.weights(0)[h];
-    let gain = 1.0 / (1.0 - w0).max(0.25).sqrt();
+    // (The grid's interpolation, if any, lowered the noise's variance by
+    // `noise_variance_factor` on average; its low frequencies, which the
+    // smoothed residual keeps, it did not lower.)
+    let gain = 1.0 / ((1.0 - w0).max(0.25) * m.noise_variance_factor()).sqrt();
     let spread = |d: Vec<f64>| (robust_std(&d) * gain).max(1e-15);
+    let used = || (a..z).filter(|&k| sig.mask.usable(k));
     let sigma_q: SVector<f64, N> =
-        SVector::from_fn(|j, _| spread((a..z).map(|k| m.q[k][j] - sig.q[k][j]).collect()));
+        SVector::from_fn(|j, _| spread(used().map(|k| m.q[k][j] - sig.q[k][j]).collect()));
     let sigma_qd: SVector<f64, N> = SVector::from_fn(|j, _| {
         if m.qd_measured {
-            spread((a..z).map(|k| m.qd[k][j] - sig.qd[k][j]).collect())
+            spread(used().map(|k| m.qd[k][j] - sig.qd[k][j]).collect())
         } else {
             0.0
         }
@@ -155,6 +161,10 @@ fn effort_sensor_noise<const N: usize>(m: &Measured<N>, sig: &Signals<N>) -> SVe
     let mut left: Vec<Vec<f64>> = vec![Vec::new(); N];
     let mut k0 = a;
     while k0 + BLOCK <= z {
+        if !sig.mask.clear(k0, k0 + BLOCK) {
+            k0 += BLOCK;
+            continue;
+        }
         let x = DMatrix::from_fn(BLOCK, cols, |r, c| {
             if c < N {
                 eq[k0 + r][c]
@@ -174,7 +184,12 @@ fn effort_sensor_noise<const N: usize>(m: &Measured<N>, sig: &Signals<N>) -> SVe
     }
     SVector::from_fn(|j, _| {
         if left[j].is_empty() {
-            robust_std(&(a..z).map(|k| et[k][j]).collect::<Vec<_>>())
+            robust_std(
+                &(a..z)
+                    .filter(|&k| sig.mask.usable(k))
+                    .map(|k| et[k][j])
+                    .collect::<Vec<_>>(),
+            )
         } else {
             robust_std(&left[j])
         }

@@ -2,6 +2,8 @@
 
 use serde::Serialize;
 
+use crate::Warning;
+
 pub use super::windows::Window;
 
 /// The whole report.
@@ -18,6 +20,9 @@ pub struct Report {
     pub which: Which,
     /// How far the gap shrinks on held-out data.
     pub shrink: Shrink,
+    /// What the preparation repaired and what the data cannot show
+    /// (training data first).
+    pub warnings: Vec<Warning>,
 }
 
 /// Where: per joint.

@@ -6,6 +6,7 @@
 use nalgebra::SVector;
 
 use super::filter::SavitzkyGolay;
+use super::segments::Mask;
 use crate::data::Measured;
 use dynamics_runtime::Robot;
 
@@ -52,6 +53,8 @@ pub struct Signals<const N: usize> {
     pub floor: SVector<f64, N>,
     /// The filter.
     pub sg: SavitzkyGolay,
+    /// Which samples a fit may use (holes and filled samples excluded).
+    pub mask: Mask,
 }
 
 fn column<const N: usize>(v: &[SVector<f64, N>], j: usize) -> Vec<f64> {
@@ -119,7 +122,9 @@ impl<const N: usize> Signals<N> {
                 .collect();
             set_column(&mut model_rate, j, &sg.apply(&mj, 1));
         }
+        let mask = Mask::new(m, half, range);
         Signals {
+            mask,
             model_rate,
             dt,
             range,

@@ -187,11 +187,11 @@ fn candidate<R: Robot<N>, const N: usize>(r: &Ranked) -> Result<Candidate, Trace
         EffectKind::Backlash => Candidate::Backlash(joint()?),
         EffectKind::EffortScale => Candidate::EffortScale(joint()?),
         EffectKind::EffortOffset => Candidate::EffortOffset(joint()?),
-        EffectKind::None => return Err(err("`none` is not an effect to fit".into())),
         EffectKind::InertialParameters => {
             return Err(err(
-                "link inertial corrections are fitted only within the compound explanation".into(),
+                "`inertial_parameters` has no single-effect candidate".into()
             ))
         }
+        EffectKind::None => return Err(err("`none` is not an effect to fit".into())),
     })
 }

@@ -108,7 +108,11 @@ pub fn prediction_floor<R: Robot<N> + Clone + Sync, const N: usize>(
         Some((sum, count))
     };
     // Windows on all cores.
-    let starts: Vec<usize> = (a..).step_by(step).take_while(|s0| s0 + seg < z).collect();
+    let starts: Vec<usize> = (a..)
+        .step_by(step)
+        .take_while(|s0| s0 + seg < z)
+        .filter(|&s0| sig.mask.clear(s0, s0 + seg))
+        .collect();
     let results: Vec<Option<(SVector<f64, N>, usize)>> =
         super::parallel::map(&starts, 0, |&s0| window(s0));
     let mut sum = SVector::<f64, N>::zeros();

@@ -26,6 +26,10 @@ pub enum EffectKind {
     StribeckFriction,
     /// Rotor inertia reflected to the joint.
     Armature,
+    /// A link's mass, first moments and inertia differ from the model's.
+    /// (Not in [`EffectKind::ALL`] yet: the draws from it stay as they
+    /// are until the diagnosis has a candidate for it.)
+    InertialParameters,
     /// An extra point mass at the tip.
     PayloadMass,
     /// A two-mass joint: motor and link joined by a spring and a damper.
@@ -46,15 +50,11 @@ pub enum EffectKind {
     /// Coulomb friction at the same joint, a friction level that depends on
     /// the direction of motion).
     EffortOffset,
-    /// Corrections to a link's mass, first moments and inertia (the ten
-    /// parameters of `Robot::inertial_regressor`): a CAD model that is
-    /// off. Found by the diagnosis; the generator does not draw it.
-    InertialParameters,
 }
 
 impl EffectKind {
     /// Every kind, `None` first.
-    pub const ALL: [EffectKind; 14] = [
+    pub const ALL: [EffectKind; 13] = [
         EffectKind::None,
         EffectKind::CoulombFriction,
         EffectKind::ViscousFriction,
@@ -68,7 +68,6 @@ impl EffectKind {
         EffectKind::TimeDelay,
         EffectKind::EffortScale,
         EffectKind::EffortOffset,
-        EffectKind::InertialParameters,
     ];
 
     /// The name of the vocabulary (`coulomb_friction`, ...).
@@ -79,6 +78,7 @@ impl EffectKind {
             EffectKind::ViscousFriction => "viscous_friction",
             EffectKind::StribeckFriction => "stribeck_friction",
             EffectKind::Armature => "armature",
+            EffectKind::InertialParameters => "inertial_parameters",
             EffectKind::PayloadMass => "payload_mass",
             EffectKind::JointElasticity => "joint_elasticity",
             EffectKind::Backlash => "backlash",
@@ -87,7 +87,6 @@ impl EffectKind {
             EffectKind::TimeDelay => "time_delay",
             EffectKind::EffortScale => "effort_scale",
             EffectKind::EffortOffset => "effort_offset",
-            EffectKind::InertialParameters => "inertial_parameters",
         }
     }
 
@@ -96,8 +95,8 @@ impl EffectKind {
         match self {
             EffectKind::None => PlaceKind::Nowhere,
             EffectKind::PayloadMass | EffectKind::EnvironmentResistance => PlaceKind::Point,
-            EffectKind::TimeDelay => PlaceKind::All,
             EffectKind::InertialParameters => PlaceKind::Link,
+            EffectKind::TimeDelay => PlaceKind::All,
             _ => PlaceKind::Joint,
         }
     }
@@ -112,7 +111,7 @@ pub enum PlaceKind {
     Joint,
     /// At a point (the tip).
     Point,
-    /// On a link's body.
+    /// On one link's mass properties.
     Link,
     /// On every measured signal.
     All,
@@ -126,7 +125,7 @@ impl fmt::Display for EffectKind {
 
 /// An effect name outside the vocabulary.
 #[derive(Debug, Clone, PartialEq, Eq, thiserror::Error)]
-#[error("unknown effect `{0}`; known: none, coulomb_friction, viscous_friction, stribeck_friction, armature, payload_mass, joint_elasticity, backlash, environment_resistance, encoder_offset, time_delay, effort_scale, effort_offset, inertial_parameters")]
+#[error("unknown effect `{0}`; known: none, coulomb_friction, viscous_friction, stribeck_friction, armature, inertial_parameters, payload_mass, joint_elasticity, backlash, environment_resistance, encoder_offset, time_delay, effort_scale, effort_offset")]
 pub struct UnknownEffect(pub String);
 
 impl FromStr for EffectKind {
@@ -134,6 +133,7 @@ impl FromStr for EffectKind {
     fn from_str(s: &str) -> Result<Self, Self::Err> {
         EffectKind::ALL
             .into_iter()
+            .chain([EffectKind::InertialParameters])
             .find(|k| k.name() == s)
             .ok_or_else(|| UnknownEffect(s.to_string()))
     }

@@ -13,6 +13,7 @@
 //! loop closed across a lightly damped spring would not be).
 
 mod compound;
+mod damage;
 mod draw;
 mod excitation;
 mod rng;
@@ -20,6 +21,7 @@ mod run;
 mod sensors;
 
 pub use compound::{draw_compound, CompoundCase, MOTOR_RATIO};
+pub use damage::Damage;
 pub use draw::{draw_effect, Scales};
 pub use excitation::{Excitation, ExcitationKind};
 pub use rng::Rng;
@@ -74,6 +76,8 @@ pub struct SynthOptions<const N: usize> {
     pub noise: Noise,
     /// Random seed (reference and noise).
     pub seed: u64,
+    /// What real logs carry, made on purpose (none by default).
+    pub damage: Damage,
 }
 
 impl<const N: usize> Default for SynthOptions<N> {
@@ -87,6 +91,7 @@ impl<const N: usize> Default for SynthOptions<N> {
             bandwidth: 12.0,
             noise: Noise::default(),
             seed: 1,
+            damage: Damage::default(),
         }
     }
 }
@@ -135,7 +140,10 @@ pub fn synthesize<R: Robot<N> + Clone, const N: usize>(
     opts: &SynthOptions<N>,
 ) -> Result<Measured<N>, SynthError> {
     let run = Run::new(robot, effects, opts)?;
-    Ok(run.record(opts.noise, &mut run.rng.clone())?.0)
+    let mut data = run.record(opts.noise, &mut run.rng.clone())?.0;
+    let tau_noise = run.scales.peak_effort * opts.noise.tau_relative;
+    opts.damage.apply_rows(&mut data, &tau_noise, opts.seed);
+    Ok(data)
 }
 
 /// Measured data and, from the truth side, how large the withheld effects
@@ -207,7 +215,9 @@ pub fn synthesize_with_size<R: Robot<N> + Clone, const N: usize>(
     opts: &SynthOptions<N>,
 ) -> Result<Synthesized<N>, SynthError> {
     let run = Run::new(robot, effects, opts)?;
-    let (data, ..) = run.record(opts.noise, &mut run.rng.clone())?;
+    let (mut data, ..) = run.record(opts.noise, &mut run.rng.clone())?;
+    let tau_noise = run.scales.peak_effort * opts.noise.tau_relative;
+    opts.damage.apply_rows(&mut data, &tau_noise, opts.seed);
     let quiet = Noise {
         q: 0.0,
         qd: 0.0,

@@ -100,8 +100,8 @@ impl<'a, R: Robot<N> + Clone, const N: usize> Run<'a, R, N> {
         rng: &mut Rng,
     ) -> Result<(Measured<N>, SVector<f64, N>, SVector<f64, N>), SynthError> {
         let (robot, opts) = (self.robot, self.opts);
-        let dt = 1.0 / opts.rate;
-        let n = (opts.duration * opts.rate).round() as usize + 1;
+        let times = clock(opts);
+        let n = times.len();
         let r0 = self.reference.at(0.0);
         let mut sim = self.plant.start(r0.q, r0.qd);
         let tol = Tolerances {
@@ -120,10 +120,17 @@ impl<'a, R: Robot<N> + Clone, const N: usize> Run<'a, R, N> {
             ..Default::default()
         };
         for k in 0..n {
-            let t = k as f64 * dt;
+            let t = times[k];
             truth.push((sim.state.q, sim.state.qd));
-            // What the sensors report: late by `delay`, shifted by the offsets.
-            let (q_seen, qd_seen) = delayed(&truth, t - self.delay, dt, &truth[0]);
+            // What the sensors report: late by `delay` (the positions by
+            // `q_late` more), shifted by the offsets.
+            let past = &times[..=k];
+            let (q_seen, qd_seen) = delayed(past, &truth, t - self.delay, &truth[0]);
+            let q_seen = if opts.damage.q_late > 0.0 {
+                delayed(past, &truth, t - self.delay - opts.damage.q_late, &truth[0]).0
+            } else {
+                q_seen
+            };
             let q_seen = q_seen + self.offset;
             seen.push((q_seen, qd_seen));
             let q_meas = q_seen + rng.normal_vec(&SVector::repeat(noise.q));
@@ -158,7 +165,7 @@ impl<'a, R: Robot<N> + Clone, const N: usize> Run<'a, R, N> {
             applied.push(tau);
             if k + 1 < n {
                 let drive = Effect::applied_effort(&self.sensor, &tau);
-                sim.advance(&self.plant, (k + 1) as f64 * dt, &drive, tol)?;
+                sim.advance(&self.plant, times[k + 1], &drive, tol)?;
             }
         }
         // The effort is held over each sample interval: around sample k the
@@ -172,7 +179,7 @@ impl<'a, R: Robot<N> + Clone, const N: usize> Run<'a, R, N> {
             SVector::<f64, N>::zeros(),
         );
         for k in 1..n.saturating_sub(1) {
-            let qdd = (seen[k + 1].1 - seen[k - 1].1) / (2.0 * dt);
+            let qdd = (seen[k + 1].1 - seen[k - 1].1) / (times[k + 1] - times[k - 1]);
             let held = (applied[k - 1] + applied[k]) * 0.5;
             let gap = held - robot.inverse_dynamics(&seen[k].0, &seen[k].1, &qdd);
             sum += gap.component_mul(&gap);
@@ -190,4 +197,25 @@ impl<'a, R: Robot<N> + Clone, const N: usize> Run<'a, R, N> {
         });
         Ok((out, effect, distinct))
     }
+}
+
+/// The controller's sampling times: every `1 / rate`, or with a jittered
+/// clock (`Damage::jitter`) each interval scaled by a factor uniform in
+/// `1 +- jitter`, drawn from a stream of its own (the sensor noise is the
+/// same with and without jitter).
+fn clock<const N: usize>(opts: &SynthOptions<N>) -> Vec<f64> {
+    let dt = 1.0 / opts.rate;
+    let jitter = opts.damage.jitter.clamp(0.0, 0.9);
+    if jitter == 0.0 {
+        let n = (opts.duration * opts.rate).round() as usize + 1;
+        return (0..n).map(|k| k as f64 * dt).collect();
+    }
+    let mut rng = Rng::new(opts.seed ^ 0x71_77E2);
+    let mut times = vec![0.0];
+    let mut t = 0.0;
+    while t + dt * (1.0 + jitter) <= opts.duration + 1e-12 {
+        t += dt * rng.uniform(1.0 - jitter, 1.0 + jitter);
+        times.push(t);
+    }
+    times
 }

@@ -2,22 +2,26 @@
 
 use nalgebra::SVector;
 
-/// The true (q, qd) at time `t` from samples every `dt`, by cubic Hermite
-/// interpolation; before the start, the initial state.
+/// The true (q, qd) at time `t` from samples at `times` (increasing, from
+/// 0), by cubic Hermite interpolation; before the start, the initial state.
 pub(super) fn delayed<const N: usize>(
+    times: &[f64],
     samples: &[(SVector<f64, N>, SVector<f64, N>)],
     t: f64,
-    dt: f64,
     first: &(SVector<f64, N>, SVector<f64, N>),
 ) -> (SVector<f64, N>, SVector<f64, N>) {
     if t <= 0.0 {
         return *first;
     }
-    let i = ((t / dt).floor() as usize).min(samples.len() - 1);
+    let i = times
+        .partition_point(|&x| x <= t)
+        .saturating_sub(1)
+        .min(samples.len() - 1);
     if i + 1 >= samples.len() {
         return samples[i];
     }
-    let s = t / dt - i as f64;
+    let dt = times[i + 1] - times[i];
+    let s = (t - times[i]) / dt;
     let ((p0, v0), (p1, v1)) = (samples[i], samples[i + 1]);
     let (h00, h10, h01, h11) = (
         2.0 * s.powi(3) - 3.0 * s * s + 1.0,

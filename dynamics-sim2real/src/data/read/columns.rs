@@ -4,6 +4,7 @@
 //! each column ignored.
 
 use super::DataError;
+use crate::Warning;
 
 /// Column indices of the quantities of `N` joints, and the columns ignored.
 pub(super) struct Columns<const N: usize> {
@@ -15,8 +16,8 @@ pub(super) struct Columns<const N: usize> {
     pub(super) tau: [usize; N],
     /// Each joint's velocity column, if the file has all of them.
     pub(super) qd: Option<[usize; N]>,
-    /// One line per column ignored.
-    pub(super) warnings: Vec<String>,
+    /// One per column ignored.
+    pub(super) warnings: Vec<Warning>,
 }
 
 impl<const N: usize> Columns<N> {
@@ -74,7 +75,10 @@ impl<const N: usize> Columns<N> {
                     });
                 }
             }
-            warnings.push(format!("{file}: column `{h}` ignored"));
+            warnings.push(Warning::ColumnIgnored {
+                file: file.to_string(),
+                column: h.clone(),
+            });
         }
         Ok(Columns {
             t: t_col,
@@ -142,12 +146,13 @@ mod tests {
         let m = read_csv_str::<1>(
             &format!(
                 "t,q_j,qd_j,tau_j,temp\n{}",
-                rows(300, |k| format!("{},0,0,1,20\n", k))
+                rows(300, |k| format!("{},0,0,1,20\n", k as f64 * 1e-3))
             ),
             &["j"],
             "a.csv",
         )
         .unwrap();
-        assert_eq!(m.warnings, vec!["a.csv: column `temp` ignored"]);
+        let text: Vec<String> = m.warnings.iter().map(|w| w.to_string()).collect();
+        assert_eq!(text, vec!["a.csv: column `temp` ignored"]);
     }
 }

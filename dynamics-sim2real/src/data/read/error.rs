@@ -81,6 +81,43 @@ pub enum DataError {
         /// Time at the line before.
         previous: f64,
     },
+    /// A row with more or fewer fields than the header.
+    #[error("{file}:{line}: {fields} fields where the header has {expected}{}", if *last { " (the file ends in the middle of a row)" } else { "" })]
+    RowLength {
+        /// The file.
+        file: String,
+        /// 1-based line.
+        line: usize,
+        /// Fields in the row.
+        fields: usize,
+        /// Fields in the header.
+        expected: usize,
+        /// Whether it is the last row.
+        last: bool,
+    },
+    /// The time column looks like milliseconds.
+    #[error("{file}: time looks like milliseconds ({}); write `t` in seconds", ms_reason(*interval, *ratio))]
+    Milliseconds {
+        /// The file.
+        file: String,
+        /// Median interval in the file's unit.
+        interval: f64,
+        /// The positions' rate of change per unit of `t` over the recorded
+        /// velocity (1 if `t` were in seconds), when velocities are recorded.
+        ratio: Option<f64>,
+    },
+    /// Too many samples of a column are glitches.
+    #[error("{file}: column `{column}`: {count} of {rows} samples are glitches (far off their signal's course); more than {} % (and {}) is not a log to diagnose", crate::data::MAX_GLITCH_FRACTION * 100.0, crate::data::MIN_GLITCHES_REFUSED)]
+    TooManyGlitches {
+        /// The file.
+        file: String,
+        /// The column.
+        column: String,
+        /// Glitches found.
+        count: usize,
+        /// Rows.
+        rows: usize,
+    },
     /// Too few rows.
     #[error("{file}: {rows} samples; at least {MIN_SAMPLES} are needed")]
     TooFewSamples {
@@ -89,4 +126,14 @@ pub enum DataError {
         /// Rows read.
         rows: usize,
     },
+}
+
+fn ms_reason(interval: f64, ratio: Option<f64>) -> String {
+    match ratio {
+        Some(r) if (3e-4..3e-3).contains(&r) => format!(
+            "the positions change {:.0} times slower per unit of `t` than the recorded velocities say",
+            1.0 / r
+        ),
+        _ => format!("the median interval is {interval} of its unit, a rate of {:.2} samples per unit", 1.0 / interval),
+    }
 }

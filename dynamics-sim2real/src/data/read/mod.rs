@@ -16,7 +16,8 @@ use std::path::Path;
 
 use nalgebra::SVector;
 
-use super::{differentiate, Measured};
+use super::{differentiate, prepare, Measured};
+use crate::Warning;
 use columns::Columns;
 
 /// Reads a CSV file (`.csv` or `.csv.gz`) for a robot with joints `joints`.
@@ -75,6 +76,7 @@ pub fn read_csv_str<const N: usize>(
 ) -> Result<Measured<N>, DataError> {
     let mut reader = csv::ReaderBuilder::new()
         .trim(csv::Trim::All)
+        .flexible(true)
         .from_reader(text.as_bytes());
     let csv_err = |e: csv::Error| DataError::Csv {
         file: file.to_string(),
@@ -95,12 +97,26 @@ pub fn read_csv_str<const N: usize>(
     } = Columns::find(&header, joints, file)?;
     let mut m = Measured::<N> {
         qd_measured: qd_cols.is_some(),
-        warnings,
+        joints: joints.iter().map(|j| j.to_string()).collect(),
         ..Default::default()
     };
-    for (row, record) in reader.records().enumerate() {
+    let mut records = reader.records().enumerate().peekable();
+    // Whole rows written twice (time included), and the first such line.
+    let (mut twice, mut twice_line) = (0usize, 0usize);
+    // Line of each row kept (rows written twice are dropped).
+    let mut lines = Vec::new();
+    while let Some((row, record)) = records.next() {
         let record = record.map_err(csv_err)?;
-        let line = row + 2;
+        let line = record.position().map_or(row + 2, |p| p.line() as usize);
+        if record.len() != header.len() {
+            return Err(DataError::RowLength {
+                file: file.to_string(),
+                line,
+                fields: record.len(),
+                expected: header.len(),
+                last: records.peek().is_none(),
+            });
+        }
         let cell = |c: usize| -> Result<f64, DataError> {
             let value = record.get(c).unwrap_or("");
             value
@@ -116,6 +132,15 @@ pub fn read_csv_str<const N: usize>(
         };
         let t = cell(t_col)?;
         if let Some(&previous) = m.t.last() {
+            if t == previous
+                && record_repeats(&record, &m, &q_cols, &tau_cols, qd_cols.as_ref(), &cell)?
+            {
+                twice += 1;
+                if twice_line == 0 {
+                    twice_line = line;
+                }
+                continue;
+            }
             if t <= previous {
                 return Err(DataError::TimeNotIncreasing {
                     file: file.to_string(),
@@ -132,6 +157,7 @@ pub fn read_csv_str<const N: usize>(
             }
             Ok(v)
         };
+        lines.push(line);
         m.t.push(t);
         m.q.push(vec(&q_cols)?);
         m.tau.push(vec(&tau_cols)?);
@@ -148,7 +174,53 @@ pub fn read_csv_str<const N: usize>(
     if !m.qd_measured {
         m.qd = differentiate(&m.t, &m.q);
     }
-    Ok(m)
+    let mut prepared = prepare(&m, file)?;
+    // Lines as in the file, where rows written twice were dropped.
+    if twice > 0 {
+        for w in &mut prepared.warnings {
+            let line = match w {
+                Warning::Repeated { first_line: l, .. }
+                | Warning::Glitch { line: l, .. }
+                | Warning::Hole { line: l, .. } => l,
+                _ => continue,
+            };
+            *line = lines.get(line.saturating_sub(2)).copied().unwrap_or(*line);
+        }
+        prepared.warnings.push(Warning::Repeated {
+            file: file.to_string(),
+            quantity: "row".into(),
+            rows: twice,
+            fraction: twice as f64 / (m.len() + twice) as f64,
+            first_line: twice_line,
+        });
+    }
+    let mut all = warnings;
+    all.append(&mut prepared.warnings);
+    prepared.warnings = all;
+    Ok(prepared)
+}
+
+/// Whether `record` (at the time of the last row read) repeats that row.
+fn record_repeats<const N: usize>(
+    _record: &csv::StringRecord,
+    m: &Measured<N>,
+    q_cols: &[usize; N],
+    tau_cols: &[usize; N],
+    qd_cols: Option<&[usize; N]>,
+    cell: &dyn Fn(usize) -> Result<f64, DataError>,
+) -> Result<bool, DataError> {
+    let k = m.len() - 1;
+    for j in 0..N {
+        if cell(q_cols[j])? != m.q[k][j] || cell(tau_cols[j])? != m.tau[k][j] {
+            return Ok(false);
+        }
+        if let Some(c) = qd_cols {
+            if cell(c[j])? != m.qd[k][j] {
+                return Ok(false);
+            }
+        }
+    }
+    Ok(true)
 }
 
 #[cfg(test)]

@@ -5,6 +5,7 @@
 //! dynamics check                # every seed robot against the shipped Pinocchio values
 //! dynamics synth --robot NAME --effect KIND --joint J --out FILE.csv
 //! dynamics diagnose --robot NAME --train A.csv --holdout B.csv [--json OUT.json] [--report DIR]
+//! dynamics identify --robot NAME --train A.csv --holdout B.csv [--json OUT.json]
 //! dynamics list                 # the robots it knows
 //! dynamics eval --robot NAME [--states FILE.json] [--out FILE.json] [--set NAME=VALUE]...
 //! ```
@@ -15,6 +16,7 @@ use std::process::ExitCode;
 use clap::{Parser, Subcommand};
 use dynamics_cli::commands::{eval, synth_cmd};
 use dynamics_cli::diagnose::diagnose_cmd;
+use dynamics_cli::identify::identify_cmd;
 use dynamics_cli::Res;
 use robots::each_robot;
 use robots::registry::{AnyRobot, ROBOTS};
@@ -85,6 +87,24 @@ enum Command {
         /// Where to write the truth (JSON); default: none written.
         #[arg(long)]
         truth: Option<PathBuf>,
+        /// Sample rate, Hz.
+        #[arg(long, default_value_t = 1000.0)]
+        rate: f64,
+        /// Clock jitter: each interval times a factor in 1 +- this (0.3: +-30 %).
+        #[arg(long, default_value_t = 0.0)]
+        jitter: f64,
+        /// Fraction of rows whose values (whole row, positions or efforts) repeat the previous row's.
+        #[arg(long, default_value_t = 0.0)]
+        repeats: f64,
+        /// Holes of 0.1 s (rows missing).
+        #[arg(long, default_value_t = 0)]
+        holes: usize,
+        /// Glitches (1e300, a 50-sigma spike, a sign flipped).
+        #[arg(long, default_value_t = 0)]
+        glitches: usize,
+        /// How late the position channel is against velocity and effort, s.
+        #[arg(long, default_value_t = 0.0)]
+        q_late: f64,
     },
     /// Diagnose the gap between a robot's model and measured data: where, which effect, how far it shrinks.
     /// Without files: a built-in case (arm3r with a withheld effect, generated in memory).
@@ -126,6 +146,23 @@ enum Command {
             requires = "noise_tau"
         )]
         noise_qd: Option<Vec<f64>>,
+    },
+    /// Plain least-squares identification (the baseline): per-joint Coulomb, viscous, offset and
+    /// rotor inertia plus every link's inertial parameters, fitted on training data, judged on
+    /// held-out data.
+    Identify {
+        /// Robot name.
+        #[arg(long)]
+        robot: String,
+        /// Training data (CSV or CSV.gz).
+        #[arg(long)]
+        train: PathBuf,
+        /// Held-out data.
+        #[arg(long)]
+        holdout: PathBuf,
+        /// Write the result as JSON here.
+        #[arg(long)]
+        json: Option<PathBuf>,
     },
     /// Evaluate tau, M, g, C, nle, ddq and the energies at given states.
     Eval {
@@ -177,7 +214,24 @@ fn main() -> ExitCode {
             noise_tau,
             out,
             truth,
+            rate,
+            jitter,
+            repeats,
+            holes,
+            glitches,
+            q_late,
         } => AnyRobot::by_name(&robot).map_err(Into::into).and_then(|r| {
+            let recording = dynamics_cli::gap::Recording {
+                rate,
+                damage: dynamics_sim2real::synth::Damage {
+                    jitter,
+                    repeats,
+                    holes,
+                    glitches,
+                    q_late,
+                    ..Default::default()
+                },
+            };
             each_robot!(&r, r => synth_cmd(
                 r,
                 &robots::builtin::motion(&robot),
@@ -191,6 +245,7 @@ fn main() -> ExitCode {
                 [noise_q, noise_qd, noise_tau],
                 &out,
                 truth,
+                &recording,
             ))
         }),
         Command::Diagnose {
@@ -217,6 +272,14 @@ fn main() -> ExitCode {
                 _ => built_in_case(json, report, noise),
             }
         }
+        Command::Identify {
+            robot,
+            train,
+            holdout,
+            json,
+        } => AnyRobot::by_name(&robot)
+            .map_err(Into::into)
+            .and_then(|r| each_robot!(&r, r => identify_cmd(r, train, holdout, json))),
         Command::Eval {
             robot,
             states,

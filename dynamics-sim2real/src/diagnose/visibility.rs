@@ -1,0 +1,166 @@
+//! What these data can show, checked before anything is fitted: per joint,
+//! whether it moves at all and whether its velocity reverses; whether the
+//! measured effort has the sign of the model's; which effects' signatures
+//! lie above what the sample rate shows. Each finding is a [`Warning`] (or
+//! an error when nothing can be said), and the candidates the data cannot
+//! identify are dropped rather than guessed.
+
+use super::analysis::Prepared;
+use super::candidate::Candidate;
+use super::motor::signature_limit;
+use super::DiagnoseError;
+use crate::effects::EffectKind;
+use crate::Warning;
+
+/// A joint moves when its smoothed position spans at least this many
+/// position-noise deviations (and [`MIN_TRAVEL`]).
+const TRAVEL_NOISE: f64 = 50.0;
+/// ... and at least this far (rad or m).
+const MIN_TRAVEL: f64 = 1e-3;
+/// A velocity reverses when it reaches this fraction of its peak speed on
+/// both sides of zero.
+const REVERSAL: f64 = 0.05;
+/// Correlation of the measured with the model's effort below which the
+/// effort column has the wrong sign.
+const WRONG_SIGN: f64 = -0.5;
+/// Lowest frequency of backlash's signature the diagnosis searches (its
+/// contact frequencies), Hz.
+const BACKLASH_HZ: f64 = 40.0;
+/// Highest resonance of elasticity the diagnosis searches, Hz.
+const ELASTICITY_HZ: f64 = 45.0;
+
+/// Per joint: whether it moves, whether its velocity reverses.
+#[derive(Debug, Clone)]
+pub struct Excitation {
+    /// Whether each joint moves.
+    pub moves: Vec<bool>,
+    /// Whether each joint's velocity reverses.
+    pub reverses: Vec<bool>,
+}
+
+/// What the training data `p` (joint names `names`) can show; warnings
+/// appended to `warnings`. Errors when no joint moves.
+pub(super) fn excitation<const N: usize>(
+    p: &Prepared<N>,
+    names: &[&str; N],
+    warnings: &mut Vec<Warning>,
+) -> Result<Excitation, DiagnoseError> {
+    let mut moves = vec![false; N];
+    let mut reverses = vec![false; N];
+    for j in 0..N {
+        let (mut lo, mut hi, mut vlo, mut vhi) = (f64::INFINITY, f64::NEG_INFINITY, 0.0f64, 0.0f64);
+        for &k in &p.rows {
+            lo = lo.min(p.sig.q[k][j]);
+            hi = hi.max(p.sig.q[k][j]);
+            vlo = vlo.min(p.sig.qd[k][j]);
+            vhi = vhi.max(p.sig.qd[k][j]);
+        }
+        let peak = vhi.max(-vlo);
+        moves[j] = hi - lo >= (TRAVEL_NOISE * p.levels[0][j]).max(MIN_TRAVEL);
+        reverses[j] = moves[j] && vhi >= REVERSAL * peak && -vlo >= REVERSAL * peak;
+        if !moves[j] {
+            warnings.push(Warning::NoMotion {
+                joint: names[j].to_string(),
+                peak_speed: peak,
+            });
+        } else if !reverses[j] {
+            warnings.push(Warning::NoReversal {
+                joint: names[j].to_string(),
+            });
+        }
+    }
+    if !moves.iter().any(|&m| m) {
+        return Err(DiagnoseError::NoMotion);
+    }
+    Ok(Excitation { moves, reverses })
+}
+
+/// Refuses an effort column whose sign is flipped: the measured effort
+/// correlating negatively with the nominal model's where the model's
+/// effort varies well above its noise floor.
+pub(super) fn effort_sign<const N: usize>(
+    p: &Prepared<N>,
+    names: &[&str; N],
+    which: &'static str,
+) -> Result<(), DiagnoseError> {
+    for j in 0..N {
+        let n = p.rows.len().max(1) as f64;
+        let mean = |f: &dyn Fn(usize) -> f64| p.rows.iter().map(|&k| f(k)).sum::<f64>() / n;
+        let (mt, mm) = (mean(&|k| p.sig.tau[k][j]), mean(&|k| p.sig.model[k][j]));
+        let (mut sxy, mut sxx, mut syy) = (0.0, 0.0, 0.0);
+        for &k in &p.rows {
+            let (x, y) = (p.sig.model[k][j] - mm, p.sig.tau[k][j] - mt);
+            sxy += x * y;
+            sxx += x * x;
+            syy += y * y;
+        }
+        if (sxx / n).sqrt() < 3.0 * p.sig.floor[j] || sxx * syy <= 0.0 {
+            continue;
+        }
+        let r = sxy / (sxx * syy).sqrt();
+        if r < WRONG_SIGN {
+            return Err(DiagnoseError::EffortSign {
+                which,
+                joint: names[j].to_string(),
+                correlation: r,
+            });
+        }
+    }
+    Ok(())
+}
+
+/// Drops the candidates these data cannot identify: every one at a joint
+/// that does not move; Coulomb and Stribeck friction where the velocity
+/// never reverses (an effort offset would fit as well); backlash, and
+/// elasticity's resonances, above what the rate shows (interval `dt`).
+pub(super) fn identifiable(
+    candidates: Vec<Candidate>,
+    ex: &Excitation,
+    dt: f64,
+    warnings: &mut Vec<Warning>,
+) -> Vec<Candidate> {
+    let limit = signature_limit(dt);
+    let rate = 1.0 / dt;
+    let mut said = [false; 2];
+    let kept = candidates
+        .into_iter()
+        .filter(|c| {
+            if let Some(j) = c.joint() {
+                if !ex.moves[j] {
+                    return false;
+                }
+                if !ex.reverses[j] && matches!(c, Candidate::Coulomb(_) | Candidate::Stribeck(..)) {
+                    return false;
+                }
+            }
+            match c {
+                Candidate::Backlash(_) if limit < BACKLASH_HZ => {
+                    said[0] = true;
+                    false
+                }
+                Candidate::Elasticity(_) if limit < ELASTICITY_HZ => {
+                    said[1] = true;
+                    true
+                }
+                _ => true,
+            }
+        })
+        .collect();
+    if said[0] {
+        warnings.push(Warning::RateTooLow {
+            effect: EffectKind::Backlash.name().into(),
+            rate,
+            limit,
+            needs: BACKLASH_HZ,
+        });
+    }
+    if said[1] {
+        warnings.push(Warning::RateTooLow {
+            effect: EffectKind::JointElasticity.name().into(),
+            rate,
+            limit,
+            needs: ELASTICITY_HZ,
+        });
+    }
+    kept
+}

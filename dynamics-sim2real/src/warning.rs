@@ -1,0 +1,159 @@
+//! What the reader repaired and what the diagnosis could not see, each with
+//! its place (file, line, column, joint) and the figure measured: carried by
+//! [`crate::data::Measured`] and the diagnosis report (JSON, readable report,
+//! command line).
+
+use std::fmt;
+
+use serde::Serialize;
+
+/// One warning. `Display` gives the sentence the command line prints; the
+/// JSON report carries the fields under `kind`.
+///
+/// ```
+/// use dynamics_sim2real::Warning;
+/// let w = Warning::Hole { file: "run.csv".into(), line: 812, start: 0.81, end: 0.93 };
+/// assert_eq!(w.to_string(), "run.csv:812: hole of 0.120 s (0.810 to 0.930 s): the record is split there; nothing is interpolated or differentiated across it");
+/// ```
+#[derive(Debug, Clone, PartialEq, Serialize)]
+#[serde(tag = "kind", rename_all = "snake_case")]
+pub enum Warning {
+    /// A column of the file that no joint uses.
+    ColumnIgnored {
+        /// The file.
+        file: String,
+        /// The column.
+        column: String,
+    },
+    /// The clock is irregular: the data were brought onto a uniform grid.
+    Resampled {
+        /// The file.
+        file: String,
+        /// The grid's interval (the median interval of the file), s.
+        interval: f64,
+        /// RMS relative deviation of the intervals from it.
+        jitter: f64,
+        /// Shortest interval, s.
+        min: f64,
+        /// Longest interval that is not a hole, s.
+        max: f64,
+    },
+    /// Rows whose values of one quantity repeat the row before exactly
+    /// (a logger writing the previous sample again): treated as missing.
+    Repeated {
+        /// The file.
+        file: String,
+        /// `q`, `qd`, `tau`, or `row` (the whole row, time included).
+        quantity: String,
+        /// Rows affected.
+        rows: usize,
+        /// Their fraction of the file's rows.
+        fraction: f64,
+        /// First such line.
+        first_line: usize,
+    },
+    /// Samples missing for longer than a few periods.
+    Hole {
+        /// The file.
+        file: String,
+        /// Line of the first sample after the hole.
+        line: usize,
+        /// Last sample before the hole, s.
+        start: f64,
+        /// First sample after it, s.
+        end: f64,
+    },
+    /// A sample far outside its signal's course: excluded from every fit.
+    Glitch {
+        /// The file.
+        file: String,
+        /// 1-based line.
+        line: usize,
+        /// The column.
+        column: String,
+        /// The value read.
+        value: f64,
+        /// Its departure from the local robust fit, in robust standard
+        /// deviations of that departure.
+        sigmas: f64,
+    },
+    /// Glitches beyond those listed one by one.
+    MoreGlitches {
+        /// The file.
+        file: String,
+        /// How many more.
+        count: usize,
+    },
+    /// A joint that does not move in these data: nothing about it can be
+    /// identified.
+    NoMotion {
+        /// Joint.
+        joint: String,
+        /// Largest smoothed speed, rad/s or m/s.
+        peak_speed: f64,
+    },
+    /// A joint whose velocity never reverses: Coulomb friction and a
+    /// constant effort offset cannot be told apart.
+    NoReversal {
+        /// Joint.
+        joint: String,
+    },
+    /// An effect whose signature lies (partly) above what the sample rate
+    /// shows: not identifiable there on these data, searched only below.
+    RateTooLow {
+        /// Vocabulary name of the effect.
+        effect: String,
+        /// The sample rate, Hz.
+        rate: f64,
+        /// Highest frequency these data show (a quarter of the rate), Hz.
+        limit: f64,
+        /// Where the effect's signature reaches, Hz.
+        needs: f64,
+    },
+}
+
+impl fmt::Display for Warning {
+    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
+        match self {
+            Warning::ColumnIgnored { file, column } => write!(f, "{file}: column `{column}` ignored"),
+            Warning::Resampled { file, interval, jitter, min, max } => write!(
+                f,
+                "{file}: irregular clock (intervals {min:.3e} to {max:.3e} s, RMS jitter {:.1} %): \
+                 brought onto a uniform grid of {interval:.3e} s by linear interpolation at the true times",
+                jitter * 100.0
+            ),
+            Warning::Repeated { file, quantity, rows, fraction, first_line } => write!(
+                f,
+                "{file}:{first_line}: {rows} rows ({:.1} %) repeat the previous row's `{quantity}` exactly: treated as missing",
+                fraction * 100.0
+            ),
+            Warning::Hole { file, line, start, end } => write!(
+                f,
+                "{file}:{line}: hole of {:.3} s ({start:.3} to {end:.3} s): the record is split there; \
+                 nothing is interpolated or differentiated across it",
+                end - start
+            ),
+            Warning::Glitch { file, line, column, value, sigmas } => write!(
+                f,
+                "{file}:{line}: column `{column}`: glitch {value:.4e} ({} sigma off its course): excluded from every fit",
+                if *sigmas < 1e6 { format!("{sigmas:.0}") } else { format!("{sigmas:.1e}") }
+            ),
+            Warning::MoreGlitches { file, count } => {
+                write!(f, "{file}: {count} more glitches, excluded from every fit")
+            }
+            Warning::NoMotion { joint, peak_speed } => write!(
+                f,
+                "joint {joint}: does not move (peak speed {peak_speed:.2e}): nothing about it can be identified from these data"
+            ),
+            Warning::NoReversal { joint } => write!(
+                f,
+                "joint {joint}: its velocity never reverses: Coulomb friction and an effort offset cannot be told apart on these data"
+            ),
+            Warning::RateTooLow { effect, rate, limit, needs } => write!(
+                f,
+                "`{effect}` (signatures up to {needs:.0} Hz) is not identifiable above {limit:.0} Hz on these data \
+                 (sampled at {rate:.0} Hz; a signature needs four samples a period): searched only below, not guessed"
+            ),
+        }
+    }
+}
