@@ -21,6 +21,7 @@ mod constraint;
 pub mod control;
 mod error;
 pub mod fma;
+pub mod linearize;
 pub mod ode;
 mod params;
 mod perturbation;

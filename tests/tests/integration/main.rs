@@ -5,6 +5,7 @@ mod diagnosis;
 mod effects;
 mod elastic_grip;
 mod environment;
+mod linearize;
 mod mar_eq10;
 mod mar_vibration;
 mod oracle;
