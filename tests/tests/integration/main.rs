@@ -10,5 +10,6 @@ mod mar_eq10;
 mod mar_vibration;
 mod oracle;
 mod properties;
+mod regressor;
 mod simulate;
 mod urdf;
