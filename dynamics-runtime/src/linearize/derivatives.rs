@@ -1,8 +1,9 @@
 //! d(qdd)/dq and d(qdd)/dqd of the forward dynamics, and the continuous-time
 //! state-space matrices built from them.
 
-use nalgebra::{Cholesky, Const, SMatrix, SVector};
+use nalgebra::{SMatrix, SVector};
 
+use super::ldlt::Ldlt;
 use super::BlockMatrix;
 use crate::{DynamicsError, Robot};
 
@@ -104,13 +105,13 @@ pub fn state_space<R: Robot<N>, const N: usize>(
     qd: &SVector<f64, N>,
     tau: &SVector<f64, N>,
 ) -> Result<StateSpace<N>, DynamicsError> {
-    let (d, chol) = solved(robot, q, qd, tau)?;
+    let (d, ldlt) = solved(robot, q, qd, tau)?;
     let mut a = BlockMatrix::zeros();
     a.blocks[0][1] = SMatrix::identity();
     a.blocks[1][0] = d.ddq_dq;
     a.blocks[1][1] = d.ddq_dv;
     let mut b = BlockMatrix::zeros();
-    b.blocks[1][0] = finite("ddq_dtau", chol.inverse())?;
+    b.blocks[1][0] = finite("ddq_dtau", ldlt.solve_matrix(&SMatrix::identity(), 1.0))?;
     Ok(StateSpace { a, b, qdd: d.qdd })
 }
 
@@ -120,30 +121,27 @@ fn solved<R: Robot<N>, const N: usize>(
     q: &SVector<f64, N>,
     qd: &SVector<f64, N>,
     tau: &SVector<f64, N>,
-) -> Result<(ForwardDerivatives<N>, Cholesky<f64, Const<N>>), DynamicsError> {
+) -> Result<(ForwardDerivatives<N>, Ldlt<N>), DynamicsError> {
     for (quantity, v) in [("q", q), ("qd", qd), ("tau", tau)] {
         if let Some(index) = v.iter().position(|x| !x.is_finite()) {
             return Err(DynamicsError::NonFinite { quantity, index });
         }
     }
     let terms = robot.motion_terms(q, qd);
-    let chol = terms
-        .a
-        .cholesky()
-        .ok_or_else(|| DynamicsError::SingularMassMatrix {
-            q: q.iter().copied().collect(),
-        })?;
-    let qdd = finite("qdd", chol.solve(&(terms.bias() + tau)))?;
+    let ldlt = Ldlt::new(&terms.a).ok_or_else(|| DynamicsError::SingularMassMatrix {
+        q: q.iter().copied().collect(),
+    })?;
+    let qdd = finite("qdd", ldlt.solve(&(terms.bias() + tau)))?;
     let pj = robot.perturbation_jacobians(q, qd, &qdd);
-    let ddq_dq = finite("ddq_dq", chol.solve(&-pj.k))?;
-    let ddq_dv = finite("ddq_dv", chol.solve(&-pj.d))?;
+    let ddq_dq = finite("ddq_dq", ldlt.solve_matrix(&pj.k, -1.0))?;
+    let ddq_dv = finite("ddq_dv", ldlt.solve_matrix(&pj.d, -1.0))?;
     Ok((
         ForwardDerivatives {
             qdd,
             ddq_dq,
             ddq_dv,
         },
-        chol,
+        ldlt,
     ))
 }
 

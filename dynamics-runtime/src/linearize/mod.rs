@@ -13,8 +13,8 @@
 //! d(qdd)/dtau = A^-1
 //! ```
 //!
-//! computed from one Cholesky factorisation of `A` and `2N` (`3N` for the
-//! state-space model) triangular solves; `A^-1` is never formed to be
+//! computed from one `L D L^T` factorisation of `A` and `2N` (`3N` for the
+//! state-space model) pairs of triangular solves; `A^-1` is never formed to be
 //! multiplied. With the state `x = [q; qd]` and input `u = tau`, the
 //! continuous-time linearisation `dx' = A_c dx + B_c du` has
 //! `A_c = [[0, I], [d(qdd)/dq, d(qdd)/dqd]]` and `B_c = [[0], [A^-1]]`;
@@ -48,6 +48,7 @@ mod blocks;
 mod dense;
 mod derivatives;
 mod expm;
+mod ldlt;
 mod zoh;
 
 pub use blocks::BlockMatrix;
