@@ -129,7 +129,7 @@ fn solved<R: Robot<N>, const N: usize>(
     }
     let terms = robot.motion_terms(q, qd);
     let ldlt = Ldlt::new(&terms.a).ok_or_else(|| DynamicsError::SingularMassMatrix {
-        q: q.iter().copied().collect(),
+        q: crate::Coordinates::new(q.as_slice()),
     })?;
     let qdd = finite("qdd", ldlt.solve(&(terms.bias() + tau)))?;
     let pj = robot.perturbation_jacobians(q, qd, &qdd);

@@ -22,7 +22,8 @@
 //! step `h` (`dx[k+1] = A_d dx[k] + B_d du[k]`).
 //!
 //! Matrices of `2N` rows are [`BlockMatrix`]es of `N x N` blocks (stable Rust
-//! cannot write `SMatrix<f64, {2 * N}, {2 * N}>`). Nothing here allocates.
+//! cannot write `SMatrix<f64, {2 * N}, {2 * N}>`). Nothing here allocates, and
+//! all of it but [`BlockMatrix::to_dmatrix`] (feature `std`) builds without std.
 //!
 //! ```
 //! use dynamics_runtime::linearize;
@@ -45,6 +46,7 @@
 //! ```
 
 mod blocks;
+#[cfg(feature = "std")]
 mod dense;
 mod derivatives;
 mod expm;
