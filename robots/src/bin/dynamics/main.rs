@@ -5,6 +5,7 @@
 //! dynamics check                # every seed robot against the shipped Pinocchio values
 //! dynamics synth --robot NAME --effect KIND --joint J --out FILE.csv
 //! dynamics diagnose --robot NAME --train A.csv --holdout B.csv [--json OUT.json] [--report DIR]
+//! dynamics identify --robot NAME --train A.csv --holdout B.csv [--json OUT.json]
 //! dynamics list                 # the robots it knows
 //! dynamics eval --robot NAME [--states FILE.json] [--out FILE.json] [--set NAME=VALUE]...
 //! ```
@@ -15,6 +16,7 @@ use std::process::ExitCode;
 use clap::{Parser, Subcommand};
 use dynamics_cli::commands::{eval, synth_cmd};
 use dynamics_cli::diagnose::diagnose_cmd;
+use dynamics_cli::identify::identify_cmd;
 use dynamics_cli::Res;
 use robots::each_robot;
 use robots::registry::{AnyRobot, ROBOTS};
@@ -127,7 +129,28 @@ enum Command {
         )]
         noise_qd: Option<Vec<f64>>,
     },
+<<<<<<< HEAD
     /// Evaluate tau, M, g, C, nle, ddq, the energies and the derivatives (dtau_dq, dtau_dv, ddq_dq, ddq_dv) at given states.
+=======
+    /// Plain least-squares identification (the baseline): per-joint Coulomb, viscous, offset and
+    /// rotor inertia plus every link's inertial parameters, fitted on training data, judged on
+    /// held-out data.
+    Identify {
+        /// Robot name.
+        #[arg(long)]
+        robot: String,
+        /// Training data (CSV or CSV.gz).
+        #[arg(long)]
+        train: PathBuf,
+        /// Held-out data.
+        #[arg(long)]
+        holdout: PathBuf,
+        /// Write the result as JSON here.
+        #[arg(long)]
+        json: Option<PathBuf>,
+    },
+    /// Evaluate tau, M, g, C, nle, ddq and the energies at given states.
+>>>>>>> main
     Eval {
         /// Robot name (see `dynamics list`).
         #[arg(long)]
@@ -217,6 +240,14 @@ fn main() -> ExitCode {
                 _ => built_in_case(json, report, noise),
             }
         }
+        Command::Identify {
+            robot,
+            train,
+            holdout,
+            json,
+        } => AnyRobot::by_name(&robot)
+            .map_err(Into::into)
+            .and_then(|r| each_robot!(&r, r => identify_cmd(r, train, holdout, json))),
         Command::Eval {
             robot,
             states,
