@@ -129,9 +129,6 @@ enum Command {
         )]
         noise_qd: Option<Vec<f64>>,
     },
-<<<<<<< HEAD
-    /// Evaluate tau, M, g, C, nle, ddq, the energies and the derivatives (dtau_dq, dtau_dv, ddq_dq, ddq_dv) at given states.
-=======
     /// Plain least-squares identification (the baseline): per-joint Coulomb, viscous, offset and
     /// rotor inertia plus every link's inertial parameters, fitted on training data, judged on
     /// held-out data.
@@ -149,8 +146,7 @@ enum Command {
         #[arg(long)]
         json: Option<PathBuf>,
     },
-    /// Evaluate tau, M, g, C, nle, ddq and the energies at given states.
->>>>>>> main
+    /// Evaluate tau, M, g, C, nle, ddq, the energies and the derivatives (dtau_dq, dtau_dv, ddq_dq, ddq_dv) at given states.
     Eval {
         /// Robot name (see `dynamics list`).
         #[arg(long)]
