@@ -164,7 +164,7 @@ enum Command {
         #[arg(long)]
         json: Option<PathBuf>,
     },
-    /// Evaluate tau, M, g, C, nle, ddq and the energies at given states.
+    /// Evaluate tau, M, g, C, nle, ddq, the energies and the derivatives (dtau_dq, dtau_dv, ddq_dq, ddq_dv) at given states.
     Eval {
         /// Robot name (see `dynamics list`).
         #[arg(long)]
