@@ -34,6 +34,16 @@ pub enum DynamicsError {
         /// Index of the first offending entry.
         index: usize,
     },
+    /// An output slice does not have the length the robot needs.
+    #[error("{quantity} needs a slice of length {expected}, got {found}")]
+    Length {
+        /// Which output (`inertial_regressor`, ...).
+        quantity: &'static str,
+        /// The length it needs (e.g. `Robot::LINK_NAMES.len()`).
+        expected: usize,
+        /// The length given.
+        found: usize,
+    },
     /// No run-time parameter of this robot has that name.
     #[error("unknown parameter `{name}`; this robot has: {known}")]
     UnknownParameter {

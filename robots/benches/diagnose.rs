@@ -1,5 +1,5 @@
 //! The whole gap diagnosis on 8 s of 1 kHz data (training and held-out
-//! files of 8001 samples each, generated in the setup by `robots::gap::synth`
+//! files of 8001 samples each, generated in the setup by `robots::builtin::synth`
 //! with Coulomb friction withheld at one joint): every candidate of the
 //! vocabulary on every joint fitted and ranked, the where and shrink
 //! sections, on all cores. Robots: arm3r (3 joints), UR5 (6) and Panda (7).
@@ -10,11 +10,12 @@ use std::hint::black_box;
 use std::time::Duration;
 
 use criterion::{criterion_group, criterion_main, Criterion};
+use dynamics_cli::gap::SynthRequest;
 use dynamics_runtime::Robot;
 use dynamics_sim2real::data::{read_csv_str, Measured};
 use dynamics_sim2real::diagnose::{diagnose, Options};
 use dynamics_sim2real::effects::EffectKind;
-use robots::gap::{synth, SynthRequest};
+use robots::builtin::synth;
 use robots::{Arm3r, Panda, Ur5};
 
 /// Training and held-out data of `robot` with Coulomb friction at `joint`.

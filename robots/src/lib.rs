@@ -1,5 +1,6 @@
-//! The seed robots written with `robot!`, and the pieces of the `dynamics`
-//! command-line program that tests use too.
+//! The seed robots written with `robot!`, the seed scenarios, and the
+//! built-in `dynamics` program: the generic program of `dynamics-cli` over
+//! these robots by name (`registry`, `builtin`).
 //!
 //! | name | robot | source |
 //! |---|---|---|
@@ -13,19 +14,14 @@
 //! | - | [`Piston`] | seed 001 sec. 3.4, RRP arm whose piston end follows KL |
 
 pub mod arm3r;
+pub mod builtin;
 pub mod clearance_arm;
-pub mod compare;
 pub mod elastic_grip;
-pub mod eval;
-pub mod gap;
 pub mod mar;
 pub mod piston;
-pub mod plot;
 pub mod registry;
-pub mod report;
 pub mod rrp;
 pub mod scenarios;
-pub mod states;
 pub mod urdf_robots;
 
 pub use arm3r::{Arm3r, Arm3rParams};

@@ -3,9 +3,9 @@
 use dynamics_runtime::{DynamicsError, Parameters, Robot};
 use thiserror::Error;
 
-use crate::eval::{evaluate, Evaluated};
-use crate::states::{self, StatesError};
 use crate::{Arm3r, Arm3rUrdf, Mar, MarUrdf, Panda, Rrp, RrpUrdf, Ur5};
+use dynamics_cli::eval::{evaluate, Evaluated};
+use dynamics_cli::states::{self, StatesError};
 
 /// Names the command-line program knows, with a line each.
 pub const ROBOTS: &[(&str, &str)] = &[

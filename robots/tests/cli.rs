@@ -362,7 +362,7 @@ fn diagnose_writes_a_readable_report() {
         ("report-coulomb", EffectKind::CoulombFriction, Some("j1")),
         ("report-none", EffectKind::None, None),
     ] {
-        let data = robots::gap::synth(&robots::gap::SynthRequest {
+        let data = robots::builtin::synth(&dynamics_cli::gap::SynthRequest {
             robot: "arm3r".into(),
             kind: Some(kind),
             joint: joint.map(Into::into),
@@ -465,7 +465,7 @@ fn report_traces_carry_the_fitted_effect() {
     use dynamics_sim2real::diagnose::{diagnose, traces::traces, Options};
     use dynamics_sim2real::effects::EffectKind;
     use robots::Arm3r;
-    let data = robots::gap::synth(&robots::gap::SynthRequest {
+    let data = robots::builtin::synth(&dynamics_cli::gap::SynthRequest {
         robot: "arm3r".into(),
         kind: Some(EffectKind::CoulombFriction),
         joint: Some("j3".into()),

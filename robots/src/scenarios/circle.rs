@@ -14,7 +14,7 @@ use dynamics_runtime::{simulate, Robot};
 use nalgebra::{Vector2, Vector3};
 
 use super::{outputs_csv, write, ScenarioError};
-use crate::plot::{svg, Series};
+use dynamics_cli::plot::{svg, Series};
 
 const CENTRE: (f64, f64) = (0.25, 0.15);
 const RADIUS: f64 = 0.08;

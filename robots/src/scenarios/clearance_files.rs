@@ -12,8 +12,8 @@ use nalgebra::{Vector2, Vector4};
 use super::clearance::{drives, simulate, start, ClearanceRun, Mode, GAP};
 use super::support::trajectory_csv;
 use super::{write, ScenarioError};
-use crate::plot::{svg, Series};
 use crate::ClearanceArmFree;
+use dynamics_cli::plot::{svg, Series};
 
 /// Simulated time, s.
 pub const DURATION: f64 = 4.0;

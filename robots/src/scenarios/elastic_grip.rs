@@ -24,8 +24,8 @@ use nalgebra::{DMatrix, SVector, Vector2, Vector4};
 
 use super::support::{sample, trajectory_csv};
 use super::{write, ScenarioError};
-use crate::plot::{svg, Series};
 use crate::{ElasticGrip, ElasticGripParams};
+use dynamics_cli::plot::{svg, Series};
 
 /// Drives of sec. 3.3: M10, M20 (N m), F0 (N), nothing on y.
 pub const DRIVES: [f64; 4] = [0.2, 0.5, 7.5, 0.0];

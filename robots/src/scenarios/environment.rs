@@ -20,8 +20,8 @@ use dynamics_sim2real::effects::{Effect, Tip};
 use nalgebra::Vector3;
 
 use super::{outputs, write, ScenarioError};
-use crate::plot::{svg, Series};
 use crate::Piston;
+use dynamics_cli::plot::{svg, Series};
 
 /// Resistance coefficient mu of sec. 3.4, N s/m (alpha = 2).
 pub const MU: f64 = 0.05;

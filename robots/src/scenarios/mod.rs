@@ -9,7 +9,7 @@ use dynamics_runtime::{simulate, simulate_program, Baumgarte, Robot, Trajectory}
 use nalgebra::Vector3;
 use thiserror::Error;
 
-use crate::plot::{svg, Series};
+use dynamics_cli::plot::{svg, Series};
 
 mod circle;
 pub mod clearance;

@@ -11,10 +11,11 @@
 use std::collections::BTreeMap;
 use std::path::Path;
 
+use dynamics_cli::gap::{SynthRequest, Truth};
 use dynamics_sim2real::diagnose::Options;
 use dynamics_sim2real::effects::EffectKind;
 use dynamics_sim2real::synth::{ExcitationKind, Noise, Rng};
-use robots::gap::{diagnose_files, synth, SynthRequest, Truth};
+use robots::builtin::{diagnose_files, synth};
 
 const CASES: usize = 44;
 /// A case is identifiable when the withheld effect's effort, RMS along the
@@ -432,8 +433,8 @@ fn a_gap_no_candidate_explains_is_unexplained() {
 /// named.
 #[test]
 fn stated_sensor_noise_gives_the_floor_the_data_show() {
+    use dynamics_cli::gap::GapError;
     use dynamics_sim2real::diagnose::{DiagnoseError, SensorNoise};
-    use robots::gap::GapError;
     let dir = std::env::temp_dir().join(format!("dynamics-noise-{}", std::process::id()));
     std::fs::create_dir_all(&dir).expect("temp dir");
     let level = Noise::default();

@@ -2,9 +2,9 @@
 //! values (robots/data/pinocchio/*.json, copied from shared/reference/), and
 //! against the hand derivation of arm3r in the reference README.
 
+use dynamics_cli::compare::compare;
 use dynamics_runtime::Robot;
 use nalgebra::{Matrix3, Vector3};
-use robots::compare::compare;
 use robots::registry::AnyRobot;
 
 fn check(name: &str) {

@@ -21,8 +21,8 @@ use nalgebra::Vector3;
 use thiserror::Error;
 
 use super::{outputs_csv, write, ScenarioError};
-use crate::plot::{svg, Series};
 use crate::Mar;
+use dynamics_cli::plot::{svg, Series};
 use vibration::{inertial_vibration, nonlinear, peaks, Drives, Plan, Vibration};
 
 /// Why the MAR analysis failed.

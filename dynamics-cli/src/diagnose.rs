@@ -1,47 +1,23 @@
-//! `dynamics diagnose`: the gap diagnosis on two data files, or on the
-//! built-in case, printed as where / which / shrink, with the JSON and the
-//! readable report on request.
+//! `dynamics diagnose`: the gap diagnosis on two data files, printed as
+//! where / which / shrink, with the JSON and the readable report on request.
 
 use std::path::PathBuf;
 
+use dynamics_runtime::Robot;
+
 use crate::Res;
 
-/// Runs the diagnosis and prints it; `train`/`holdout` absent: the built-in case.
-pub fn diagnose_cmd(
-    robot: &str,
-    train: Option<PathBuf>,
-    holdout: Option<PathBuf>,
+/// Runs the diagnosis of `robot` on two data files and prints it.
+pub fn diagnose_cmd<R: Robot<N> + Clone + Sync, const N: usize>(
+    robot: &R,
+    train: PathBuf,
+    holdout: PathBuf,
     json: Option<PathBuf>,
     report_dir: Option<PathBuf>,
     noise: Option<dynamics_sim2real::diagnose::SensorNoise>,
 ) -> Res {
     use dynamics_sim2real::diagnose::Options;
     use indicatif::{ProgressBar, ProgressStyle};
-    let (train, holdout, tmp) = match (train, holdout) {
-        (Some(a), Some(b)) => (a, b, None),
-        _ => {
-            // The built-in case: Coulomb friction withheld at arm3r's j2.
-            let dir = std::env::temp_dir().join(format!("dynamics-demo-{}", std::process::id()));
-            std::fs::create_dir_all(&dir)?;
-            let req = robots::gap::SynthRequest {
-                robot: "arm3r".into(),
-                kind: Some("coulomb_friction".parse()?),
-                joint: Some("j2".into()),
-                magnitude: Some(0.3),
-                seed: 7,
-                excitation: "sines".parse()?,
-                duration: 8.0,
-                noise: Default::default(),
-            };
-            eprintln!("built-in case: arm3r following sines, 8 s at 1 kHz, with a withheld effect (not told to the diagnoser)");
-            let data = robots::gap::synth(&req)?;
-            let (a, b) = (dir.join("train.csv"), dir.join("holdout.csv"));
-            std::fs::write(&a, &data.train)?;
-            std::fs::write(&b, &data.holdout)?;
-            (a, b, Some((dir, data.truth)))
-        }
-    };
-    let robot = if tmp.is_some() { "arm3r" } else { robot };
     let bar = ProgressBar::new(0);
     bar.set_style(
         ProgressStyle::with_template("fitting candidates {bar:30} {pos}/{len}")
@@ -56,7 +32,7 @@ pub fn diagnose_cmd(
         ..Options::default()
     };
     let (report, warnings) =
-        robots::gap::diagnose_files(robot, &train, &holdout, &options, &progress)?;
+        crate::gap::diagnose_files(robot, &train, &holdout, &options, &progress)?;
     bar.finish_and_clear();
     for w in warnings {
         eprintln!("warning: {w}");
@@ -117,17 +93,9 @@ pub fn diagnose_cmd(
         eprintln!("wrote {}", path.display());
     }
     if let Some(dir) = report_dir {
-        let traces = robots::gap::traces_files(robot, &train, &holdout, &report, &options)?;
-        robots::report::write(&dir, &report, &traces, &options)?;
+        let traces = crate::gap::traces_files(robot, &train, &holdout, &report, &options)?;
+        crate::report::write(&dir, &report, &traces, &options)?;
         eprintln!("wrote the report to {}", dir.join("report.md").display());
-    }
-    if let Some((dir, truth)) = tmp {
-        println!(
-            "truth of the built-in case (read after the verdict): {} at {}",
-            truth.kind,
-            truth.joint.unwrap_or_default()
-        );
-        let _ = std::fs::remove_dir_all(dir);
     }
     Ok(())
 }

@@ -1,67 +1,48 @@
-//! The small subcommands: `check`, `scenario`, `eval`, `synth`.
+//! The small subcommands: `check`, `eval`, `synth`.
 
 use std::path::PathBuf;
 
-use robots::compare::compare;
-use robots::registry::AnyRobot;
+use dynamics_runtime::{Parameters, Robot};
 
+use crate::compare::compare;
+use crate::eval::evaluate;
+use crate::gap::Motion;
+use crate::states;
 use crate::Res;
 
-/// `dynamics check`: every model against the shipped Pinocchio values.
-pub fn check() -> Res {
-    println!("Our models against Pinocchio 4.1.0 (shipped reference states; worst relative error per field)");
-    let mut failed = false;
-    for name in [
-        "arm3r",
-        "rrp-rigid",
-        "mar",
-        "ur5",
-        "panda",
-        "arm3r-urdf",
-        "rrp-urdf",
-        "mar-urdf",
-    ] {
-        let robot = AnyRobot::by_name(name)?;
-        let (file, text) = robot.reference();
-        let ours = robot.evaluate_json(text, file)?;
-        let doc: serde_json::Value = serde_json::from_str(text)?;
-        let cmp = compare(&ours, &doc);
-        let worst = cmp.worst();
-        let status = if worst <= 1e-10 { "ok" } else { "FAIL" };
-        failed |= worst > 1e-10;
-        println!("\n{name} ({} states): {status}", ours.len());
-        for (field, err) in &cmp.fields {
-            println!("  {field:18} {err:9.2e}");
-        }
+/// `dynamics check` for one robot: its values at the states of a reference
+/// file (`file` names it, `text` is its content) against the file's; prints
+/// the worst relative error per field and returns whether all are within
+/// 1e-10.
+pub fn check<R: Robot<N>, const N: usize>(
+    name: &str,
+    robot: &R,
+    file: &str,
+    text: &str,
+) -> Result<bool, Box<dyn std::error::Error>> {
+    let ours = evaluate(robot, &states::parse(text, file, N)?)?;
+    let doc: serde_json::Value = serde_json::from_str(text)?;
+    let cmp = compare(&ours, &doc);
+    let worst = cmp.worst();
+    let status = if worst <= 1e-10 { "ok" } else { "FAIL" };
+    println!("\n{name} ({} states): {status}", ours.len());
+    for (field, err) in &cmp.fields {
+        println!("  {field:18} {err:9.2e}");
     }
-    if failed {
-        Err("some values differ from Pinocchio by more than 1e-10".into())
-    } else {
-        println!("\nall within 1e-10");
-        Ok(())
-    }
+    Ok(worst <= 1e-10)
 }
 
-/// `dynamics scenario [NAME]`: runs a seed scenario, or lists them.
-pub fn scenario(name: Option<String>, out: Option<PathBuf>) -> Res {
-    let Some(name) = name else {
-        for (n, what) in robots::scenarios::SCENARIOS {
-            println!("{n:14} {what}");
-        }
-        return Ok(());
-    };
-    let dir = out.unwrap_or_else(|| PathBuf::from("out").join(&name));
-    let lines = robots::scenarios::run(&name, &dir)?;
-    println!("{name}: outputs in {}", dir.display());
-    for l in lines {
-        println!("  {l}");
-    }
-    Ok(())
-}
-
-/// `dynamics eval`: tau, M, g, C, nle, ddq, energies and derivatives at given states.
-pub fn eval(name: &str, states: Option<PathBuf>, out: Option<PathBuf>, set: &[String]) -> Res {
-    let mut robot = AnyRobot::by_name(name)?;
+/// `dynamics eval`: tau, M, g, C, nle, ddq, energies and derivatives at
+/// given states (`states`; absent: the reference states `reference`, file
+/// name and content, if the robot has them).
+pub fn eval<R: Robot<N>, const N: usize>(
+    name: &str,
+    mut robot: R,
+    reference: Option<(&str, &str)>,
+    states: Option<PathBuf>,
+    out: Option<PathBuf>,
+    set: &[String],
+) -> Res {
     for s in set {
         let (k, v) = s
             .split_once('=')
@@ -73,7 +54,7 @@ pub fn eval(name: &str, states: Option<PathBuf>, out: Option<PathBuf>, set: &[St
         if !v.is_finite() {
             return Err(format!("--set `{s}`: the value must be finite").into());
         }
-        robot.set_param(k.trim(), v)?;
+        robot.params_mut().set(k.trim(), v)?;
     }
     let (file, text) = match &states {
         Some(path) => {
@@ -82,14 +63,14 @@ pub fn eval(name: &str, states: Option<PathBuf>, out: Option<PathBuf>, set: &[St
             (path.display().to_string(), text)
         }
         None => {
-            let (f, t) = robot.reference();
+            let (f, t) = reference.ok_or("this robot has no reference states: give --states")?;
             (f.to_string(), t.to_string())
         }
     };
-    let evaluated = robot.evaluate_json(&text, &file)?;
+    let evaluated = evaluate(&robot, &states::parse(&text, &file, N)?)?;
     let doc = serde_json::json!({
         "robot": name,
-        "joint_names": robot.joint_names(),
+        "joint_names": R::JOINT_NAMES.to_vec(),
         "states": evaluated,
     });
     let json = serde_json::to_string_pretty(&doc)?;
@@ -104,8 +85,10 @@ pub fn eval(name: &str, states: Option<PathBuf>, out: Option<PathBuf>, set: &[St
 
 /// `dynamics synth`: training and held-out CSVs of a robot with a withheld effect.
 #[allow(clippy::too_many_arguments)]
-pub fn synth_cmd(
-    robot: &str,
+pub fn synth_cmd<R: Robot<N> + Clone, const N: usize>(
+    robot: &R,
+    motion: &Motion,
+    name: &str,
     effect: Option<String>,
     joint: Option<String>,
     magnitude: Option<f64>,
@@ -118,8 +101,8 @@ pub fn synth_cmd(
 ) -> Res {
     use dynamics_sim2real::synth::Noise;
     let kind = effect.map(|e| e.parse()).transpose()?;
-    let req = robots::gap::SynthRequest {
-        robot: robot.into(),
+    let req = crate::gap::SynthRequest {
+        robot: name.into(),
         kind,
         joint,
         magnitude,
@@ -132,7 +115,7 @@ pub fn synth_cmd(
             tau_relative: noise[2],
         },
     };
-    let data = robots::gap::synth(&req)?;
+    let data = crate::gap::synth(robot, motion, &req)?;
     let stem = out.file_stem().and_then(|s| s.to_str()).unwrap_or("data");
     let hold = out.with_file_name(format!("{stem}-holdout.csv"));
     std::fs::write(out, &data.train).map_err(|e| format!("{}: {e}", out.display()))?;

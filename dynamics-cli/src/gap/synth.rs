@@ -1,6 +1,7 @@
-//! Synthetic measured data by robot name: the home pose and amplitudes of
-//! each robot's motion, the effect a request asks for (drawn where it
-//! leaves things open), the training and held-out CSVs and the truth.
+//! Synthetic measured data of one robot: the effect a request asks for
+//! (drawn where it leaves things open), the training and held-out CSVs and
+//! the truth; the robot's home pose and amplitudes come with it
+//! ([`Motion`]).
 
 use dynamics_runtime::Robot;
 use dynamics_sim2real::data::{write_csv, Measured};
@@ -13,7 +14,6 @@ use nalgebra::SVector;
 use serde::{Deserialize, Serialize};
 
 use super::GapError;
-use crate::registry::AnyRobot;
 
 /// What was withheld in a synthetic data set (the truth file).
 #[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
@@ -75,21 +75,19 @@ pub struct SynthRequest {
     pub noise: Noise,
 }
 
-/// Home pose and reference amplitude per robot (the motion stays inside
-/// the joint limits of the URDF arms).
-fn motion(name: &str, n: usize) -> (Vec<f64>, Vec<f64>) {
-    match name {
-        "arm3r" | "arm3r-urdf" => (vec![0.0, 0.4, -0.4], vec![0.6, 0.6, 0.6]),
-        "rrp" | "rrp-rigid" | "rrp-urdf" => (vec![0.0, 0.3, 0.05], vec![0.5, 0.5, 0.04]),
-        "mar" | "mar-drives" | "mar-urdf" => (vec![0.0, 0.3, 0.05], vec![0.4, 0.5, 0.04]),
-        "ur5" => (vec![0.0, -1.2, 1.2, -1.5, -1.5, 0.0], vec![0.4; 6]),
-        "panda" | "panda-damped" => (vec![0.0, -0.4, 0.0, -2.0, 0.0, 1.7, 0.8], vec![0.35; 7]),
-        _ => (vec![0.0; n], vec![0.4; n]),
-    }
+/// Home pose and reference amplitude of a robot's motion (the motion must
+/// stay inside its joint limits); a robot without one moves by 0.4 about
+/// zero.
+#[derive(Debug, Clone, PartialEq, Default)]
+pub struct Motion {
+    /// Home pose, one value per joint (missing entries: 0).
+    pub home: Vec<f64>,
+    /// Reference amplitude per joint (missing entries: 0.4).
+    pub amplitude: Vec<f64>,
 }
 
-fn options<const N: usize>(name: &str, req: &SynthRequest, seed: u64) -> SynthOptions<N> {
-    let (home, amp) = motion(name, N);
+fn options<const N: usize>(motion: &Motion, req: &SynthRequest, seed: u64) -> SynthOptions<N> {
+    let (home, amp) = (&motion.home, &motion.amplitude);
     SynthOptions {
         duration: req.duration,
         excitation: req.excitation,
@@ -241,27 +239,30 @@ pub struct SynthOutput {
     pub truth: Truth,
 }
 
-/// Generates data for `req` (training with `req.seed`, held-out with the
-/// next seed).
+/// Generates data of `robot` moving about `motion` for `req` (training
+/// with `req.seed`, held-out with the next seed).
 ///
 /// ```
 /// use dynamics_sim2real::effects::EffectKind;
-/// use robots::gap::{synth, SynthRequest};
-/// let out = synth(&SynthRequest {
-///     robot: "arm3r".into(), kind: Some(EffectKind::ViscousFriction), joint: Some("j2".into()),
+/// use dynamics_cli::gap::{synth, Motion, SynthRequest};
+/// dynamics_macros::robot! {
+///     robot Arm; gravity = [0.0, -9.81, 0.0];
+///     link base; link a { mass = 1.0; com = [0.2, 0.0, 0.0]; inertia = [1e-3, 1e-2, 1e-2]; }
+///     link b { mass = 0.5; com = [0.15, 0.0, 0.0]; inertia = [1e-3, 5e-3, 5e-3]; }
+///     joint j1 = revolute(base -> a) { transfer = [rot_z(q)]; }
+///     joint j2 = revolute(a -> b) { transfer = [tu(0.4), rot_z(q)]; }
+/// }
+/// let out = synth(&Arm::default(), &Motion::default(), &SynthRequest {
+///     robot: "arm".into(), kind: Some(EffectKind::ViscousFriction), joint: Some("j2".into()),
 ///     magnitude: Some(0.5), seed: 3, excitation: "sines".parse().unwrap(), duration: 0.5,
 ///     noise: Default::default(),
 /// }).unwrap();
-/// assert!(out.train.starts_with("t,q_j1,q_j2,q_j3,qd_j1"));
+/// assert!(out.train.starts_with("t,q_j1,q_j2,qd_j1"));
 /// assert_eq!(out.truth.kind, "viscous_friction");
 /// ```
-pub fn synth(req: &SynthRequest) -> Result<SynthOutput, GapError> {
-    let robot = AnyRobot::by_name(&req.robot)?;
-    crate::each_robot!(&robot, r => synth_for(r, req))
-}
-
-fn synth_for<R: Robot<N> + Clone, const N: usize>(
+pub fn synth<R: Robot<N> + Clone, const N: usize>(
     robot: &R,
+    motion: &Motion,
     req: &SynthRequest,
 ) -> Result<SynthOutput, GapError> {
     if !(req.duration.is_finite() && req.duration >= 0.5) {
@@ -271,10 +272,10 @@ fn synth_for<R: Robot<N> + Clone, const N: usize>(
         )));
     }
     let mut rng = Rng::new(req.seed.wrapping_mul(0x9E37_79B9).wrapping_add(17));
-    let train_opts = options::<N>(&req.robot, req, req.seed);
+    let train_opts = options::<N>(motion, req, req.seed);
     let effect = effect_for(robot, req, &train_opts, &mut rng)?;
     let effects: Vec<Effect> = effect.into_iter().collect();
-    let hold_opts = options::<N>(&req.robot, req, req.seed.wrapping_add(1_000_003));
+    let hold_opts = options::<N>(motion, req, req.seed.wrapping_add(1_000_003));
     let to_csv = |m: &Measured<N>| -> String {
         let mut out = Vec::new();
         let _ = write_csv(&mut out, m, &R::JOINT_NAMES);

@@ -9,7 +9,7 @@ use super::{esc, num, COLORS};
 /// vertical line at `marker` (value, label) if given.
 ///
 /// ```
-/// use robots::plot::bars;
+/// use dynamics_cli::plot::bars;
 /// let s = bars("ranking", "delta AICc", &[("coulomb j2".into(), 3800.0), ("offset j1".into(), -2.0)], Some((100.0, "threshold")));
 /// assert_eq!(s.matches("<rect").count(), 1 + 2);
 /// assert!(s.contains(">coulomb j2</text>") && s.contains("stroke-dasharray"));

@@ -25,7 +25,7 @@ const COLORS: [&str; 6] = [
 /// An SVG document with the series drawn over common axes.
 ///
 /// ```
-/// use robots::plot::{svg, Series};
+/// use dynamics_cli::plot::{svg, Series};
 /// let s = svg("sine", "t [s]", "y", &[Series { name: "y", points: (0..50).map(|i| (i as f64 * 0.1, (i as f64 * 0.1).sin())).collect() }], false);
 /// assert!(s.starts_with("<svg") && s.contains("<polyline"));
 /// ```
@@ -48,7 +48,7 @@ pub struct Shade<'a> {
 /// the y range covers the bands' finite y limits.
 ///
 /// ```
-/// use robots::plot::{svg_shaded, Series, Shade};
+/// use dynamics_cli::plot::{svg_shaded, Series, Shade};
 /// let line = Series { name: "r", points: vec![(0.0, 0.0), (1.0, 2.0)] };
 /// let s = svg_shaded("r", "t [s]", "r", &[line], &[
 ///     Shade { x: Some((0.2, 0.4)), y: None, label: "hold" },

@@ -1,4 +1,4 @@
-//! Sim-to-real gap work by robot name: synthetic measured data with a
+//! Sim-to-real gap work on one robot: synthetic measured data with a
 //! withheld effect (`dynamics synth`, `synth.rs`) and the diagnosis of
 //! data files (`dynamics diagnose`, `files.rs`).
 
@@ -6,7 +6,7 @@ mod files;
 mod synth;
 
 pub use files::{diagnose_files, traces_files};
-pub use synth::{synth, SynthOutput, SynthRequest, Truth};
+pub use synth::{synth, Motion, SynthOutput, SynthRequest, Truth};
 
 use dynamics_sim2real::data::DataError;
 use dynamics_sim2real::diagnose::traces::TracesError;
@@ -14,14 +14,17 @@ use dynamics_sim2real::diagnose::DiagnoseError;
 use dynamics_sim2real::synth::SynthError;
 use thiserror::Error;
 
-use crate::registry::RegistryError;
-
 /// Why a gap command failed.
 #[derive(Debug, Error)]
 pub enum GapError {
-    /// Robot lookup.
-    #[error(transparent)]
-    Registry(#[from] RegistryError),
+    /// No robot of that name (a program over several robots).
+    #[error("unknown robot `{name}`; known robots: {known}")]
+    UnknownRobot {
+        /// The name asked for.
+        name: String,
+        /// The known names, comma-separated.
+        known: String,
+    },
     /// Reading data.
     #[error(transparent)]
     Data(#[from] DataError),

@@ -44,10 +44,15 @@ pub struct Evaluated {
 /// Evaluates `robot` at every state.
 ///
 /// ```
-/// use robots::{eval::evaluate, states::State, Arm3r};
-/// let s = State { q: vec![0.0; 3], v: vec![0.0; 3], a: vec![0.0; 3] };
-/// let out = evaluate(&Arm3r::default(), &[s]).unwrap();
-/// assert!((out[0].g[0] - 21.93518418).abs() < 1e-8);
+/// use dynamics_cli::{eval::evaluate, states::State};
+/// dynamics_macros::robot! {
+///     pub robot Pendulum; gravity = [0.0, -9.81, 0.0];
+///     link base; link rod { mass = 1.0; com = [0.2, 0.0, 0.0]; inertia = [1e-3, 1e-2, 1e-2]; }
+///     joint j = revolute(base -> rod) { transfer = [rot_z(q)]; }
+/// }
+/// let s = State { q: vec![0.0], v: vec![0.0], a: vec![0.0] };
+/// let out = evaluate(&Pendulum::default(), &[s]).unwrap();
+/// assert!((out[0].g[0] - 1.0 * 9.81 * 0.2).abs() < 1e-12); // m g l cos q
 /// ```
 pub fn evaluate<R: Robot<N>, const N: usize>(
     robot: &R,

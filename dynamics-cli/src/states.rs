@@ -43,9 +43,9 @@ pub enum StatesError {
 ///
 /// ```
 /// let doc = r#"{"states": [{"q": [0.1], "v": [0.0], "a": [1.0]}]}"#;
-/// let s = robots::states::parse(doc, "inline", 1).unwrap();
+/// let s = dynamics_cli::states::parse(doc, "inline", 1).unwrap();
 /// assert_eq!(s[0].a, vec![1.0]);
-/// assert!(robots::states::parse(doc, "inline", 2).is_err());
+/// assert!(dynamics_cli::states::parse(doc, "inline", 2).is_err());
 /// ```
 pub fn parse(text: &str, file: &str, n: usize) -> Result<Vec<State>, StatesError> {
     let doc: Value = serde_json::from_str(text).map_err(|source| StatesError::Json {

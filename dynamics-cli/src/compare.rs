@@ -50,12 +50,19 @@ fn mat_vec(m: &[Vec<f64>], v: &[f64]) -> Vec<f64> {
 /// Compares `ours` with the `states` of a reference document.
 ///
 /// ```
-/// use robots::{compare::compare, registry::AnyRobot};
-/// let r = AnyRobot::by_name("arm3r").unwrap();
-/// let (file, text) = r.reference();
-/// let ours = r.evaluate_json(text, file).unwrap();
-/// let doc: serde_json::Value = serde_json::from_str(text).unwrap();
-/// assert!(compare(&ours, &doc).worst() < 1e-10);
+/// use dynamics_cli::{compare::compare, eval::evaluate, states::State};
+/// dynamics_macros::robot! {
+///     pub robot Pendulum; gravity = [0.0, -9.81, 0.0];
+///     link base; link rod { mass = 1.0; com = [0.2, 0.0, 0.0]; inertia = [1e-3, 1e-2, 1e-2]; }
+///     joint j = revolute(base -> rod) { transfer = [rot_z(q)]; }
+/// }
+/// let s = State { q: vec![0.3], v: vec![1.0], a: vec![-2.0] };
+/// let ours = evaluate(&Pendulum::default(), &[s]).unwrap();
+/// let doc = serde_json::json!({ "states": ours });
+/// assert_eq!(compare(&ours, &doc).worst(), 0.0);
+/// let mut other = ours.clone();
+/// other[0].tau[0] *= 1.01;
+/// assert!((compare(&other, &doc).worst() - 0.01).abs() < 1e-12);
 /// ```
 pub fn compare(ours: &[Evaluated], reference: &Value) -> Comparison {
     let empty = Vec::new();

@@ -1,5 +1,5 @@
-//! The diagnosis of data files by robot name, and the time series behind
-//! its readable report.
+//! The diagnosis of data files, and the time series behind its readable
+//! report.
 
 use std::path::Path;
 
@@ -9,21 +9,10 @@ use dynamics_sim2real::diagnose::traces::{traces, Traces};
 use dynamics_sim2real::diagnose::{diagnose, Options, Report};
 
 use super::GapError;
-use crate::registry::AnyRobot;
 
-/// Diagnoses `train` against `holdout` (CSV files) for robot `name`.
-pub fn diagnose_files(
-    name: &str,
-    train: &Path,
-    holdout: &Path,
-    options: &Options,
-    progress: &(dyn Fn(usize, usize) + Sync),
-) -> Result<(Report, Vec<String>), GapError> {
-    let robot = AnyRobot::by_name(name)?;
-    crate::each_robot!(&robot, r => diagnose_for(r, train, holdout, options, progress))
-}
-
-fn diagnose_for<R: Robot<N> + Clone + Sync, const N: usize>(
+/// Diagnoses `train` against `holdout` (CSV files) for `robot`; the
+/// warnings of reading the files come back beside the report.
+pub fn diagnose_files<R: Robot<N> + Clone + Sync, const N: usize>(
     robot: &R,
     train: &Path,
     holdout: &Path,
@@ -42,14 +31,13 @@ fn diagnose_for<R: Robot<N> + Clone + Sync, const N: usize>(
 /// same CSV files: the chosen effect (none when the verdict is `none`)
 /// refitted on `train` and applied to `holdout`. Example: with
 /// [`crate::report::write`].
-pub fn traces_files(
-    name: &str,
+pub fn traces_files<R: Robot<N> + Clone, const N: usize>(
+    robot: &R,
     train: &Path,
     holdout: &Path,
     report: &Report,
     options: &Options,
 ) -> Result<Traces, GapError> {
-    let robot = AnyRobot::by_name(name)?;
     let chosen = report
         .which
         .verdict
@@ -57,7 +45,7 @@ pub fn traces_files(
         .then(|| report.which.ranked.first())
         .flatten();
     let noise = options.noise.as_ref();
-    crate::each_robot!(&robot, r => traces_for(r, train, holdout, chosen, noise))
+    traces_for(robot, train, holdout, chosen, noise)
 }
 
 fn traces_for<R: Robot<N> + Clone, const N: usize>(

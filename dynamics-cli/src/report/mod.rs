@@ -61,14 +61,22 @@ fn joint_files(joint: &str) -> [String; 3] {
 /// ```no_run
 /// use dynamics_sim2real::diagnose::Options;
 /// use std::path::Path;
+/// dynamics_macros::robot! {
+///     pub robot Arm; gravity = [0.0, -9.81, 0.0];
+///     link base; link a { mass = 1.0; com = [0.2, 0.0, 0.0]; inertia = [1e-3, 1e-2, 1e-2]; }
+///     link b { mass = 0.5; com = [0.15, 0.0, 0.0]; inertia = [1e-3, 5e-3, 5e-3]; }
+///     joint j1 = revolute(base -> a) { transfer = [rot_z(q)]; }
+///     joint j2 = revolute(a -> b) { transfer = [tu(0.4), rot_z(q)]; }
+/// }
+/// let arm = Arm::default();
 /// let options = Options::default();
-/// let (report, _warnings) = robots::gap::diagnose_files(
-///     "arm3r", Path::new("train.csv"), Path::new("holdout.csv"), &options, &|_, _| {})?;
-/// let traces = robots::gap::traces_files(
-///     "arm3r", Path::new("train.csv"), Path::new("holdout.csv"), &report, &options)?;
-/// let files = robots::report::render(&report, &traces, &options);
+/// let (report, _warnings) = dynamics_cli::gap::diagnose_files(
+///     &arm, Path::new("train.csv"), Path::new("holdout.csv"), &options, &|_, _| {})?;
+/// let traces = dynamics_cli::gap::traces_files(
+///     &arm, Path::new("train.csv"), Path::new("holdout.csv"), &report, &options)?;
+/// let files = dynamics_cli::report::render(&report, &traces, &options);
 /// assert_eq!(files[0].0, "report.md");
-/// # Ok::<(), robots::gap::GapError>(())
+/// # Ok::<(), dynamics_cli::gap::GapError>(())
 /// ```
 pub fn render(report: &Report, traces: &Traces, options: &Options) -> Vec<(String, String)> {
     let corrected = report.which.verdict.names_effect();
@@ -102,11 +110,19 @@ pub fn render(report: &Report, traces: &Traces, options: &Options) -> Vec<(Strin
 /// ```
 /// use dynamics_sim2real::diagnose::Options;
 /// use dynamics_sim2real::effects::EffectKind;
-/// use robots::gap::{diagnose_files, synth, traces_files, SynthRequest};
-/// let dir = std::env::temp_dir().join(format!("robots-report-doc-{}", std::process::id()));
+/// use dynamics_cli::gap::{diagnose_files, synth, traces_files, Motion, SynthRequest};
+/// dynamics_macros::robot! {
+///     pub robot Arm; gravity = [0.0, -9.81, 0.0];
+///     link base; link a { mass = 1.0; com = [0.2, 0.0, 0.0]; inertia = [1e-3, 1e-2, 1e-2]; }
+///     link b { mass = 0.5; com = [0.15, 0.0, 0.0]; inertia = [1e-3, 5e-3, 5e-3]; }
+///     joint j1 = revolute(base -> a) { transfer = [rot_z(q)]; }
+///     joint j2 = revolute(a -> b) { transfer = [tu(0.4), rot_z(q)]; }
+/// }
+/// let arm = Arm::default();
+/// let dir = std::env::temp_dir().join(format!("dynamics-report-doc-{}", std::process::id()));
 /// std::fs::create_dir_all(&dir)?;
-/// let data = synth(&SynthRequest {
-///     robot: "arm3r".into(), kind: Some(EffectKind::ViscousFriction), joint: Some("j2".into()),
+/// let data = synth(&arm, &Motion::default(), &SynthRequest {
+///     robot: "arm".into(), kind: Some(EffectKind::ViscousFriction), joint: Some("j2".into()),
 ///     magnitude: Some(0.5), seed: 3, excitation: "sines".parse().unwrap(), duration: 2.0,
 ///     noise: Default::default(),
 /// })?;
@@ -114,9 +130,9 @@ pub fn render(report: &Report, traces: &Traces, options: &Options) -> Vec<(Strin
 /// std::fs::write(&train, &data.train)?;
 /// std::fs::write(&holdout, &data.holdout)?;
 /// let options = Options::default();
-/// let (report, _warnings) = diagnose_files("arm3r", &train, &holdout, &options, &|_, _| {})?;
-/// let traces = traces_files("arm3r", &train, &holdout, &report, &options)?;
-/// let written = robots::report::write(&dir.join("report"), &report, &traces, &options)?;
+/// let (report, _warnings) = diagnose_files(&arm, &train, &holdout, &options, &|_, _| {})?;
+/// let traces = traces_files(&arm, &train, &holdout, &report, &options)?;
+/// let written = dynamics_cli::report::write(&dir.join("report"), &report, &traces, &options)?;
 /// assert!(written.iter().any(|p| p.ends_with("report.md")));
 /// assert!(written.iter().any(|p| p.ends_with("residual-j2.svg")));
 /// # std::fs::remove_dir_all(&dir)?;
