@@ -6,6 +6,7 @@
 
 pub mod import;
 mod read;
+mod window;
 mod write;
 
 pub use read::{read_csv, read_csv_str, DataError};

@@ -75,7 +75,6 @@ pub fn import<const N: usize>(
             "{file}: times counted from the first sample (the recorded clock reads {t0} s there)"
         ));
     }
-    let (lo, hi) = window.unwrap_or((f64::NEG_INFINITY, f64::INFINITY));
     let mut m = Measured::<N> {
         qd_measured: qd.is_some(),
         warnings,
@@ -93,9 +92,6 @@ pub fn import<const N: usize>(
                 });
             }
         }
-        if time < lo || time >= hi {
-            continue;
-        }
         let vec = |table: &Table, quantity: &'static str| -> Result<SVector<f64, N>, ImportError> {
             let mut v = SVector::zeros();
             for (i, joint) in joints.iter().enumerate() {
@@ -110,6 +106,12 @@ pub fn import<const N: usize>(
             m.qd.push(vec(qd, "qd")?);
         }
     }
+    if !m.qd_measured && m.len() > 1 {
+        m.qd = differentiate(&m.t, &m.q);
+    }
+    if let Some((start, end)) = window {
+        m = m.window(start, end);
+    }
     if m.len() < MIN_SAMPLES {
         return Err(ImportError::TooFewSamples {
             file,
@@ -119,9 +121,6 @@ pub fn import<const N: usize>(
                 .unwrap_or_default(),
             min: MIN_SAMPLES,
         });
-    }
-    if !m.qd_measured {
-        m.qd = differentiate(&m.t, &m.q);
     }
     Ok(m)
 }
