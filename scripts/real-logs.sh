@@ -67,6 +67,7 @@ dynamics-macros = { path = "$ROOT/dynamics-macros" }
 dynamics-runtime = { path = "$ROOT/dynamics-runtime" }
 dynamics-sim2real = { path = "$ROOT/dynamics-sim2real" }
 serde_json = "1"
+nalgebra = "0.34"
 
 [workspace]
 EOF
@@ -85,7 +86,7 @@ dynamics_macros::robot! {
     urdf = "$ROOT/robots/data/urdf/panda_arm.urdf";
 }
 EOF
-cp "$ROOT/scripts/real-logs/main.rs" "$CRATE/src/main.rs"
+cp "$ROOT/scripts/real-logs/main.rs" "$ROOT/scripts/real-logs/baseline.rs" "$CRATE/src/"
 
 echo "building the throwaway crate (first time: a few minutes)" >&2
 cargo build --release --quiet --manifest-path "$CRATE/Cargo.toml" --target-dir "$WORK/target"

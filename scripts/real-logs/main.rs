@@ -7,6 +7,7 @@
 //! authors' friction model, Gaz et al.'s get_FrictionTorque.m or a URDF's
 //! `<dynamics damping friction>`).
 
+mod baseline;
 mod robots;
 
 use std::path::Path;
@@ -60,21 +61,31 @@ fn run<R: Robot<N> + Clone + Sync, const N: usize>(robot: R, args: &[String]) ->
     let start = std::time::Instant::now();
     let options = Options::default();
     let quiet = |_: usize, _: usize| {};
-    let (report, how) = match diagnose(&robot, &train, &holdout, &options, &quiet) {
+    let (report, how, train, holdout) = match diagnose(&robot, &train, &holdout, &options, &quiet) {
         Err(e @ DiagnoseError::Irregular { .. }) => {
             // Stop-gap until the reader takes irregular clocks (issue 15).
             eprintln!("the diagnosis refuses the clock as recorded ({e}); stop-gap: repeated rows dropped, linear interpolation at the median interval");
             let (a, b) = (uniform(&train), uniform(&holdout));
-            (
-                diagnose(&robot, &a, &b, &options, &quiet)?,
-                "resampled (stop-gap)",
-            )
+            let report = diagnose(&robot, &a, &b, &options, &quiet)?;
+            (report, "resampled (stop-gap)", a, b)
         }
-        other => (other?, "as recorded"),
+        other => (other?, "as recorded", train, holdout),
     };
     let seconds = start.elapsed().as_secs_f64();
     std::fs::write(&args[6], serde_json::to_string_pretty(&report)?)?;
-    print_rows(&report, args, how, seconds);
+    let floors: Vec<f64> = report
+        .where_
+        .joints
+        .iter()
+        .map(|j| j.torque_noise)
+        .collect();
+    let base = baseline::baseline(&robot, &train, &holdout).map(|(b, a)| {
+        (
+            above_noise(b.as_slice(), a.as_slice(), &floors),
+            1.0 - a.norm() / b.norm(),
+        )
+    });
+    print_rows(&report, args, how, seconds, base);
     print_friction::<N>(&report, &R::JOINT_NAMES, Path::new(&args[7]))?;
     Ok(())
 }
@@ -124,7 +135,23 @@ fn name(path: &str, window: &str) -> String {
     }
 }
 
-fn print_rows(report: &Report, args: &[String], how: &str, seconds: f64) {
+/// 1 - gap after / gap before, the gaps above the noise floors (as the diagnosis's shrink).
+fn above_noise(before: &[f64], after: &[f64], floors: &[f64]) -> f64 {
+    let gap = |x: &[f64]| -> f64 {
+        x.iter()
+            .zip(floors)
+            .map(|(r, f)| (r * r - f * f).max(0.0) / (f * f).max(1e-300))
+            .sum()
+    };
+    let (b, a) = (gap(before), gap(after));
+    if b > 0.0 {
+        1.0 - (a / b).sqrt()
+    } else {
+        0.0
+    }
+}
+
+fn print_rows(report: &Report, args: &[String], how: &str, seconds: f64, base: Option<(f64, f64)>) {
     let v = &report.which.verdict;
     let named = match (&v.joint, &v.point) {
         (Some(j), _) | (None, Some(j)) => format!("{} at {j} ({})", v.kind, v.status),
@@ -147,10 +174,13 @@ fn print_rows(report: &Report, args: &[String], how: &str, seconds: f64) {
         .map(|j| j.torque_ratio)
         .fold(0.0, f64::max);
     println!();
-    println!("| robot | train | hold-out | data | gap (largest, x noise) | effects named | held-out shrink above noise | plain 1-‖after‖/‖before‖ | diagnosis s |");
-    println!("|---|---|---|---|---|---|---|---|---|");
+    let base = base
+        .map(|(a, p)| format!("{a:.3} | {p:.3}"))
+        .unwrap_or_else(|| "fit failed | fit failed".into());
+    println!("| robot | train | hold-out | data | gap (largest, x noise) | effects named | held-out shrink above noise | plain 1-‖after‖/‖before‖ | baseline LS: above noise | baseline LS: plain | diagnosis s |");
+    println!("|---|---|---|---|---|---|---|---|---|---|---|");
     println!(
-        "| {} | {} | {} | {how}, {}+{} samples | {worst:.1} | {named} | {:.3} | {plain:.3} | {seconds:.1} |",
+        "| {} | {} | {} | {how}, {}+{} samples | {worst:.1} | {named} | {:.3} | {plain:.3} | {base} | {seconds:.1} |",
         report.robot,
         name(&args[2], &args[3]),
         name(&args[4], &args[5]),
