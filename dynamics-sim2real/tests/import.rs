@@ -239,3 +239,20 @@ fn archive_errors_name_file_and_array() {
         "{e}"
     );
 }
+
+#[test]
+fn the_fewest_samples_are_the_csv_readers() {
+    use dynamics_sim2real::data::import::MIN_SAMPLES;
+    use dynamics_sim2real::data::read_csv_str;
+    let dir = scratch("fewest");
+    let path = dir.join("m.txt");
+    for (rows, ok) in [(MIN_SAMPLES - 1, false), (MIN_SAMPLES, true)] {
+        let body: String = (0..rows)
+            .map(|k| format!("{},0,1\n", k as f64 * 1e-3))
+            .collect();
+        std::fs::write(&path, &body).unwrap();
+        let imported = import(&path, &map("t=:1,q=:2,tau=:3"), &["j"], None);
+        let csv = read_csv_str(&format!("t,q_j,tau_j\n{body}"), &["j"], "m.csv");
+        assert_eq!((imported.is_ok(), csv.is_ok()), (ok, ok), "{rows} rows");
+    }
+}
