@@ -1,5 +1,5 @@
 //! The generic `dynamics` command-line program over any robot written with
-//! `robot!`: its subcommands (`commands`, `diagnose`), evaluation at given
+//! `robot!`: its subcommands (`commands`, `diagnose`, `identify`), evaluation at given
 //! states and comparison with reference values (`eval`, `states`,
 //! `compare`), synthetic data and the diagnosis of data files (`gap`), the
 //! readable diagnosis report (`report`) and SVG plots (`plot`).
@@ -12,6 +12,7 @@ pub mod compare;
 pub mod diagnose;
 pub mod eval;
 pub mod gap;
+pub mod identify;
 pub mod plot;
 pub mod report;
 pub mod states;

@@ -87,6 +87,26 @@ fn run<R: Robot<N> + Clone + Sync, const N: usize>(robot: R, args: &[String]) ->
             1.0 - a.norm() / b.norm(),
         )
     });
+    // The library's identification (`dynamics identify`) on the same data.
+    let library = dynamics_sim2real::identify::identify(
+        &robot,
+        &train,
+        &holdout,
+        &dynamics_sim2real::identify::Options::default(),
+    );
+    match &library {
+        Ok(id) => eprintln!(
+            "dynamics_sim2real::identify: plain held-out shrink {:.3} (rank {} of {} columns)",
+            id.shrink, id.rank, id.columns
+        ),
+        Err(e) => eprintln!("dynamics_sim2real::identify: {e}"),
+    }
+    println!(
+        "\nbaseline by dynamics_sim2real::identify (plain shrink): {}",
+        library
+            .map(|id| format!("{:.3}", id.shrink))
+            .unwrap_or_else(|e| e.to_string())
+    );
     print_rows(&report, args, how, seconds, base);
     print_friction::<N>(&report, &R::JOINT_NAMES, Path::new(&args[7]))?;
     Ok(())

@@ -7,6 +7,7 @@
 //! [`Plant`] is a robot with effects attached; [`PlantSim`] integrates it.
 
 mod effect;
+mod inertial;
 mod kind;
 mod plant;
 mod tip;

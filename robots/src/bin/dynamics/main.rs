@@ -6,6 +6,7 @@
 //! dynamics synth --robot NAME --effect KIND --joint J --out FILE.csv
 //! dynamics diagnose --robot NAME --train A.csv --holdout B.csv [--json OUT.json] [--report DIR]
 //! dynamics diagnose --robot NAME --columns t=times,q=positions,tau=torques --train A.npz --holdout B.npz
+//! dynamics identify --robot NAME --train A.csv --holdout B.csv [--json OUT.json]
 //! dynamics list                 # the robots it knows
 //! dynamics eval --robot NAME [--states FILE.json] [--out FILE.json] [--set NAME=VALUE]...
 //! ```
@@ -17,6 +18,7 @@ use clap::{Parser, Subcommand};
 use dynamics_cli::commands::{eval, synth_cmd};
 use dynamics_cli::diagnose::diagnose_cmd;
 use dynamics_cli::gap::{parse_window, DataFile};
+use dynamics_cli::identify::identify_cmd;
 use dynamics_cli::Res;
 use robots::each_robot;
 use robots::registry::{AnyRobot, ROBOTS};
@@ -143,6 +145,23 @@ enum Command {
         )]
         noise_qd: Option<Vec<f64>>,
     },
+    /// Plain least-squares identification (the baseline): per-joint Coulomb, viscous, offset and
+    /// rotor inertia plus every link's inertial parameters, fitted on training data, judged on
+    /// held-out data.
+    Identify {
+        /// Robot name.
+        #[arg(long)]
+        robot: String,
+        /// Training data (CSV or CSV.gz).
+        #[arg(long)]
+        train: PathBuf,
+        /// Held-out data.
+        #[arg(long)]
+        holdout: PathBuf,
+        /// Write the result as JSON here.
+        #[arg(long)]
+        json: Option<PathBuf>,
+    },
     /// Evaluate tau, M, g, C, nle, ddq and the energies at given states.
     Eval {
         /// Robot name (see `dynamics list`).
@@ -243,6 +262,14 @@ fn main() -> ExitCode {
                 _ => built_in_case(json, report, noise),
             }
         }
+        Command::Identify {
+            robot,
+            train,
+            holdout,
+            json,
+        } => AnyRobot::by_name(&robot)
+            .map_err(Into::into)
+            .and_then(|r| each_robot!(&r, r => identify_cmd(r, train, holdout, json))),
         Command::Eval {
             robot,
             states,
