@@ -5,6 +5,7 @@
 //! dynamics check                # every seed robot against the shipped Pinocchio values
 //! dynamics synth --robot NAME --effect KIND --joint J --out FILE.csv
 //! dynamics diagnose --robot NAME --train A.csv --holdout B.csv [--json OUT.json] [--report DIR]
+//! dynamics diagnose --robot NAME --columns t=times,q=positions,tau=torques --train A.npz --holdout B.npz
 //! dynamics identify --robot NAME --train A.csv --holdout B.csv [--json OUT.json]
 //! dynamics list                 # the robots it knows
 //! dynamics eval --robot NAME [--states FILE.json] [--out FILE.json] [--set NAME=VALUE]...
@@ -16,6 +17,7 @@ use std::process::ExitCode;
 use clap::{Parser, Subcommand};
 use dynamics_cli::commands::{eval, synth_cmd};
 use dynamics_cli::diagnose::diagnose_cmd;
+use dynamics_cli::gap::{parse_window, DataFile};
 use dynamics_cli::identify::identify_cmd;
 use dynamics_cli::Res;
 use robots::each_robot;
@@ -112,12 +114,26 @@ enum Command {
         /// Robot name.
         #[arg(long, default_value = "arm3r")]
         robot: String,
-        /// Training data (CSV or CSV.gz).
+        /// Training data (CSV or CSV.gz; with --columns: a text matrix, a .npz or .npy, or a
+        /// directory of one file per quantity).
         #[arg(long, requires = "holdout")]
         train: Option<PathBuf>,
-        /// Held-out data.
+        /// Held-out data (may be the training file with another window).
         #[arg(long, requires = "train")]
         holdout: Option<PathBuf>,
+        /// Read recorded files in their own layout: where the time, positions, velocities
+        /// (optional) and efforts are, in the robot's joint order, as
+        /// `t=SRC,q=SRC[,qd=SRC],tau=SRC` with SRC = `[ENTRY][:COLUMNS][*SCALE]`: ENTRY a file of
+        /// the directory or an array of the .npz, COLUMNS 1-based (`2-8`), SCALE a factor
+        /// (`*1e-3` for milliseconds, `*-1` for the opposite sign).
+        #[arg(long, value_name = "MAP", requires = "train")]
+        columns: Option<String>,
+        /// Use only this part of the training data: START:END, seconds from its first sample.
+        #[arg(long, value_name = "START:END", requires = "train")]
+        train_window: Option<String>,
+        /// Use only this part of the held-out data: START:END, seconds from its first sample.
+        #[arg(long, value_name = "START:END", requires = "train")]
+        holdout_window: Option<String>,
         /// Write the JSON report here.
         #[arg(long)]
         json: Option<PathBuf>,
@@ -187,6 +203,9 @@ fn main() -> ExitCode {
         robot: "arm3r".into(),
         train: None,
         holdout: None,
+        columns: None,
+        train_window: None,
+        holdout_window: None,
         json: None,
         report: None,
         noise_tau: None,
@@ -252,6 +271,9 @@ fn main() -> ExitCode {
             robot,
             train,
             holdout,
+            columns,
+            train_window,
+            holdout_window,
             json,
             report,
             noise_tau,
@@ -264,11 +286,15 @@ fn main() -> ExitCode {
                 tau,
             });
             match (train, holdout) {
-                (Some(train), Some(holdout)) => AnyRobot::by_name(&robot)
-                    .map_err(Into::into)
-                    .and_then(|r| {
-                        each_robot!(&r, r => diagnose_cmd(r, train, holdout, json, report, noise))
-                    }),
+                (Some(train), Some(holdout)) => {
+                    data_files(train, holdout, columns, train_window, holdout_window).and_then(
+                        |(train, holdout)| {
+                            AnyRobot::by_name(&robot).map_err(Into::into).and_then(|r| {
+                                each_robot!(&r, r => diagnose_cmd(r, train.clone(), holdout.clone(), json.clone(), report.clone(), noise.clone()))
+                            })
+                        },
+                    )
+                }
                 _ => built_in_case(json, report, noise),
             }
         }
@@ -342,6 +368,32 @@ fn scenario(name: Option<String>, out: Option<PathBuf>) -> Res {
     Ok(())
 }
 
+/// The training and held-out files as `diagnose --columns/--train-window/--holdout-window` say.
+fn data_files(
+    train: PathBuf,
+    holdout: PathBuf,
+    columns: Option<String>,
+    train_window: Option<String>,
+    holdout_window: Option<String>,
+) -> Result<(DataFile, DataFile), Box<dyn std::error::Error>> {
+    let columns = columns
+        .map(|c| c.parse::<dynamics_sim2real::data::import::ColumnMap>())
+        .transpose()?;
+    let window = |w: Option<String>| w.as_deref().map(parse_window).transpose();
+    Ok((
+        DataFile {
+            path: train,
+            columns: columns.clone(),
+            window: window(train_window)?,
+        },
+        DataFile {
+            path: holdout,
+            columns,
+            window: window(holdout_window)?,
+        },
+    ))
+}
+
 /// `dynamics` without a subcommand: the built-in case, Coulomb friction
 /// withheld at arm3r's j2, generated in memory and diagnosed; the truth is
 /// printed after the verdict.
@@ -367,6 +419,7 @@ fn built_in_case(
     let (a, b) = (dir.join("train.csv"), dir.join("holdout.csv"));
     std::fs::write(&a, &data.train)?;
     std::fs::write(&b, &data.holdout)?;
+    let (a, b) = (DataFile::csv(a), DataFile::csv(b));
     diagnose_cmd(&robots::Arm3r::default(), a, b, json, report, noise)?;
     println!(
         "truth of the built-in case (read after the verdict): {} at {}",
