@@ -8,9 +8,11 @@
 //! | [`synth`] | the data generator: a robot with withheld effects under a tracking controller, with sensor noise |
 //! | [`data`] | measured data: CSV files in and out ([`data::Measured`]) |
 //! | [`diagnose`] | the gap diagnosis: where the model misses, which effects explain it, how far the gap shrinks on held-out data |
+//! | [`baseline`] | a diagnosis report's effects read back as effects on the robot (a calibrated baseline; with [`effects::Calibrated`]) |
 //!
 //! `dynamics-runtime` stays the small runtime the generated code needs.
 
+pub mod baseline;
 pub mod data;
 pub mod diagnose;
 pub mod effects;
