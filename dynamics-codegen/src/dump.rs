@@ -49,6 +49,10 @@ pub fn outputs(d: &Derived) -> Vec<(&'static str, Vec<Id>)> {
             "  D = dF/dqd alone",
             d.perturbation.d.iter().flatten().copied().collect(),
         ),
+        (
+            "inertial_regressor",
+            d.regressor.y.iter().flatten().copied().collect(),
+        ),
         ("kinetic_energy", vec![d.kinetic]),
         ("potential_energy", vec![d.potential]),
     ]

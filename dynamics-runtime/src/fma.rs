@@ -5,6 +5,12 @@
 //! Where the target has FMA (`-C target-cpu=native` on any x86-64 since
 //! 2013, aarch64 always) it is one instruction with one rounding; elsewhere
 //! it is the plain `a * b + c`, never the slow software `fma` of libm.
+//!
+//! Without `std` (`core` has no `f64::mul_add`), a target with FMA gets
+//! `libm::fma`: the same correctly rounded result, by the instruction too,
+//! but as a call (on x86-64 through a pointer chosen at the first call, so
+//! not inlined); a Cortex-M4F or any target without FMA gets `a * b + c`
+//! as with `std`.
 
 /// `a * b + c`: fused (one rounding) where the target has FMA, else two
 /// operations.
@@ -14,9 +20,16 @@
 /// ```
 #[inline(always)]
 pub fn mul_add(a: f64, b: f64, c: f64) -> f64 {
-    #[cfg(any(target_feature = "fma", target_arch = "aarch64"))]
+    #[cfg(all(any(target_feature = "fma", target_arch = "aarch64"), feature = "std"))]
     {
         a.mul_add(b, c)
+    }
+    #[cfg(all(
+        any(target_feature = "fma", target_arch = "aarch64"),
+        not(feature = "std")
+    ))]
+    {
+        libm::fma(a, b, c)
     }
     #[cfg(not(any(target_feature = "fma", target_arch = "aarch64")))]
     {

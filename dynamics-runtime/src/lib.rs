@@ -15,27 +15,49 @@
 //!
 //! In the notation of other toolkits, `tau = M qdd + C qd + g` with `M = A`,
 //! `C qd = -(Qqt1 + Qqt2)`, `g = dPi_gravity/dq`, `tau = U`.
+//!
+//! # Without std
+//! With `default-features = false` the crate is `no_std` and allocates
+//! nothing: what generated code needs at run time (the [`Robot`] trait,
+//! [`Parameters`], [`trig`], [`fma`], [`math`], forward dynamics, the
+//! perturbation Jacobians, the errors) and the [`control`] laws. The
+//! feature `std` (on by default) adds the integrators ([`ode`]),
+//! `simulate`, `Trajectory` and its CSV, program motion and the
+//! perturbation response.
 
+#![cfg_attr(not(feature = "std"), no_std)]
+
+// What a robot needs at run time: `core` only, no heap.
 mod check;
 mod constraint;
 pub mod control;
 mod error;
 pub mod fma;
-pub mod ode;
+pub mod math;
 mod params;
-mod perturbation;
-mod program;
 mod robot;
-mod simulate;
 mod solve;
 pub mod trig;
 
+// Simulation and analysis over time: `std`.
+#[cfg(feature = "std")]
+pub mod ode;
+#[cfg(feature = "std")]
+mod perturbation;
+#[cfg(feature = "std")]
+mod program;
+#[cfg(feature = "std")]
+mod simulate;
+
 pub use constraint::Constrained;
-pub use error::DynamicsError;
+pub use error::{Coordinates, DynamicsError, ParameterName};
 pub use params::Parameters;
+#[cfg(feature = "std")]
 pub use perturbation::{perturbation_response, Perturbed};
+#[cfg(feature = "std")]
 pub use program::{simulate_program, Baumgarte, ProgramMotion};
 pub use robot::{JointKind, MotionTerms, PerturbationJacobians, Robot};
+#[cfg(feature = "std")]
 pub use simulate::{simulate, SimError, Trajectory};
 
 /// Re-exported so that generated code names one nalgebra version.

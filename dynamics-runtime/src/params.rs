@@ -1,6 +1,6 @@
 //! Named run-time parameters of a generated robot.
 
-use crate::DynamicsError;
+use crate::{DynamicsError, ParameterName};
 
 /// The run-time parameters of a robot (`param` items of `robot!`), read and
 /// written by name or index. `robot!` implements it for the `<Robot>Params`
@@ -21,7 +21,8 @@ use crate::DynamicsError;
 /// assert_eq!(p.get("m"), Some(1.5));
 /// p.set("m", 2.0).unwrap();
 /// assert_eq!(p.m, 2.0);
-/// assert!(p.set("mass", 1.0).is_err());
+/// let e = p.set("mass", 1.0).unwrap_err();
+/// assert_eq!(e.to_string(), "unknown parameter `mass`; this robot has: m");
 /// ```
 pub trait Parameters: Clone + Default + core::fmt::Debug {
     /// Parameter names, in declaration order.
@@ -42,12 +43,8 @@ pub trait Parameters: Clone + Default + core::fmt::Debug {
         match Self::NAMES.iter().position(|n| *n == name) {
             Some(i) if self.set_value(i, value) => Ok(()),
             _ => Err(DynamicsError::UnknownParameter {
-                name: name.to_string(),
-                known: if Self::NAMES.is_empty() {
-                    "(none)".to_string()
-                } else {
-                    Self::NAMES.join(", ")
-                },
+                name: ParameterName::new(name),
+                known: Self::NAMES,
             }),
         }
     }

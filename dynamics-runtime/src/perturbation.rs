@@ -78,7 +78,7 @@ pub fn perturbation_response<R: Robot<N>, const N: usize>(
         let chol = a.cholesky().ok_or(SimError::Dynamics {
             t,
             source: crate::DynamicsError::SingularMassMatrix {
-                q: n.q.iter().copied().collect(),
+                q: crate::Coordinates::new(n.q.as_slice()),
             },
         })?;
         Ok((qdd, chol.solve(&rhs), u))

@@ -61,7 +61,7 @@ fn accelerations<R: Constrained<N, M>, const N: usize, const M: usize>(
         .a
         .cholesky()
         .ok_or_else(|| DynamicsError::SingularMassMatrix {
-            q: q.iter().copied().collect(),
+            q: crate::Coordinates::new(q.as_slice()),
         })?;
     let j: SMatrix<f64, M, N> = robot.constraint_jacobian(t, q);
     let f = robot.constraint_residual(t, q);

@@ -136,6 +136,14 @@ pub trait Robot<const N: usize> {
     const POINT_NAMES: &'static [&'static str];
     /// The gravity vector in the world frame, m/s^2.
     const GRAVITY: [f64; 3];
+    /// The links that carry inertial parameters, in the order of
+    /// [`Robot::inertial_regressor`] and [`Robot::inertial_parameters`]:
+    /// every link a coordinate moves, except massless links on fixed
+    /// joints. A link on a fixed joint whose mass properties are numbers is
+    /// welded into its parent (as Pinocchio does): its mass is then part of
+    /// the parent's parameters and it is not listed. The root link and
+    /// links fixed to it are not listed (no coordinate moves them).
+    const LINK_NAMES: &'static [&'static str];
 
     /// The current run-time parameters.
     fn params(&self) -> &Self::Params;
@@ -183,6 +191,59 @@ pub trait Robot<const N: usize> {
         qd: &SVector<f64, N>,
         qdd: &SVector<f64, N>,
     ) -> Option<SVector<f64, N>>;
+    /// The inertial regressor: `out[l] = d tau / d pi_l`, N x 10, for
+    /// every link `l` of [`Robot::LINK_NAMES`], so that the rigid-body
+    /// efforts (inverse dynamics without damping, friction and springs) are
+    /// `sum_l out[l] * pi_l`.
+    ///
+    /// `pi_l` are Pinocchio's dynamic parameters
+    /// `[m, m c_x, m c_y, m c_z, I_xx, I_xy, I_yy, I_xz, I_yz, I_zz]` of the
+    /// link's body and its point masses together, in the link frame (the
+    /// frame after the joint's transfer chain, in which `com`, `inertia`
+    /// and points are given; for a URDF, the joint's child frame, not the
+    /// `<inertial><origin>` frame), with `I` the inertia about the frame's
+    /// origin: `I = I_c + m (|c|^2 1 - c c^T)`. The regressor depends on
+    /// the kinematics only, not on any mass property.
+    ///
+    /// Errors with [`DynamicsError::Length`] (writing nothing) when
+    /// `out.len() != LINK_NAMES.len()`.
+    ///
+    /// ```
+    /// use dynamics_runtime::Robot;
+    /// use nalgebra::{SMatrix, Vector1};
+    /// dynamics_macros::robot! {
+    ///     pub robot Pendulum;
+    ///     gravity = [0.0, -9.81, 0.0];
+    ///     link base;
+    ///     link rod { mass = 2.0; com = [0.5, 0.0, 0.0]; inertia = [1e-4, 0.1, 0.1]; }
+    ///     joint j = revolute(base -> rod) { transfer = [rot_z(q)]; damping = 0.5; }
+    /// }
+    /// let p = Pendulum::default();
+    /// assert_eq!(Pendulum::LINK_NAMES, ["rod"]);
+    /// let (q, qd, qdd) = (Vector1::new(0.3), Vector1::new(1.0), Vector1::new(-2.0));
+    /// let mut y = [SMatrix::<f64, 1, 10>::zeros()];
+    /// let mut pi = [nalgebra::SVector::<f64, 10>::zeros()];
+    /// p.inertial_regressor(&q, &qd, &qdd, &mut y).unwrap();
+    /// p.inertial_parameters(&mut pi).unwrap();
+    /// assert!((pi[0][9] - (0.1 + 2.0 * 0.25)).abs() < 1e-15);  // I_zz about the joint
+    /// let rigid = p.inverse_dynamics(&q, &qd, &qdd) - Vector1::new(0.5 * 1.0); // no damping
+    /// assert!(((y[0] * pi[0]) - rigid).norm() < 1e-12);
+    /// assert!(p.inertial_regressor(&q, &qd, &qdd, &mut []).is_err());
+    /// ```
+    fn inertial_regressor(
+        &self,
+        q: &SVector<f64, N>,
+        qd: &SVector<f64, N>,
+        qdd: &SVector<f64, N>,
+        out: &mut [SMatrix<f64, N, 10>],
+    ) -> Result<(), DynamicsError>;
+    /// The nominal inertial parameters `pi_l` of every link of
+    /// [`Robot::LINK_NAMES`] (see [`Robot::inertial_regressor`] for their
+    /// order and frame), at the current run-time parameters.
+    ///
+    /// Errors with [`DynamicsError::Length`] (writing nothing) when
+    /// `out.len() != LINK_NAMES.len()`.
+    fn inertial_parameters(&self, out: &mut [SVector<f64, 10>]) -> Result<(), DynamicsError>;
     /// A, Qqt1 + Qqt2 and Q(0) in one straight-line pass.
     fn motion_terms(&self, q: &SVector<f64, N>, qd: &SVector<f64, N>) -> MotionTerms<N>;
     /// T = 1/2 qd^T A qd.

@@ -14,7 +14,7 @@ pub(crate) fn accelerations<const N: usize>(
         .a
         .cholesky()
         .ok_or_else(|| DynamicsError::SingularMassMatrix {
-            q: q.iter().copied().collect(),
+            q: crate::Coordinates::new(q.as_slice()),
         })?;
     let qdd = chol.solve(&(terms.bias() + u));
     match qdd.iter().position(|x| !x.is_finite()) {

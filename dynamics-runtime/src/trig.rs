@@ -8,7 +8,8 @@
 //! [-pi/4, pi/4], error below 1 ulp, in Estrin's form with fused
 //! multiply-adds where the target has them) and a Cody-Waite reduction (pi/2
 //! in three doubles with FMA, in fdlibm's parts without), accurate for
-//! |x| < 2^20 pi/2. Larger or non-finite arguments go to `std`.
+//! |x| < 2^20 pi/2. Larger or non-finite arguments go to `std` (to `libm`
+//! without it).
 
 // The polynomial and reduction constants are written with fdlibm's digits
 // so that they can be checked against it; the extra digits round away.
@@ -51,7 +52,7 @@ const C6: f64 = -1.135_964_755_778_819_482_65e-11;
 /// 1.5 * 2^52: adding it rounds any |y| < 2^51 to an integer.
 const ROUNDER: f64 = 6_755_399_441_055_744.0;
 
-/// Largest |x| reduced here; beyond it `std` is used.
+/// Largest |x| reduced here; beyond it `std` (or `libm`) is used.
 const REDUCE_LIMIT: f64 = 1_647_099.0; // 2^20 * pi/2
 
 /// `(sin x, cos x)` from one argument reduction.
@@ -66,7 +67,7 @@ const REDUCE_LIMIT: f64 = 1_647_099.0; // 2^20 * pi/2
 #[allow(clippy::neg_cmp_op_on_partial_ord)]
 pub fn sin_cos(x: f64) -> (f64, f64) {
     if !(x.abs() < REDUCE_LIMIT) {
-        return x.sin_cos();
+        return crate::math::sin_cos(x);
     }
     let (bits, s, c) = reduced(x);
     let quadrant = (bits & 3) as usize;

@@ -45,6 +45,7 @@ fn emitted_code_compiles_cleanly_and_agrees_with_eval() {
                     sin_cos: &quote!(f64::sin_cos),
                     sin_cos_n: &quote!(sin_cos_n),
                     mul_add: &quote!(f64::mul_add),
+                    math: &quote!(math),
                 },
             ),
         };
@@ -57,6 +58,13 @@ fn emitted_code_compiles_cleanly_and_agrees_with_eval() {
             expected.push(g.eval(&roots, &|v| p[v.0 as usize]));
         }
     }
+    // The module of `sqrt`, `tanh` and `powi`, for `emit_fused`.
+    functions.push_str(
+        "#[allow(dead_code)] mod math { \
+         pub fn sqrt(x: f64) -> f64 { x.sqrt() } \
+         pub fn tanh(x: f64) -> f64 { x.tanh() } \
+         pub fn powi(x: f64, n: i32) -> f64 { x.powi(n) } }\n",
+    );
     // The array form of `f64::sin_cos`, for `emit_fused`.
     functions.push_str(
         "#[allow(dead_code)] fn sin_cos_n<const N: usize>(x: [f64; N]) -> ([f64; N], [f64; N]) { \

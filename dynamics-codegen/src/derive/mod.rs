@@ -19,6 +19,7 @@ mod inertia;
 mod kinematics;
 mod lower;
 mod perturbation;
+mod regressor;
 mod rnea;
 mod rnea_derivatives;
 mod spatial;
@@ -115,6 +116,8 @@ pub struct Derived {
     pub points: Vec<[Id; 3]>,
     /// Jacobian of each named point: `point_jacobians[k][row][col]`.
     pub point_jacobians: Vec<[Vec<Id>; 3]>,
+    /// The inertial regressor and the nominal inertial parameters.
+    pub regressor: regressor::Regressor,
 }
 
 /// Largest number of monomials an expression may expand to.
@@ -260,8 +263,10 @@ pub fn derive(model: &Model) -> Derived {
             point_jacobians.push(jac);
         }
     }
+    let regressor = regressor::regressor(model, &jac, &kin, vars, &mut g);
     Derived {
         vars,
+        regressor,
         a,
         qqt1: dyn_terms.qqt1,
         qqt2: dyn_terms.qqt2,

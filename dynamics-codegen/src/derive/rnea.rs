@@ -29,14 +29,17 @@ type V3 = [Id; 3];
 /// Motion of a frame: angular velocity, angular acceleration, linear
 /// acceleration of the origin (gravity included), all in the frame's axes.
 #[derive(Clone, Copy)]
-struct Motion {
-    w: V3,
-    dw: V3,
-    a: V3,
+pub struct Motion {
+    /// Angular velocity.
+    pub w: V3,
+    /// Angular acceleration.
+    pub dw: V3,
+    /// Linear acceleration of the frame origin, `-gravity` included.
+    pub a: V3,
 }
 
 /// What the forward pass did at one element, for the backward pass.
-enum Step {
+pub enum Step {
     /// A rotation E (rows), and the coordinates' rates of its angle.
     Rot {
         e: [[Id; 3]; 3],
@@ -63,6 +66,19 @@ pub struct Terms {
 /// a general matrix that moves with q. Velocities only give
 /// `-(Qqt1 + Qqt2)`; gravity only gives `g`.
 pub fn inverse_dynamics(model: &Model, vars: Vars, terms: Terms, g: &mut Graph) -> Option<Vec<Id>> {
+    let (motion, steps) = forward(model, vars, terms, g)?;
+    Some(backward(model, vars, &motion, &steps, g))
+}
+
+/// The forward pass: the motion of every link frame (in model order) and
+/// the elements met on the way, or `None` when a chain has a general matrix
+/// that moves with q.
+pub fn forward(
+    model: &Model,
+    vars: Vars,
+    terms: Terms,
+    g: &mut Graph,
+) -> Option<(Vec<Motion>, Vec<Vec<Step>>)> {
     let n = vars.n;
     let zero = g.constant(0.0);
     let z3 = [zero; 3];
@@ -218,6 +234,20 @@ pub fn inverse_dynamics(model: &Model, vars: Vars, terms: Terms, g: &mut Graph) 
         steps.push(link_steps);
     }
 
+    Some((motion, steps))
+}
+
+/// The backward pass: the efforts of the bodies' forces and moments.
+fn backward(
+    model: &Model,
+    vars: Vars,
+    motion: &[Motion],
+    steps: &[Vec<Step>],
+    g: &mut Graph,
+) -> Vec<Id> {
+    let n = vars.n;
+    let zero = g.constant(0.0);
+    let z3 = [zero; 3];
     // Backward: force f and moment n about each link frame's origin.
     let mut f: Vec<V3> = vec![z3; model.links.len()];
     let mut nm: Vec<V3> = vec![z3; model.links.len()];
@@ -280,7 +310,7 @@ pub fn inverse_dynamics(model: &Model, vars: Vars, terms: Terms, g: &mut Graph) 
         f[p] = add(g, f[p], fk);
         nm[p] = add(g, nm[p], nk);
     }
-    Some(tau.iter().map(|t| g.sum(t)).collect())
+    tau.iter().map(|t| g.sum(t)).collect()
 }
 
 fn add3(g: &mut Graph, a: V3, b: V3, c: V3) -> V3 {

@@ -41,6 +41,7 @@ pub fn chain(g: &Graph, roots: &[Id], sp: &Spelling) -> (TokenStream, Vec<TokenS
         sin_cos: &quote!(::dynamics_runtime::trig::sin_cos),
         sin_cos_n: &quote!(::dynamics_runtime::trig::sin_cos_n),
         mul_add: &quote!(::dynamics_runtime::fma::mul_add),
+        math: &quote!(::dynamics_runtime::math),
     };
     let e = dynamics_symbolic::emit_fused(g, roots, &|v| sp.var(v), &calls);
     (e.lets, e.roots)

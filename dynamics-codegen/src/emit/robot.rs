@@ -118,6 +118,12 @@ pub fn emit(model: &Model, d: &Derived) -> TokenStream {
         quote! { #k => { ::core::option::Option::Some({ #b }) } }
     });
 
+    let link_names = d
+        .regressor
+        .links
+        .iter()
+        .map(|&l| model.links[l].name.to_string());
+    let (regressor, parameters) = regressor(d, &sp);
     let constrained = constraints(model, d, &sp);
     let doc_n = format!(" Number of joint coordinates of [`{name}`].");
     quote! {
@@ -146,6 +152,7 @@ pub fn emit(model: &Model, d: &Derived) -> TokenStream {
             const FRAME_NAMES: &'static [&'static str] = &[#(#frame_names),*];
             const POINT_NAMES: &'static [&'static str] = &[#(#point_names),*];
             const GRAVITY: [f64; 3] = [#(#gravity),*];
+            const LINK_NAMES: &'static [&'static str] = &[#(#link_names),*];
 
             fn params(&self) -> &#params { &self.params }
             fn params_mut(&mut self) -> &mut #params { &mut self.params }
@@ -192,6 +199,13 @@ pub fn emit(model: &Model, d: &Derived) -> TokenStream {
                 -> ::core::option::Option<::dynamics_runtime::nalgebra::SVector<f64, #n>> {
                 match index { #(#sensitivity_arms)* _ => ::core::option::Option::None }
             }
+            fn inertial_regressor(&self, q: &::dynamics_runtime::nalgebra::SVector<f64, #n>,
+                qd: &::dynamics_runtime::nalgebra::SVector<f64, #n>,
+                qdd: &::dynamics_runtime::nalgebra::SVector<f64, #n>,
+                out: &mut [::dynamics_runtime::nalgebra::SMatrix<f64, #n, 10>])
+                -> ::core::result::Result<(), ::dynamics_runtime::DynamicsError> { #regressor }
+            fn inertial_parameters(&self, out: &mut [::dynamics_runtime::nalgebra::SVector<f64, 10>])
+                -> ::core::result::Result<(), ::dynamics_runtime::DynamicsError> { #parameters }
             #[inline]
             fn motion_terms(&self, q: &::dynamics_runtime::nalgebra::SVector<f64, #n>,
                 qd: &::dynamics_runtime::nalgebra::SVector<f64, #n>)
@@ -217,6 +231,68 @@ pub fn emit(model: &Model, d: &Derived) -> TokenStream {
 
         #constrained
     }
+}
+
+/// The bodies of `inertial_regressor` and `inertial_parameters`: the
+/// output slice destructured into one binding per link (a wrong length
+/// returns the error before anything is written), one `let` chain, then
+/// the non-zero entries.
+fn regressor(d: &Derived, sp: &Spelling) -> (TokenStream, TokenStream) {
+    let g = &d.graph;
+    let n = d.vars.n;
+    let r = &d.regressor;
+    let count = r.links.len();
+    let names: Vec<_> = (0..count).map(|k| format_ident!("out_{}", k)).collect();
+    let destructure = |quantity: &str| {
+        quote! {
+            let [#(#names),*] = out else {
+                return ::core::result::Result::Err(::dynamics_runtime::DynamicsError::Length {
+                    quantity: #quantity,
+                    expected: #count,
+                    found: out.len(),
+                });
+            };
+        }
+    };
+    let body = |roots_of: &dyn Fn(usize) -> Vec<dynamics_symbolic::Id>,
+                ty: TokenStream,
+                cols: usize,
+                quantity: &str| {
+        let roots: Vec<_> = (0..count).flat_map(roots_of).collect();
+        let (lets, vals) = body::chain(g, &roots, sp);
+        let per = roots.len() / count.max(1);
+        let sets = names.iter().enumerate().map(|(k, name)| {
+            let range = k * per..(k + 1) * per;
+            let set = body::assign_matrix(
+                g,
+                &roots[range.clone()],
+                &vals[range],
+                cols,
+                quote!((*#name)),
+            );
+            quote! { *#name = #ty::zeros(); #set }
+        });
+        let head = destructure(quantity);
+        quote! {
+            #head
+            #lets
+            #(#sets)*
+            ::core::result::Result::Ok(())
+        }
+    };
+    let y = body(
+        &|k| r.y[k].clone(),
+        quote!(::dynamics_runtime::nalgebra::SMatrix::<f64, #n, 10>),
+        10,
+        "inertial_regressor",
+    );
+    let pi = body(
+        &|k| r.pi[k].to_vec(),
+        quote!(::dynamics_runtime::nalgebra::SVector::<f64, 10>),
+        1,
+        "inertial_parameters",
+    );
+    (y, pi)
 }
 
 /// `impl Constrained<N, M>` when the robot has program constraints.

@@ -10,12 +10,14 @@ use crate::node::Id;
 
 /// `-3.0 * a * b * b / (c * d.powi(4))` for the product `c * prod f^e`,
 /// factors in the order they become ready (powers 2 and 3 as repeated
-/// multiplies, `x^-1` as `1.0 / x`).
+/// multiplies, `x^-1` as `1.0 / x`; other powers `math::powi(d, 4i32)`
+/// with a `math` module, else `d.powi(4i32)`).
 pub(super) fn product(
     c: f64,
     factors: &[(Id, i32)],
     ready: &[u32],
     operand: &dyn Fn(Id) -> TokenStream,
+    math: Option<&TokenStream>,
 ) -> TokenStream {
     // `x^e` for e > 0, and whether it is one operand (needs no parentheses).
     let power = |f: Id, e: i32| -> (TokenStream, bool) {
@@ -24,7 +26,10 @@ pub(super) fn product(
             1 => (x, true),
             2 => (quote!(#x * #x), false),
             3 => (quote!(#x * #x * #x), false),
-            _ => (quote!(#x.powi(#e)), true),
+            _ => match math {
+                Some(m) => (quote!(#m::powi(#x, #e)), true),
+                None => (quote!(#x.powi(#e)), true),
+            },
         }
     };
     let mut num: Vec<TokenStream> = Vec::new();
@@ -198,11 +203,43 @@ mod tests {
             sin_cos: &quote!(sc),
             sin_cos_n: &quote!(scn),
             mul_add: &quote!(f),
+            math: &quote!(m),
         };
         let out = emit_fused(&g, &[e], &names, &calls);
         assert_eq!(
             out.lets.to_string(),
             "let t9 : f64 = f (y , - 3f64 , 2f64 * x) - z ;"
         );
+    }
+
+    #[test]
+    fn fused_emission_calls_the_math_module_not_methods() {
+        let mut g = Graph::new();
+        let (x, y) = (g.var(Var(0)), g.var(Var(1)));
+        let x5 = g.powi(x, 5);
+        let r = g.sqrt(y);
+        let t = g.tanh(x);
+        let a = g.abs(y);
+        let calls = Calls {
+            sin_cos: &quote!(sc),
+            sin_cos_n: &quote!(scn),
+            mul_add: &quote!(f),
+            math: &quote!(m),
+        };
+        let out = emit_fused(&g, &[x5, r, t, a], &names, &calls);
+        let text = out.lets.to_string();
+        for call in [
+            "m :: powi (x , 5i32)",
+            "m :: sqrt (y)",
+            "m :: tanh (x)",
+            "y . abs ()",
+        ] {
+            assert!(text.contains(call), "{call} in {text}");
+        }
+        // Without the module (plain emission) they stay methods.
+        let plain = emit(&g, &[x5, r, t], &names).lets.to_string();
+        for call in ["x . powi (5i32)", "y . sqrt ()", "x . tanh ()"] {
+            assert!(plain.contains(call), "{call} in {plain}");
+        }
     }
 }

@@ -124,14 +124,20 @@ pub struct Calls<'a> {
     pub sin_cos_n: &'a TokenStream,
     /// `a * b + c`, called as `mul_add(a, b, c)`.
     pub mul_add: &'a TokenStream,
+    /// A module with `sqrt(x)`, `tanh(x)` and `powi(x, n)`, called as
+    /// `math::sqrt(x)` (`core` has no `f64::sqrt`: code for `no_std`
+    /// cannot call the methods).
+    pub math: &'a TokenStream,
 }
 
 /// [`emit_with()`] that also writes every term `k * x` of a sum after the
 /// first as one fused multiply-add `mul_add(x, k, rest)` (`x * k + rest`):
 /// one rounding and one instruction where the target has FMA, which rustc
-/// never contracts by itself (C compilers do by default); and that computes
+/// never contracts by itself (C compilers do by default); that computes
 /// the sines and cosines of all variables in one `sin_cos_n` call, which
-/// can share vector instructions.
+/// can share vector instructions; and that calls `sqrt`, `tanh` and `powi`
+/// as functions of the module `math` (no method of `f64` but `abs`, which
+/// `core` has).
 ///
 /// ```
 /// use dynamics_symbolic::{emit_fused, Calls, Graph, Var};
@@ -143,7 +149,7 @@ pub struct Calls<'a> {
 /// let one = g.constant(1.0);
 /// let e = g.sum(&[kx, y, one]);
 /// let names = |v: Var| if v.0 == 0 { quote!(x) } else { quote!(y) };
-/// let calls = Calls { sin_cos: &quote!(sc), sin_cos_n: &quote!(scn), mul_add: &quote!(fma) };
+/// let calls = Calls { sin_cos: &quote!(sc), sin_cos_n: &quote!(scn), mul_add: &quote!(fma), math: &quote!(m) };
 /// let out = emit_fused(&g, &[e], &names, &calls);
 /// assert_eq!(out.lets.to_string(), "let t5 : f64 = fma (x , 2f64 , 1f64) + y ;");
 ///
@@ -162,13 +168,7 @@ pub fn emit_fused(
     var: &dyn Fn(Var) -> TokenStream,
     calls: &Calls,
 ) -> Emitted {
-    emit_impl(
-        graph,
-        roots,
-        var,
-        Trig::Path(calls.sin_cos),
-        Some((calls.mul_add, calls.sin_cos_n)),
-    )
+    emit_impl(graph, roots, var, Trig::Path(calls.sin_cos), Some(calls))
 }
 
 fn emit_impl(
@@ -176,9 +176,10 @@ fn emit_impl(
     roots: &[Id],
     var: &dyn Fn(Var) -> TokenStream,
     trig_fn: Trig<'_>,
-    fast: Option<(&TokenStream, &TokenStream)>,
+    fast: Option<&Calls>,
 ) -> Emitted {
-    let mul_add = fast.map(|f| f.0);
+    let mul_add = fast.map(|f| f.mul_add);
+    let math = fast.map(|f| f.math);
     let reach = graph.reachable(roots);
     let pairs = trig::pairs(graph, &reach);
     let operand = |id: Id| -> TokenStream {
@@ -195,8 +196,8 @@ fn emit_impl(
     let ready = schedule::ready_times(graph, &reach);
     let mut items: Vec<Item> = Vec::new();
     let batch = trig::Batch::new(graph, roots, &reach, &pairs, fast.is_some());
-    if let Some((_, sin_cos_n)) = fast {
-        items.extend(batch.item(graph, &pairs, &operand, sin_cos_n));
+    if let Some(calls) = fast {
+        items.extend(batch.item(graph, &pairs, &operand, calls.sin_cos_n));
     }
     for &id in &reach {
         let name = ident(id);
@@ -213,7 +214,7 @@ fn emit_impl(
                 }
             }
             Node::Product { coef, factors } => {
-                arith::product(coef.get(), factors, &ready, &operand)
+                arith::product(coef.get(), factors, &ready, &operand, math)
             }
             Node::Sin(a) | Node::Cos(a) if batch.has(*a) => continue,
             node @ (Node::Sin(a) | Node::Cos(a)) => {
@@ -230,11 +231,17 @@ fn emit_impl(
             }
             Node::Tanh(a) => {
                 let x = operand(*a);
-                quote!(#x.tanh())
+                match math {
+                    Some(m) => quote!(#m::tanh(#x)),
+                    None => quote!(#x.tanh()),
+                }
             }
             Node::Sqrt(a) => {
                 let x = operand(*a);
-                quote!(#x.sqrt())
+                match math {
+                    Some(m) => quote!(#m::sqrt(#x)),
+                    None => quote!(#x.sqrt()),
+                }
             }
             Node::Abs(a) => {
                 let x = operand(*a);

@@ -205,6 +205,7 @@ mod tests {
             sin_cos: &quote!(sc),
             sin_cos_n: &quote!(scn),
             mul_add: &quote!(f),
+            math: &quote!(m),
         };
         let out = emit_fused(&g, &[p], &names, &calls);
         assert_eq!(

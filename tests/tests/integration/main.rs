@@ -9,5 +9,6 @@ mod mar_eq10;
 mod mar_vibration;
 mod oracle;
 mod properties;
+mod regressor;
 mod simulate;
 mod urdf;

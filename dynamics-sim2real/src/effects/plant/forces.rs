@@ -35,7 +35,7 @@ impl<R: Robot<N>, const N: usize> Plant<R, N> {
         let chol = a
             .cholesky()
             .ok_or_else(|| DynamicsError::SingularMassMatrix {
-                q: x.q.iter().copied().collect(),
+                q: dynamics_runtime::Coordinates::new(x.q.as_slice()),
             })?;
         let qdd = chol.solve(&(f + u));
         if let Some(index) = qdd.iter().position(|v| !v.is_finite()) {
