@@ -13,7 +13,7 @@
 use nalgebra::{Matrix4, SMatrix, SVector, Vector3};
 
 use super::{Effect, EffectKind, Tip};
-use dynamics_runtime::{MotionTerms, PerturbationJacobians, Robot};
+use dynamics_runtime::{DynamicsError, MotionTerms, PerturbationJacobians, Robot};
 
 /// Why effects cannot be folded into a nominal model.
 #[derive(Debug, Clone, PartialEq, thiserror::Error)]
@@ -170,6 +170,7 @@ impl<R: Robot<N>, const N: usize> Robot<N> for Calibrated<R, N> {
     const FRAME_NAMES: &'static [&'static str] = R::FRAME_NAMES;
     const POINT_NAMES: &'static [&'static str] = R::POINT_NAMES;
     const GRAVITY: [f64; 3] = R::GRAVITY;
+    const LINK_NAMES: &'static [&'static str] = R::LINK_NAMES;
 
     fn params(&self) -> &Self::Params {
         self.robot.params()
@@ -266,6 +267,21 @@ impl<R: Robot<N>, const N: usize> Robot<N> for Calibrated<R, N> {
         qdd: &SVector<f64, N>,
     ) -> Option<SVector<f64, N>> {
         self.robot.parameter_sensitivity(index, q, qd, qdd)
+    }
+    /// The wrapped model's: the regressor of its links, without the
+    /// effects folded in.
+    fn inertial_regressor(
+        &self,
+        q: &SVector<f64, N>,
+        qd: &SVector<f64, N>,
+        qdd: &SVector<f64, N>,
+        out: &mut [SMatrix<f64, N, 10>],
+    ) -> Result<(), DynamicsError> {
+        self.robot.inertial_regressor(q, qd, qdd, out)
+    }
+    /// The wrapped model's (a folded-in payload is not in them).
+    fn inertial_parameters(&self, out: &mut [SVector<f64, 10>]) -> Result<(), DynamicsError> {
+        self.robot.inertial_parameters(out)
     }
     fn motion_terms(&self, q: &SVector<f64, N>, qd: &SVector<f64, N>) -> MotionTerms<N> {
         let mut t = self.robot.motion_terms(q, qd);
