@@ -2,7 +2,7 @@
 //! `robot!`: [`run`] is the whole program over one robot (a user's crate
 //! needs nothing else), [`run_set`] over robots chosen by name
 //! (`program`: the command line and its dispatch); its subcommands
-//! (`commands`, `diagnose`, `simulate`, `scaffold` for `new`), the nominal
+//! (`commands`, `diagnose`, `identify`, `simulate`, `scaffold` for `new`), the nominal
 //! model (`tune`: `--set`, `--baseline`), evaluation at given
 //! states and comparison with reference values (`eval`, `states`,
 //! `compare`), synthetic data and the diagnosis of data files (`gap`), the
@@ -16,6 +16,7 @@ pub mod compare;
 pub mod diagnose;
 pub mod eval;
 pub mod gap;
+pub mod identify;
 pub mod plot;
 pub mod program;
 pub mod report;

@@ -49,6 +49,9 @@ use proc_macro::TokenStream;
 ///             | "coulomb_smoothing" "=" e ";"   // eps of the smooth sign (default 1e-3)
 ///             | "spring" "=" e ";"              // linear spring c: force c (rest - q)
 ///             | "rest" "=" e ";"                // its rest position (default 0)
+///             | "mimic" "=" JOINT ";"           // no coordinate of its own: its position is
+///             | "multiplier" "=" e ";"          //   multiplier q_JOINT + offset (constants,
+///             | "offset" "=" e ";"              //   defaults 1 and 0; chains of mimics compose)
 /// elem       := "rot_x(" e ")" | "rot_y(" e ")" | "rot_z(" e ")"          // spatial 4x4
 ///             | "trans_x(" e ")" | "trans_y(" e ")" | "trans_z(" e ")"
 ///             | "tu(" e ")" | "tv(" e ")" | "rot(" e ")"                  // planar 3x3, seed 001 eq. 2.4
@@ -59,7 +62,13 @@ use proc_macro::TokenStream;
 /// ```
 ///
 /// `q` is the joint's own coordinate and may appear only in its transfer
-/// chain. With `constraint` items the robot also implements
+/// chain. A `mimic` joint (a gripper's second finger, a linkage) has no
+/// coordinate of its own: its `q` stands for `multiplier * q_JOINT +
+/// offset`, the robot has one coordinate per independent joint, and the
+/// efforts are those of the independent joints (a mimic joint's damping,
+/// friction and spring act at its own position and speed and reach its
+/// leader's effort times the multiplier). In a `constraint` a mimic
+/// joint's name stands for its position. With `constraint` items the robot also implements
 /// `dynamics_runtime::Constrained<N, M>` (residual, Jacobian and the
 /// acceleration bias of the constraints, derived symbolically). The link frame is the frame at the end of its joint's chain; `com`,
 /// `inertia` and points are given in it. Coordinates are numbered depth-first
@@ -95,6 +104,32 @@ use proc_macro::TokenStream;
 /// assert!((a - a.transpose()).norm() < 1e-15);
 /// let tip = arm.point_position(0, &q).unwrap();
 /// assert!((tip.norm() - (0.5f64.powi(2) + 0.4f64.powi(2) + 2.0 * 0.5 * 0.4 * 0.2f64.cos()).sqrt()).abs() < 1e-12);
+/// ```
+///
+/// A parallel gripper whose right finger mirrors the left one: one
+/// coordinate, and the effort that drives both fingers.
+///
+/// ```
+/// use dynamics_runtime::Robot;
+/// use nalgebra::Vector1;
+///
+/// dynamics_macros::robot! {
+///     pub robot Gripper;
+///     gravity = [0.0, 0.0, -9.81];
+///     link palm;
+///     link left { mass = 0.05; }
+///     link right { mass = 0.05; }
+///     joint finger_left = prismatic(palm -> left) { axis = [0.0, 1.0, 0.0]; }
+///     joint finger_right = prismatic(palm -> right) {
+///         axis = [0.0, 1.0, 0.0]; mimic = finger_left; multiplier = -1.0;
+///     }
+/// }
+///
+/// assert_eq!(Gripper::JOINT_NAMES, ["finger_left"]);
+/// let hand = Gripper::default();
+/// let q = Vector1::new(0.01);
+/// // Both fingers move with the one coordinate: A = 0.05 + (-1)^2 0.05.
+/// assert!((hand.mass_matrix(&q)[(0, 0)] - 0.1).abs() < 1e-15);
 /// ```
 #[proc_macro]
 pub fn robot(input: TokenStream) -> TokenStream {

@@ -70,7 +70,7 @@ pub fn parameter_names(kind: EffectKind) -> &'static [&'static str] {
         EffectKind::TimeDelay => &["delay"],
         EffectKind::JointElasticity => &["motor_inertia", "stiffness", "damping"],
         EffectKind::Backlash => &["motor_inertia", "half_width", "contact_stiffness"],
-        EffectKind::None => &[],
+        EffectKind::None | EffectKind::InertialParameters => &[],
     }
 }
 
@@ -135,7 +135,11 @@ pub fn effect<R: Robot<N>, const N: usize>(entry: &Entry) -> Result<Effect, Base
             })
     };
     let candidate = match kind {
-        EffectKind::None => return Err(BaselineError::Kind(entry.kind.clone())),
+        // Link inertial corrections come from `identify`, not from a
+        // diagnosis report entry.
+        EffectKind::None | EffectKind::InertialParameters => {
+            return Err(BaselineError::Kind(entry.kind.clone()))
+        }
         EffectKind::CoulombFriction => Candidate::Coulomb(joint()?),
         EffectKind::ViscousFriction => Candidate::Viscous(joint()?),
         EffectKind::StribeckFriction => Candidate::Stribeck(joint()?, get("vs")?),

@@ -91,6 +91,15 @@ fn bench_robot<R: Robot<N>, const N: usize, M: Measurement>(
             black_box(r.perturbation_jacobians(black_box(q), black_box(v), black_box(a)))
         })
     });
+    let mut y = vec![nalgebra::SMatrix::<f64, N, 10>::zeros(); R::LINK_NAMES.len()];
+    group.bench_function("inertial_regressor", |b| {
+        b.iter(|| {
+            let [q, v, a] = next();
+            let done = r.inertial_regressor(black_box(q), black_box(v), black_box(a), &mut y);
+            black_box(done.is_ok());
+            black_box(&y);
+        })
+    });
     group.bench_function("forward_dynamics", |b| {
         b.iter(|| {
             let [q, v, a] = next();

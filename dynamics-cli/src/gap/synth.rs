@@ -192,6 +192,11 @@ fn effect_for<R: Robot<N>, const N: usize>(
             vs: 0.05,
         },
         Effect::Armature { joint, .. } => Effect::Armature { joint, inertia: m },
+        // The magnitude is the mass change (never drawn here yet).
+        Effect::InertialParameters { link, mut delta } => {
+            delta[0] = m;
+            Effect::InertialParameters { link, delta }
+        }
         Effect::PayloadMass { .. } => Effect::PayloadMass { mass: m },
         Effect::JointElasticity {
             joint,

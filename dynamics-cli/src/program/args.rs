@@ -71,6 +71,25 @@ pub enum RobotCommand {
     Synth(SynthArgs),
     /// Diagnose the gap between the model and measured data: where, which effect, how far it shrinks.
     Diagnose(DiagnoseArgs),
+    /// Identify friction, offsets, rotor inertias and link inertial parameters by least squares.
+    Identify(IdentifyArgs),
+}
+
+/// `identify`.
+#[derive(Args, Debug)]
+pub struct IdentifyArgs {
+    /// Training data (CSV or CSV.gz).
+    #[arg(long)]
+    pub train: PathBuf,
+    /// Held-out data.
+    #[arg(long)]
+    pub holdout: PathBuf,
+    /// Write the result as JSON here.
+    #[arg(long)]
+    pub json: Option<PathBuf>,
+    /// The nominal model.
+    #[command(flatten)]
+    pub model: ModelArgs,
 }
 
 /// `check`.
@@ -216,6 +235,7 @@ impl RobotCommand {
             RobotCommand::Simulate(_) => "simulate",
             RobotCommand::Synth(_) => "synth",
             RobotCommand::Diagnose(_) => "diagnose",
+            RobotCommand::Identify(_) => "identify",
         }
     }
 }

@@ -91,6 +91,10 @@ pub fn run_on<R: Robot<N> + Clone + Sync, const N: usize>(
             };
             crate::diagnose::diagnose_cmd(&robot, train, holdout, a.json, a.report, noise)
         }
+        RobotCommand::Identify(a) => {
+            let robot = nominal(robot, &a.model, None)?;
+            crate::identify::identify_cmd(&robot, a.train, a.holdout, a.json)
+        }
     }
 }
 

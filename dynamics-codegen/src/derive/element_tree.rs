@@ -238,3 +238,33 @@ fn bodies(model: &Model, l: usize, vars: Vars, g: &mut Graph) -> Option<Vec<Iner
     }
     Some(out)
 }
+
+#[cfg(test)]
+mod tests {
+    use quote::quote;
+
+    use super::*;
+    use crate::ctxt::Ctxt;
+    use crate::{model, parse};
+
+    /// A coordinate that drives two elements (a mimic joint) is outside the
+    /// analytic derivatives: the caller must fall back to exact
+    /// differentiation.
+    #[test]
+    fn a_coordinate_driving_two_elements_is_refused() {
+        let tokens = quote! {
+            pub robot Gripper;
+            gravity = [0.0, 0.0, -9.81];
+            link palm;
+            link left { mass = 0.05; }
+            link right { mass = 0.05; }
+            joint finger_left = prismatic(palm -> left) { axis = [0.0, 1.0, 0.0]; }
+            joint finger_right = prismatic(palm -> right) { axis = [0.0, 1.0, 0.0]; mimic = finger_left; multiplier = -1.0; }
+        };
+        let mut cx = Ctxt::default();
+        let ast = parse::parse(tokens, &mut cx);
+        let m = model::build(ast, true, std::path::Path::new("."), &mut cx).expect("valid model");
+        let vars = Vars { n: 1, n_params: 0 };
+        assert!(tree(&m, vars, &mut Graph::new()).is_none());
+    }
+}

@@ -4,14 +4,15 @@
 //! bodies that move (a body welded to the base adds a constant and is left
 //! out, as Pinocchio does). `Q(0)_i = -dPi/dq_i - b_i qd_i
 //! - Fc_i tanh(qd_i / eps_i)`, the spring force `c (l0 - q)` being part of
-//! `-dPi/dq` (seed 001 sec. 3.1.2).
+//! `-dPi/dq` (seed 001 sec. 3.1.2). A mimic joint's forces act at its own
+//! position `m q_i + o` and speed `m qd_i` and enter Q(0)_i times m.
 
 use dynamics_symbolic::{Graph, Id};
 
 use super::kinematics::{point_world, LinkKin};
 use super::lower::lower;
 use super::Vars;
-use crate::model::Model;
+use crate::model::{Follow, Model};
 
 /// Default velocity scale of the smooth Coulomb sign, rad/s or m/s.
 pub const COULOMB_SMOOTHING: f64 = 1e-3;
@@ -29,7 +30,7 @@ pub struct Forces {
 /// Whether some joint between the root and link `l` has a coordinate.
 fn moves(model: &Model, mut l: usize) -> bool {
     while let Some(j) = model.links[l].joint {
-        if model.joints[j].coord.is_some() {
+        if model.joints[j].position().is_some() {
             return true;
         }
         l = model.joints[j].parent;
@@ -79,9 +80,27 @@ pub fn forces(model: &Model, kin: &[LinkKin], vars: Vars, g: &mut Graph) -> Forc
         q0.push(g.neg(gravity[i]));
     }
     for joint in &model.joints {
-        let Some(i) = joint.coord else { continue };
-        let q = g.var(vars.q(i));
-        let qd = g.var(vars.qd(i));
+        // The joint's own position and speed: `m q_i + o` and `m qd_i` for a
+        // mimic joint (m = 1, o = 0 otherwise); its force f acts on
+        // coordinate i as `m f` (virtual work).
+        let Some(Follow {
+            coord: i,
+            multiplier,
+            offset,
+        }) = joint.position()
+        else {
+            continue;
+        };
+        let mut q = g.var(vars.q(i));
+        let mut qd = g.var(vars.qd(i));
+        if multiplier != 1.0 {
+            q = g.scale(q, multiplier);
+            qd = g.scale(qd, multiplier);
+        }
+        if offset != 0.0 {
+            let o = g.constant(offset);
+            q = g.add(q, o);
+        }
         let mut extra = Vec::new();
         if let Some((c, l0)) = &joint.forces.spring {
             let c = lower(c, None, vars, g);
@@ -110,6 +129,10 @@ pub fn forces(model: &Model, kin: &[LinkKin], vars: Vars, g: &mut Graph) -> Forc
             extra.push(g.neg(f));
         }
         if !extra.is_empty() {
+            if multiplier != 1.0 {
+                let f = g.sum(&extra);
+                extra = vec![g.scale(f, multiplier)];
+            }
             extra.push(q0[i]);
             q0[i] = g.sum(&extra);
         }

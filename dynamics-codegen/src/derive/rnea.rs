@@ -22,6 +22,7 @@ use super::body_jacobian::cross;
 use super::kinematics::{add3 as add, dot, mat_vec, transpose};
 use super::lower::lower;
 use super::Vars;
+use crate::model::scalar::Scalar;
 use crate::model::{Elem, Model};
 
 type V3 = [Id; 3];
@@ -198,7 +199,7 @@ pub fn forward(
                     link_steps.push(Step::Trans { t, dt_dq });
                 }
                 Elem::Matrix(r, t) => {
-                    let moving = r.iter().flatten().chain(t.iter()).any(|s| s.has_coord());
+                    let moving = r.iter().flatten().chain(t.iter()).any(Scalar::moves);
                     if moving {
                         return None;
                     }

@@ -9,7 +9,7 @@ use syn::{Expr, Ident};
 
 use super::joint::joint;
 use super::link::link;
-use super::scalar::{resolve, resolve_array, Scope};
+use super::scalar::{resolve, resolve_array, Scalar, Scope};
 use super::{tree, Model, Param};
 use crate::ctxt::Ctxt;
 use crate::parse::ast::{Header, Input, Item, JointDecl, LinkDecl, Prop};
@@ -145,7 +145,11 @@ pub fn build(input: Input, complete: bool, base_dir: &Path, cx: &mut Ctxt) -> Op
     if !complete {
         return None;
     }
-    let (links, joints) = tree::order(built_links, built_joints, &joints, &links, cx)?;
+    let (links, mut joints) = tree::order(built_links, built_joints, &joints, &links, cx)?;
+    if !cx.is_ok() {
+        return None;
+    }
+    super::mimic::resolve(&mut joints, cx);
     if !cx.is_ok() {
         return None;
     }
@@ -157,9 +161,9 @@ pub fn build(input: Input, complete: bool, base_dir: &Path, cx: &mut Ctxt) -> Op
         return None;
     }
     // Constraints name joints: resolve them against the coordinates.
-    let coord_names: Vec<(String, usize)> = joints
+    let coord_names: Vec<(String, Scalar)> = joints
         .iter()
-        .filter_map(|j| j.coord.map(|c| (j.name.to_string(), c)))
+        .filter_map(|j| Some((j.name.to_string(), super::mimic::coupling(j.position()?))))
         .collect();
     let mut constraints = Vec::new();
     let mut constraint_names: Vec<String> = Vec::new();

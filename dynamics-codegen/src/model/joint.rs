@@ -7,7 +7,7 @@ use std::collections::HashMap;
 use syn::{Expr, Ident};
 
 use super::scalar::{resolve, Scalar, Scope};
-use super::{transfer, Joint, JointForces, JointKind};
+use super::{transfer, Joint, JointForces, JointKind, Mimic};
 use crate::ctxt::Ctxt;
 use crate::parse::ast::{JointDecl, Prop};
 
@@ -55,6 +55,9 @@ pub fn joint(
                     "coulomb_smoothing",
                     "spring",
                     "rest",
+                    "mimic",
+                    "multiplier",
+                    "offset",
                 ];
                 if !KEYS.contains(&k.as_str()) {
                     cx.error_spanned_by(
@@ -152,6 +155,7 @@ pub fn joint(
             (None, None) => {}
         }
     }
+    let mimic = mimic(kind, &values, scope, cx);
     Some(Joint {
         name: decl.name.clone(),
         kind,
@@ -160,5 +164,64 @@ pub fn joint(
         chain: chain?,
         coord: None,
         forces,
+        mimic: mimic?,
+        follows: None,
     })
+}
+
+/// `mimic = other; multiplier = m; offset = o;` (constants, defaults 1 and
+/// 0): `Some(None)` for an independent joint, `None` after an error.
+fn mimic(
+    kind: JointKind,
+    values: &HashMap<String, (&Ident, &Expr)>,
+    scope: &Scope,
+    cx: &mut Ctxt,
+) -> Option<Option<Mimic>> {
+    let constants = Scope {
+        coord: false,
+        allow_params: false,
+        ..*scope
+    };
+    let number = |k: &str, default: f64, cx: &mut Ctxt| -> Option<f64> {
+        let Some((_, e)) = values.get(k) else {
+            return Some(default);
+        };
+        let v = resolve(e, &constants, cx)?;
+        match v.as_number() {
+            Some(x) if x.is_finite() => Some(x),
+            _ => {
+                cx.error_spanned_by(*e, format!("`{k}` must be a finite constant"));
+                None
+            }
+        }
+    };
+    let Some((key, of)) = values.get("mimic") else {
+        for k in ["multiplier", "offset"] {
+            if let Some((key, _)) = values.get(k) {
+                cx.error_spanned_by(*key, format!("`{k}` needs `mimic = <joint>;`"));
+            }
+        }
+        return Some(None);
+    };
+    if kind == JointKind::Fixed {
+        cx.error_spanned_by(*key, "a fixed joint cannot mimic another joint");
+        return None;
+    }
+    let of = match of {
+        Expr::Path(p) if p.path.get_ident().is_some() => p.path.get_ident()?.clone(),
+        other => {
+            cx.error_spanned_by(
+                other,
+                "`mimic` names the joint this one follows, e.g. `mimic = finger_left;`",
+            );
+            return None;
+        }
+    };
+    let multiplier = number("multiplier", 1.0, cx);
+    let offset = number("offset", 0.0, cx);
+    Some(Some(Mimic {
+        of,
+        multiplier: multiplier?,
+        offset: offset?,
+    }))
 }

@@ -10,6 +10,7 @@ mod inertia;
 mod joint;
 mod link;
 pub mod merge;
+mod mimic;
 mod normalize;
 pub mod scalar;
 mod transfer;
@@ -133,6 +134,49 @@ pub struct Joint {
     pub coord: Option<usize>,
     /// Dissipative and spring terms of Q(0).
     pub forces: JointForces,
+    /// `mimic = other;` as written: the joint this one follows.
+    pub mimic: Option<Mimic>,
+    /// A mimic joint's position in terms of an independent coordinate (set
+    /// once the tree is ordered; chains of mimics composed).
+    pub follows: Option<Follow>,
+}
+
+/// `mimic = other; multiplier = m; offset = o;`: the joint's position is
+/// `m q_other + o`; it has no coordinate of its own.
+pub struct Mimic {
+    /// The joint followed.
+    pub of: Ident,
+    /// Multiplier (default 1).
+    pub multiplier: f64,
+    /// Offset (default 0).
+    pub offset: f64,
+}
+
+/// A joint's own position as `multiplier * q[coord] + offset`.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct Follow {
+    /// The independent coordinate.
+    pub coord: usize,
+    /// d(position)/d(q[coord]).
+    pub multiplier: f64,
+    /// Position at q[coord] = 0.
+    pub offset: f64,
+}
+
+impl Joint {
+    /// The joint's own position in terms of a coordinate: itself for an
+    /// independent moving joint, the composed coupling for a mimic joint,
+    /// `None` for a fixed one.
+    pub fn position(&self) -> Option<Follow> {
+        match (self.coord, self.follows) {
+            (Some(coord), _) => Some(Follow {
+                coord,
+                multiplier: 1.0,
+                offset: 0.0,
+            }),
+            (None, f) => f,
+        }
+    }
 }
 
 /// The forces a joint adds to Q(0).

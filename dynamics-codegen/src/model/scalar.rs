@@ -85,6 +85,17 @@ impl Scalar {
         })
     }
 
+    /// True when a coordinate appears: the joint's own `q`, or a
+    /// coordinate named by its joint (a mimic joint's chain).
+    pub fn moves(&self) -> bool {
+        match self {
+            Scalar::Coord | Scalar::Joint(_) => true,
+            Scalar::Num(_) | Scalar::Param(_) | Scalar::Time => false,
+            Scalar::Neg(a) | Scalar::Call(_, a) => a.moves(),
+            Scalar::Bin(_, a, b) => a.moves() || b.moves(),
+        }
+    }
+
     /// True when the joint coordinate `q` appears.
     pub fn has_coord(&self) -> bool {
         match self {
@@ -108,7 +119,8 @@ pub struct Scope<'a> {
     pub allow_params: bool,
     /// Joint names that stand for their coordinates, and whether `t` is
     /// time (in constraint expressions).
-    pub joints: &'a [(String, usize)],
+    /// A mimic joint's name stands for `multiplier * q + offset`.
+    pub joints: &'a [(String, Scalar)],
 }
 
 /// Resolves `expr`; every problem is recorded in `cx` (None then).
@@ -162,8 +174,8 @@ pub fn resolve(expr: &Expr, scope: &Scope, cx: &mut Ctxt) -> Option<Scalar> {
                 );
                 return None;
             }
-            if let Some((_, i)) = scope.joints.iter().find(|(n, _)| *n == name) {
-                return Some(Scalar::Joint(*i));
+            if let Some((_, s)) = scope.joints.iter().find(|(n, _)| *n == name) {
+                return Some(s.clone());
             }
             if name == "t" && !scope.joints.is_empty() {
                 return Some(Scalar::Time);

@@ -153,7 +153,8 @@ pub fn order(
             let mut joint = joints_opt[j].take()?;
             joint.parent = new_index[p];
             joint.child = new_index[old];
-            if joint.kind != super::JointKind::Fixed {
+            // A mimic joint has no coordinate of its own (see `mimic.rs`).
+            if joint.kind != super::JointKind::Fixed && joint.mimic.is_none() {
                 joint.coord = Some(coord);
                 coord += 1;
             }

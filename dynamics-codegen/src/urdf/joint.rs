@@ -1,5 +1,5 @@
 //! A `<joint>`: its kind, parent and child links, origin, axis, limits and
-//! `<dynamics>` (damping and friction as run-time parameters).
+//! `<dynamics>` (damping and friction as run-time parameters), `<mimic>`.
 
 use std::collections::{HashMap, HashSet};
 
@@ -22,6 +22,47 @@ pub struct Joints {
     pub children: HashMap<String, String>,
     /// Child link -> parent link.
     pub parent_of: HashMap<String, String>,
+    /// Joint name -> kind (`revolute`, `prismatic`, `fixed`).
+    pub kinds: HashMap<String, &'static str>,
+    /// The mimic joints: (joint, the joint it follows, line of `<mimic>`).
+    pub mimics: Vec<(String, String, u32)>,
+}
+
+/// `<mimic joint=".." multiplier=".." offset=".."/>` (defaults 1 and 0) as
+/// the properties `mimic`, `multiplier`, `offset`; the joint named is
+/// checked once all joints are read (`mimic.rs`).
+fn mimic(
+    r: &mut Reader,
+    joint: roxmltree::Node,
+    m: roxmltree::Node,
+    kind: &str,
+    out: &mut Joints,
+    span: Span,
+) -> Option<Vec<Prop>> {
+    let name = joint.attribute("name").unwrap_or("?");
+    let line = Reader::line(m);
+    if kind == "fixed" {
+        r.error(format!(
+            "joint `{name}` (line {line}): a fixed joint cannot <mimic> another joint"
+        ));
+        return None;
+    }
+    let of = r.attr(m, "joint", &format!("<mimic> of joint `{name}`"))?;
+    let multiplier = match m.attribute("multiplier") {
+        Some(_) => r.number(m, "multiplier", name)?,
+        None => 1.0,
+    };
+    let offset = match m.attribute("offset") {
+        Some(_) => r.number(m, "offset", name)?,
+        None => 0.0,
+    };
+    out.mimics.push((name.to_string(), of.to_string(), line));
+    let of = ident(of, span);
+    Some(vec![
+        value("mimic", syn::parse_quote_spanned!(span=> #of), span),
+        value("multiplier", num(multiplier, span), span),
+        value("offset", num(offset, span), span),
+    ])
 }
 
 /// One `<joint>` element as a joint item; `None` (with the error recorded)
@@ -35,33 +76,21 @@ pub fn joint(
 ) -> Option<JointDecl> {
     let name = r.attr(node, "name", "joint")?;
     let kind = r.attr(node, "type", &format!("joint `{name}`"))?;
-    let kind = match kind {
-        "revolute" | "continuous" => "revolute",
-        "prismatic" => "prismatic",
-        "fixed" => "fixed",
-        other => {
-            r.error(format!(
-                "joint `{name}`: type \"{other}\" is not supported (revolute, continuous, prismatic, fixed)"
-            ));
-            return None;
-        }
-    };
-    if node.children().any(|c| c.has_tag_name("mimic")) {
-        r.error(format!("joint `{name}`: <mimic> joints are not supported"));
-        return None;
-    }
+    let line = Reader::line(node);
     let link_of = |tag: &str, r: &mut Reader| -> Option<String> {
         let el = node.children().find(|c| c.has_tag_name(tag));
         match el.and_then(|e| e.attribute("link")) {
             Some(l) if link_names.contains(l) => Some(l.to_string()),
             Some(l) => {
                 r.error(format!(
-                    "joint `{name}`: <{tag} link=\"{l}\"> names an unknown link"
+                    "joint `{name}` (line {line}): <{tag} link=\"{l}\"> names an unknown link"
                 ));
                 None
             }
             None => {
-                r.error(format!("joint `{name}`: missing <{tag} link=\"...\"/>"));
+                r.error(format!(
+                    "joint `{name}` (line {line}): missing <{tag} link=\"...\"/>"
+                ));
                 None
             }
         }
@@ -71,11 +100,30 @@ pub fn joint(
     };
     if let Some(other) = out.children.insert(child.clone(), name.to_string()) {
         r.error(format!(
-            "joint `{name}`: link `{child}` is already the child of joint `{other}` (closed loops are not supported)"
+            "joint `{name}` (line {line}): link `{child}` is already the child of joint `{other}` (closed loops are not supported)"
         ));
         return None;
     }
     out.parent_of.insert(child.clone(), parent.clone());
+    // Refused after its links are known, so that the tree check does not
+    // add a follow-on error (two roots) to this one.
+    let kind = match kind {
+        "revolute" | "continuous" => "revolute",
+        "prismatic" => "prismatic",
+        "fixed" => "fixed",
+        other => {
+            let why = match other {
+                "floating" | "planar" => ": the models here have a fixed base and one coordinate per joint; \
+                                          declare the base link as the root (a mobile base's motion is not modelled)",
+                _ => "",
+            };
+            r.error(format!(
+                "joint `{name}` (line {line}): type \"{other}\" is not supported (revolute, continuous, prismatic, fixed){why}"
+            ));
+            return None;
+        }
+    };
+    out.kinds.insert(name.to_string(), kind);
     let mut props = Vec::new();
     let origin = node.children().find(|c| c.has_tag_name("origin"));
     let xyz = origin
@@ -89,6 +137,9 @@ pub fn joint(
     };
     props.push(value("origin", array(xyz, span), span));
     props.push(value("rpy", array(rpy, span), span));
+    if let Some(m) = node.children().find(|c| c.has_tag_name("mimic")) {
+        props.extend(mimic(r, node, m, kind, out, span)?);
+    }
     if kind != "fixed" {
         let axis = match node.children().find(|c| c.has_tag_name("axis")) {
             Some(a) => r.triple(a, "xyz", name)?,
@@ -96,7 +147,7 @@ pub fn joint(
         };
         if axis.iter().map(|x| x * x).sum::<f64>().sqrt() < 1e-12 {
             r.error(format!(
-                "joint `{name}`: <axis xyz=\"0 0 0\"> has zero length"
+                "joint `{name}` (line {line}): <axis xyz=\"0 0 0\"> has zero length"
             ));
             return None;
         }

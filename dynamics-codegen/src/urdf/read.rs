@@ -8,6 +8,7 @@ use syn::LitStr;
 
 use super::joint::{joint, Joints};
 use super::link::inertial;
+use super::mimic::check_mimics;
 use super::reader::Reader;
 use super::tokens::ident;
 use super::tree::check_tree;
@@ -59,7 +60,13 @@ pub fn load(lit: &LitStr, base_dir: &Path, cx: &mut Ctxt) -> Option<Loaded> {
             return None;
         }
     };
-    let doc = match roxmltree::Document::parse(&text) {
+    // Internal DTD entities (`<!ENTITY ...>`) are XML too; roxmltree
+    // bounds their expansion.
+    let options = roxmltree::ParsingOptions {
+        allow_dtd: true,
+        ..Default::default()
+    };
+    let doc = match roxmltree::Document::parse_with_options(&text, options) {
         Ok(d) => d,
         Err(e) => {
             cx.error_spanned_by(lit, format!("{rel}: malformed XML: {e}"));
@@ -112,9 +119,17 @@ pub fn load(lit: &LitStr, base_dir: &Path, cx: &mut Ctxt) -> Option<Loaded> {
         limits,
         children,
         parent_of,
+        kinds,
+        mimics,
     } = read;
     // Exactly one root, and no cycle: checked here to name the file.
     check_tree(&mut r, &link_names, &children, &parent_of);
+    let joint_names: HashSet<&str> = root
+        .children()
+        .filter(|n| n.has_tag_name("joint"))
+        .filter_map(|n| n.attribute("name"))
+        .collect();
+    check_mimics(&mut r, &mimics, &kinds, &joint_names);
     if !r.ok {
         return None;
     }

@@ -25,6 +25,11 @@ impl Reader<'_> {
             .error_spanned_by(self.lit, format!("{}: {msg}", self.rel));
     }
 
+    /// The line of `node` in the file.
+    pub fn line(node: roxmltree::Node) -> u32 {
+        node.document().text_pos_at(node.range().start).row
+    }
+
     /// A required attribute; its absence is an error naming the line.
     pub fn attr<'n>(
         &mut self,
@@ -50,8 +55,10 @@ impl Reader<'_> {
             Ok(v) if v.is_finite() => Some(v),
             _ => {
                 self.error(format!(
-                    "`{owner}`: <{} {attr}=\"{text}\"> is not a finite number",
-                    node.tag_name().name()
+                    "`{owner}` (line {}): <{} {attr}=\"{text}\"> is not a finite number{}",
+                    Self::line(node),
+                    node.tag_name().name(),
+                    xacro_hint(text)
                 ));
                 None
             }
@@ -71,11 +78,22 @@ impl Reader<'_> {
             [Some(a), Some(b), Some(c)] => Some([*a, *b, *c]),
             _ => {
                 self.error(format!(
-                    "`{owner}`: <{} {attr}=\"{text}\"> must be three finite numbers",
-                    node.tag_name().name()
+                    "`{owner}` (line {}): <{} {attr}=\"{text}\"> must be three finite numbers{}",
+                    Self::line(node),
+                    node.tag_name().name(),
+                    xacro_hint(text)
                 ));
                 None
             }
         }
+    }
+}
+
+/// A hint when a value is an unexpanded xacro expression (`${..}`, `$(..)`).
+fn xacro_hint(text: &str) -> &'static str {
+    if text.contains("${") || text.contains("$(") {
+        " (an unexpanded xacro expression: run `xacro` on the file first)"
+    } else {
+        ""
     }
 }

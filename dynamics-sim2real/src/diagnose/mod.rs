@@ -58,6 +58,7 @@ pub use fit::aicc;
 pub use motor::MotorGuess;
 pub use noise::SensorNoise;
 pub use report::*;
+pub(crate) use signals::Signals;
 
 use nalgebra::SVector;
 use thiserror::Error;

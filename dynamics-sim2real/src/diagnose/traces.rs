@@ -185,6 +185,11 @@ fn candidate<R: Robot<N>, const N: usize>(r: &Ranked) -> Result<Candidate, Trace
         EffectKind::TimeDelay => Candidate::TimeDelay,
         EffectKind::JointElasticity => Candidate::Elasticity(joint()?),
         EffectKind::Backlash => Candidate::Backlash(joint()?),
+        EffectKind::InertialParameters => {
+            return Err(err(
+                "`inertial_parameters` has no single-effect candidate".into()
+            ))
+        }
         EffectKind::None => return Err(err("`none` is not an effect to fit".into())),
     })
 }

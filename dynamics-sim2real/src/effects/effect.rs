@@ -64,6 +64,17 @@ pub enum Effect {
         /// Reflected rotor inertia (kg m^2, or kg for a slide).
         inertia: f64,
     },
+    /// Link `link` (an index into `Robot::LINK_NAMES`) differs from the
+    /// nominal model by `delta` in its ten inertial parameters
+    /// (Pinocchio's order, link frame, inertia about the frame's origin:
+    /// see [`crate::inertial`]); the robot needs `Y_l(q, qd, qdd) delta`
+    /// more effort.
+    InertialParameters {
+        /// Link index.
+        link: usize,
+        /// Change of `[m, m c_x, m c_y, m c_z, I_xx, I_xy, I_yy, I_xz, I_yz, I_zz]`.
+        delta: [f64; 10],
+    },
     /// A point mass at the tip.
     PayloadMass {
         /// Mass, kg.
@@ -124,6 +135,7 @@ impl Effect {
             Effect::ViscousFriction { .. } => EffectKind::ViscousFriction,
             Effect::StribeckFriction { .. } => EffectKind::StribeckFriction,
             Effect::Armature { .. } => EffectKind::Armature,
+            Effect::InertialParameters { .. } => EffectKind::InertialParameters,
             Effect::PayloadMass { .. } => EffectKind::PayloadMass,
             Effect::JointElasticity { .. } => EffectKind::JointElasticity,
             Effect::Backlash { .. } => EffectKind::Backlash,
@@ -228,6 +240,15 @@ impl Effect {
                 check("vs", vs, true)
             }
             Effect::Armature { inertia, .. } => check("inertia", inertia, false),
+            Effect::InertialParameters { ref delta, .. } => {
+                match delta.iter().position(|v| !v.is_finite()) {
+                    Some(k) => Err(format!(
+                        "inertial_parameters: {} must be finite",
+                        crate::inertial::PARAMETER_NAMES[k]
+                    )),
+                    None => Ok(()),
+                }
+            }
             Effect::PayloadMass { mass } => check("mass", mass, false),
             Effect::JointElasticity {
                 stiffness,

@@ -26,6 +26,10 @@ pub enum EffectKind {
     StribeckFriction,
     /// Rotor inertia reflected to the joint.
     Armature,
+    /// A link's mass, first moments and inertia differ from the model's.
+    /// (Not in [`EffectKind::ALL`] yet: the draws from it stay as they
+    /// are until the diagnosis has a candidate for it.)
+    InertialParameters,
     /// An extra point mass at the tip.
     PayloadMass,
     /// A two-mass joint: motor and link joined by a spring and a damper.
@@ -64,6 +68,7 @@ impl EffectKind {
             EffectKind::ViscousFriction => "viscous_friction",
             EffectKind::StribeckFriction => "stribeck_friction",
             EffectKind::Armature => "armature",
+            EffectKind::InertialParameters => "inertial_parameters",
             EffectKind::PayloadMass => "payload_mass",
             EffectKind::JointElasticity => "joint_elasticity",
             EffectKind::Backlash => "backlash",
@@ -78,6 +83,7 @@ impl EffectKind {
         match self {
             EffectKind::None => PlaceKind::Nowhere,
             EffectKind::PayloadMass | EffectKind::EnvironmentResistance => PlaceKind::Point,
+            EffectKind::InertialParameters => PlaceKind::Link,
             EffectKind::TimeDelay => PlaceKind::All,
             _ => PlaceKind::Joint,
         }
@@ -93,6 +99,8 @@ pub enum PlaceKind {
     Joint,
     /// At a point (the tip).
     Point,
+    /// On one link's mass properties.
+    Link,
     /// On every measured signal.
     All,
 }
@@ -105,7 +113,7 @@ impl fmt::Display for EffectKind {
 
 /// An effect name outside the vocabulary.
 #[derive(Debug, Clone, PartialEq, Eq, thiserror::Error)]
-#[error("unknown effect `{0}`; known: none, coulomb_friction, viscous_friction, stribeck_friction, armature, payload_mass, joint_elasticity, backlash, environment_resistance, encoder_offset, time_delay")]
+#[error("unknown effect `{0}`; known: none, coulomb_friction, viscous_friction, stribeck_friction, armature, inertial_parameters, payload_mass, joint_elasticity, backlash, environment_resistance, encoder_offset, time_delay")]
 pub struct UnknownEffect(pub String);
 
 impl FromStr for EffectKind {
@@ -113,6 +121,7 @@ impl FromStr for EffectKind {
     fn from_str(s: &str) -> Result<Self, Self::Err> {
         EffectKind::ALL
             .into_iter()
+            .chain([EffectKind::InertialParameters])
             .find(|k| k.name() == s)
             .ok_or_else(|| UnknownEffect(s.to_string()))
     }

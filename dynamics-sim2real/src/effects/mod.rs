@@ -9,6 +9,7 @@
 
 mod calibrated;
 mod effect;
+mod inertial;
 mod kind;
 mod plant;
 mod tip;

@@ -115,7 +115,8 @@ pub fn draw_effect<const N: usize>(
     let free = scales.free_inertia[j].max(1e-9);
     let locked = scales.inertia[j].max(free);
     Some(match kind {
-        EffectKind::None => return None,
+        // Drawn by the compound generator, which knows the robot's links.
+        EffectKind::None | EffectKind::InertialParameters => return None,
         EffectKind::CoulombFriction => Effect::CoulombFriction {
             joint: j,
             fc: peak * rng.uniform(0.005, 0.03),

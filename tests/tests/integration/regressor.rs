@@ -26,7 +26,7 @@ impl Lcg {
     }
 }
 
-fn regressor<R: Robot<N>, const N: usize>(
+pub fn regressor<R: Robot<N>, const N: usize>(
     r: &R,
     q: &SVector<f64, N>,
     qd: &SVector<f64, N>,
@@ -38,7 +38,7 @@ fn regressor<R: Robot<N>, const N: usize>(
     y
 }
 
-fn parameters<R: Robot<N>, const N: usize>(r: &R) -> Vec<SVector<f64, 10>> {
+pub fn parameters<R: Robot<N>, const N: usize>(r: &R) -> Vec<SVector<f64, 10>> {
     let mut pi = vec![SVector::zeros(); R::LINK_NAMES.len()];
     r.inertial_parameters(&mut pi).expect("right length");
     pi

@@ -7,13 +7,16 @@ use crate::effects::Effect;
 use dynamics_runtime::Robot;
 
 impl<R: Robot<N>, const N: usize> Plant<R, N> {
-    /// Total mechanical energy: the robot's, the payload's, the rotors' and
-    /// the drive springs' (for energy-balance tests).
+    /// Total mechanical energy: the robot's, the payload's, the rotors',
+    /// the changed links' and the drive springs' (for energy-balance tests).
     pub fn energy(&self, x: &PlantState<N>, contact: &[i8; N]) -> f64 {
         let mut e = self.robot.total_energy(&x.q, &x.qd);
         for eff in &self.effects {
             match *eff {
                 Effect::Armature { joint, inertia } => e += 0.5 * inertia * x.qd[joint].powi(2),
+                Effect::InertialParameters { link, ref delta } => {
+                    e += crate::effects::inertial::energy(&self.robot, link, delta, &x.q, &x.qd)
+                }
                 Effect::PayloadMass { mass } => {
                     let (p, jac) = self.tip.position_jacobian(&self.robot, &x.q);
                     let g = Vector3::from(R::GRAVITY);

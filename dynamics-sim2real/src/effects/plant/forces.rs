@@ -52,9 +52,10 @@ impl<R: Robot<N>, const N: usize> Plant<R, N> {
         })
     }
 
-    /// The link-side inertia (robot + armature + payload) and the forces
-    /// other than the drive: Q(0) + Qqt1 + Qqt2 + friction + payload
-    /// gravity and velocity terms + environment resistance.
+    /// The link-side inertia (robot + armature + payload + changed link
+    /// inertials) and the forces other than the drive: Q(0), Qqt1, Qqt2,
+    /// friction, the payload's and changed links' gravity and velocity
+    /// terms, environment resistance.
     pub fn mass_and_forces(
         &self,
         q: &SVector<f64, N>,
@@ -75,6 +76,11 @@ impl<R: Robot<N>, const N: usize> Plant<R, N> {
                     let g = Vector3::from(R::GRAVITY);
                     a += jac.transpose() * jac * mass;
                     f += jac.transpose() * ((g - bias) * mass);
+                }
+                Effect::InertialParameters { link, ref delta } => {
+                    let (da, df) = crate::effects::inertial::terms(&self.robot, link, delta, q, qd);
+                    a += da;
+                    f += df;
                 }
                 Effect::EnvironmentResistance { .. } => {
                     let (_, jac) = self.tip.position_jacobian(&self.robot, q);

@@ -38,6 +38,16 @@ pub enum PlantError {
         /// Number of joints.
         n: usize,
     },
+    /// An effect names a link that carries no inertial parameters.
+    #[error("effect {index} (inertial_parameters): link index {link} is out of range (the robot has {n} links with inertial parameters)")]
+    NoSuchLink {
+        /// Position in the effect list.
+        index: usize,
+        /// Link index given.
+        link: usize,
+        /// Number of links in `Robot::LINK_NAMES`.
+        n: usize,
+    },
     /// Two motor-side effects on one joint.
     #[error("joint {joint} has two motor-side effects (joint_elasticity/backlash); at most one")]
     TwoMotors {
@@ -121,6 +131,16 @@ impl<R: Robot<N>, const N: usize> Plant<R, N> {
             }
             e.validate()
                 .map_err(|reason| PlantError::BadParameter { index, reason })?;
+            if let Effect::InertialParameters { link, delta } = *e {
+                super::inertial::physical(&robot, link, &delta).map_err(|err| match err {
+                    None => PlantError::NoSuchLink {
+                        index,
+                        link,
+                        n: R::LINK_NAMES.len(),
+                    },
+                    Some(reason) => PlantError::BadParameter { index, reason },
+                })?;
+            }
         }
         Ok(Plant {
             robot,

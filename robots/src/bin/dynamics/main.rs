@@ -7,6 +7,7 @@
 //! dynamics synth --robot NAME --effect KIND --joint J --out FILE.csv
 //! dynamics diagnose --robot NAME --train A.csv --holdout B.csv [--json OUT.json] [--report DIR] [--baseline OLD.json]
 //! dynamics simulate --robot NAME [--motion sines|chirp|pick-place|FILE.csv] [--effects FILE.json]
+//! dynamics identify --robot NAME --train A.csv --holdout B.csv [--json OUT.json]
 //! dynamics eval --robot NAME [--states FILE.json] [--out FILE.json] [--set NAME=VALUE]...
 //! dynamics list                 # the robots it knows
 //! dynamics new DIR --urdf FILE  # a crate for your own robot

@@ -3,7 +3,7 @@ use dynamics_macros::robot;
 robot! {
     pub robot Arm;
     gravity = [0.0, 0.0, -9.81];
-    urdf = "urdf-fixtures/mimic.urdf";
+    urdf = "urdf-fixtures/mimic-cycle.urdf";
 }
 
 fn main() {}

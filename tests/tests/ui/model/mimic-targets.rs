@@ -1,0 +1,23 @@
+use dynamics_macros::robot;
+
+robot! {
+    pub robot Gripper;
+    gravity = [0.0, 0.0, -9.81];
+    link base;
+    link palm { mass = 0.5; }
+    link left { mass = 0.05; }
+    link right { mass = 0.05; }
+    link thumb { mass = 0.05; }
+    link tip { mass = 0.05; }
+    link pad { mass = 0.05; }
+    joint wrist = revolute(base -> palm) { axis = [0.0, 0.0, 1.0]; }
+    joint finger_left = prismatic(palm -> left) { axis = [0.0, 1.0, 0.0]; mimic = finger_right; multiplier = -1.0; }
+    joint finger_right = prismatic(palm -> right) { axis = [0.0, 1.0, 0.0]; mimic = finger_left; }
+    joint thumb_joint = revolute(palm -> thumb) { axis = [1.0, 0.0, 0.0]; mimic = thumb_joint; }
+    joint tip_joint = revolute(thumb -> tip) { axis = [1.0, 0.0, 0.0]; mimic = finger_main; }
+    joint pad_joint = revolute(tip -> pad) { axis = [1.0, 0.0, 0.0]; mimic = flange; }
+    link flange_link;
+    joint flange = fixed(palm -> flange_link) { origin = [0.0, 0.0, 0.1]; }
+}
+
+fn main() {}

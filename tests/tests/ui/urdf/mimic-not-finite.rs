@@ -1,0 +1,9 @@
+use dynamics_macros::robot;
+
+robot! {
+    pub robot Arm;
+    gravity = [0.0, 0.0, -9.81];
+    urdf = "urdf-fixtures/mimic-not-finite.urdf";
+}
+
+fn main() {}
