@@ -4,6 +4,8 @@
 # of medians and ratios (the machines are noisy: quote ratios from one sitting).
 #
 #   bash scripts/bench-sitting.sh [SHARED]     (SHARED defaults to ../shared)
+#   ROBOTS=panda bash scripts/bench-sitting.sh  (a subset: ours and Pinocchio's
+#                                               bench_native only, no CasADi; ~3 min)
 #
 # Needs the anchors of SHARED/anchors/pinocchio (their README: `bash build.sh`
 # once, ~5 min, then this script reuses the binaries). Output: the table on
@@ -16,17 +18,30 @@ OUT="$ROOT/target/sitting"
 mkdir -p "$OUT"
 PIN=""; command -v taskset >/dev/null && PIN="taskset -c 1"
 echo "load average before: $(cut -d' ' -f1-3 /proc/loadavg)" | tee "$OUT/load.txt"
+ALL="arm3r rrp mar ur5 panda"
+ROBOTS="${ROBOTS:-$ALL}"
+BUILD="${BUILD:-/tmp/anchors/build}"
 cd "$ROOT"
 cargo bench -p robots --bench dynamics --no-run >/dev/null 2>&1
-bash "$ANCHOR/build.sh" casadi > "$OUT/casadi-before.log" 2>&1
-rm -rf target/criterion/{arm3r,rrp,mar,ur5,panda}
-$PIN cargo bench -p robots --bench dynamics > "$OUT/ours.log" 2>&1
-bash "$ANCHOR/build.sh" casadi > "$OUT/casadi-after.log" 2>&1
-bash "$ANCHOR/build.sh" run > "$OUT/pinocchio.log" 2>&1
+rm -f "$OUT"/casadi-*.log
+[ "$ROBOTS" = "$ALL" ] && bash "$ANCHOR/build.sh" casadi > "$OUT/casadi-before.log" 2>&1
+for r in $ROBOTS; do rm -rf "target/criterion/$r"; done
+$PIN cargo bench -p robots --bench dynamics -- "^($(echo $ROBOTS | tr ' ' '|'))/" > "$OUT/ours.log" 2>&1
+if [ "$ROBOTS" = "$ALL" ]; then
+  bash "$ANCHOR/build.sh" casadi > "$OUT/casadi-after.log" 2>&1
+  bash "$ANCHOR/build.sh" run > "$OUT/pinocchio.log" 2>&1
+  PIN_CSV="$BUILD/bench_native.csv"
+else
+  args=""; for r in $ROBOTS; do args="$args $r=$BUILD/models/$r.txt"; done
+  PIN_CSV="$OUT/bench_native.csv"
+  $PIN "$BUILD/bench_native" --calls "${CALLS:-200000}" --reps "${REPS:-7}" --csv "$PIN_CSV" $args \
+    > "$OUT/pinocchio.log" 2>&1
+fi
 echo "load average after: $(cut -d' ' -f1-3 /proc/loadavg)" | tee -a "$OUT/load.txt"
-python3 - "$ROOT/target/criterion" "$OUT" "${BUILD:-/tmp/anchors/build}/bench_native.csv" <<'PY'
+python3 - "$ROOT/target/criterion" "$OUT" "$PIN_CSV" $ROBOTS <<'PY'
 import csv, glob, json, os, re, sys
 crit, out, pin_csv = sys.argv[1:4]
+robots = sys.argv[4:]
 ours = {}
 for f in glob.glob(os.path.join(crit, "*", "*", "new", "benchmark.json")):
     b = json.load(open(f))
@@ -39,15 +54,16 @@ def casadi(log):
         if m:
             d[(m.group(1), m.group(2))] = float(m.group(3))
     return d
-cb, ca = casadi(os.path.join(out, "casadi-before.log")), casadi(os.path.join(out, "casadi-after.log"))
 pin = {r["robot"]: r for r in csv.DictReader(open(pin_csv))}
-robots = ["arm3r", "rrp", "mar", "ur5", "panda"]
 def row(cells): print("| " + " | ".join(cells) + " |")
 def f(x): return f"{x:.1f}"
 print("\nMedian ns per call, thread CPU time, pinned to core 1. CasADi before / after ours.\n")
-row(["robot", "A (ours)", "CasADi crba", "ratio", "tau (ours)", "CasADi rnea", "ratio", "Pin crba", "Pin rnea"])
-row(["---"] * 9)
-for r in robots:
+has_casadi = os.path.exists(os.path.join(out, "casadi-after.log"))
+if has_casadi:
+    cb, ca = casadi(os.path.join(out, "casadi-before.log")), casadi(os.path.join(out, "casadi-after.log"))
+    row(["robot", "A (ours)", "CasADi crba", "ratio", "tau (ours)", "CasADi rnea", "ratio", "Pin crba", "Pin rnea"])
+    row(["---"] * 9)
+for r in robots if has_casadi else []:
     a, t = ours[(r, "mass_matrix")], ours[(r, "inverse_dynamics")]
     cr = (cb[(r, "crba")], ca[(r, "crba")]); rn = (cb[(r, "rnea")], ca[(r, "rnea")])
     row([r, f(a), f"{f(cr[0])} / {f(cr[1])}", f"{a/max(cr):.2f}-{a/min(cr):.2f}",
@@ -61,4 +77,11 @@ for r in robots:
     k = ours[(r, "perturbation_jacobians")]; d = float(pin[r]["rnea_derivs"])
     fw = ours[(r, "forward_dynamics")]; ab = float(pin[r]["aba"])
     row([r, f(m), f(cn), f"{m/cn:.3f}", f(k), f(d), f"{k/d:.2f}", f(fw), f(ab), f"{fw/ab:.2f}"])
+print()
+row(["robot", "fwd derivs (ours)", "Pin aba_derivs", "ratio", "A_c, B_c (ours)", "ratio", "ZOH h = 1 ms (ours)"])
+row(["---"] * 7)
+for r in robots:
+    fd = ours[(r, "forward_dynamics_derivatives")]; ss = ours[(r, "state_space")]
+    zoh = ours[(r, "zero_order_hold")]; ad = float(pin[r]["aba_derivs"])
+    row([r, f(fd), f(ad), f"{fd/ad:.2f}", f(ss), f"{ss/ad:.2f}", f(zoh)])
 PY

@@ -2,7 +2,7 @@
 
 use std::path::PathBuf;
 
-use dynamics_runtime::{Parameters, Robot};
+use dynamics_runtime::Robot;
 
 use crate::compare::compare;
 use crate::eval::evaluate;
@@ -37,25 +37,11 @@ pub fn check<R: Robot<N>, const N: usize>(
 /// name and content, if the robot has them).
 pub fn eval<R: Robot<N>, const N: usize>(
     name: &str,
-    mut robot: R,
+    robot: R,
     reference: Option<(&str, &str)>,
     states: Option<PathBuf>,
     out: Option<PathBuf>,
-    set: &[String],
 ) -> Res {
-    for s in set {
-        let (k, v) = s
-            .split_once('=')
-            .ok_or_else(|| format!("--set `{s}`: expected NAME=VALUE"))?;
-        let v: f64 = v
-            .trim()
-            .parse()
-            .map_err(|_| format!("--set `{s}`: `{v}` is not a number"))?;
-        if !v.is_finite() {
-            return Err(format!("--set `{s}`: the value must be finite").into());
-        }
-        robot.params_mut().set(k.trim(), v)?;
-    }
     let (file, text) = match &states {
         Some(path) => {
             let text =

@@ -103,6 +103,8 @@ pub fn compare(ours: &[Evaluated], reference: &Value) -> Comparison {
             ),
             ("dtau_dq", rel(&o.dtau_dq.concat(), &get("dtau_dq"))),
             ("dtau_dv", rel(&o.dtau_dv.concat(), &get("dtau_dv"))),
+            ("ddq_dq", rel(&o.ddq_dq.concat(), &get("ddq_dq"))),
+            ("ddq_dv", rel(&o.ddq_dv.concat(), &get("ddq_dv"))),
         ];
         if worst.is_empty() {
             worst = errs.iter().map(|(f, _)| (*f, 0.0)).collect();

@@ -5,13 +5,14 @@ use std::path::PathBuf;
 
 use dynamics_runtime::Robot;
 
+use crate::gap::DataFile;
 use crate::Res;
 
 /// Runs the diagnosis of `robot` on two data files and prints it.
 pub fn diagnose_cmd<R: Robot<N> + Clone + Sync, const N: usize>(
     robot: &R,
-    train: PathBuf,
-    holdout: PathBuf,
+    train: DataFile,
+    holdout: DataFile,
     json: Option<PathBuf>,
     report_dir: Option<PathBuf>,
     noise: Option<dynamics_sim2real::diagnose::SensorNoise>,
@@ -32,7 +33,7 @@ pub fn diagnose_cmd<R: Robot<N> + Clone + Sync, const N: usize>(
         ..Options::default()
     };
     let (report, warnings) =
-        crate::gap::diagnose_files(robot, &train, &holdout, &options, &progress)?;
+        crate::gap::diagnose_data(robot, &train, &holdout, &options, &progress)?;
     bar.finish_and_clear();
     for w in warnings {
         eprintln!("warning: {w}");
@@ -93,7 +94,7 @@ pub fn diagnose_cmd<R: Robot<N> + Clone + Sync, const N: usize>(
         eprintln!("wrote {}", path.display());
     }
     if let Some(dir) = report_dir {
-        let traces = crate::gap::traces_files(robot, &train, &holdout, &report, &options)?;
+        let traces = crate::gap::traces_data(robot, &train, &holdout, &report, &options)?;
         crate::report::write(&dir, &report, &traces, &options)?;
         eprintln!("wrote the report to {}", dir.join("report.md").display());
     }

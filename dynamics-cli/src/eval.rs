@@ -2,7 +2,7 @@
 //! under the field names of the Pinocchio reference files, so that our models
 //! can be compared with other toolkits.
 
-use dynamics_runtime::{DynamicsError, Robot};
+use dynamics_runtime::{linearize, DynamicsError, Robot};
 use nalgebra::SVector;
 use serde::Serialize;
 
@@ -35,6 +35,11 @@ pub struct Evaluated {
     pub dtau_dq: Vec<Vec<f64>>,
     /// Perturbation Jacobian D = d tau/dqd (Pinocchio's `dtau_dv`).
     pub dtau_dv: Vec<Vec<f64>>,
+    /// d(ddq)/dq of the forward dynamics at fixed `tau`, = -A^-1 K at
+    /// (q, v, ddq) (Pinocchio's `computeABADerivatives`).
+    pub ddq_dq: Vec<Vec<f64>>,
+    /// d(ddq)/dv at fixed `tau`, = -A^-1 D.
+    pub ddq_dv: Vec<Vec<f64>>,
     /// T.
     pub kinetic_energy: f64,
     /// Pi.
@@ -73,6 +78,7 @@ pub fn evaluate<R: Robot<N>, const N: usize>(
                     .collect()
             };
             let pj = robot.perturbation_jacobians(&q, &v, &a);
+            let fd = linearize::forward_dynamics_derivatives(robot, &q, &v, &tau)?;
             Ok(Evaluated {
                 q: s.q.clone(),
                 v: s.v.clone(),
@@ -82,13 +88,11 @@ pub fn evaluate<R: Robot<N>, const N: usize>(
                 g: robot.gravity(&q).iter().copied().collect(),
                 c: rows(&c),
                 nle: robot.nonlinear_effects(&q, &v).iter().copied().collect(),
-                ddq: robot
-                    .forward_dynamics(&q, &v, &tau)?
-                    .iter()
-                    .copied()
-                    .collect(),
+                ddq: fd.qdd.iter().copied().collect(),
                 dtau_dq: rows(&pj.k),
                 dtau_dv: rows(&pj.d),
+                ddq_dq: rows(&fd.ddq_dq),
+                ddq_dv: rows(&fd.ddq_dv),
                 kinetic_energy: robot.kinetic_energy(&q, &v),
                 potential_energy: robot.potential_energy(&q),
             })

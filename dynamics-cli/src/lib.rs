@@ -1,5 +1,9 @@
 //! The generic `dynamics` command-line program over any robot written with
-//! `robot!`: its subcommands (`commands`, `diagnose`, `identify`), evaluation at given
+//! `robot!`: [`run`] is the whole program over one robot (a user's crate
+//! needs nothing else), [`run_set`] over robots chosen by name
+//! (`program`: the command line and its dispatch); its subcommands
+//! (`commands`, `diagnose`, `identify`, `simulate`, `scaffold` for `new`), the nominal
+//! model (`tune`: `--set`, `--baseline`), evaluation at given
 //! states and comparison with reference values (`eval`, `states`,
 //! `compare`), synthetic data and the diagnosis of data files (`gap`), the
 //! readable diagnosis report (`report`) and SVG plots (`plot`).
@@ -14,8 +18,14 @@ pub mod eval;
 pub mod gap;
 pub mod identify;
 pub mod plot;
+pub mod program;
 pub mod report;
+pub mod scaffold;
+pub mod simulate;
 pub mod states;
+pub mod tune;
+
+pub use program::{run, run_set, run_with, RobotInfo, RobotSet, RobotVisitor};
 
 /// What every subcommand returns; `main` prints the error.
 pub type Res = Result<(), Box<dyn std::error::Error>>;

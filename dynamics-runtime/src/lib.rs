@@ -20,7 +20,8 @@
 //! With `default-features = false` the crate is `no_std` and allocates
 //! nothing: what generated code needs at run time (the [`Robot`] trait,
 //! [`Parameters`], [`trig`], [`fma`], [`math`], forward dynamics, the
-//! perturbation Jacobians, the errors) and the [`control`] laws. The
+//! perturbation Jacobians, the errors), the [`control`] laws and
+//! [`linearize`] (but `BlockMatrix::to_dmatrix`). The
 //! feature `std` (on by default) adds the integrators ([`ode`]),
 //! `simulate`, `Trajectory` and its CSV, program motion and the
 //! perturbation response.
@@ -33,6 +34,7 @@ mod constraint;
 pub mod control;
 mod error;
 pub mod fma;
+pub mod linearize;
 pub mod math;
 mod params;
 mod robot;

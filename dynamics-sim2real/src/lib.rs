@@ -9,11 +9,13 @@
 //! | [`data`] | measured data: CSV files in and out ([`data::Measured`]) |
 //! | [`Warning`] | what the reader repaired and what the data cannot show, with place and figure |
 //! | [`diagnose`] | the gap diagnosis: where the model misses, which effects explain it, how far the gap shrinks on held-out data |
+//! | [`baseline`] | a diagnosis report's effects read back as effects on the robot (a calibrated baseline; with [`effects::Calibrated`]) |
 //! | [`identify`] | the plain least-squares identification baseline: friction, offsets, rotor inertia and link inertial parameters (base parameters), held-out shrink |
 //! | [`inertial`] | a link's ten inertial parameters: mass properties, corrections in words, physical consistency |
 //!
 //! `dynamics-runtime` stays the small runtime the generated code needs.
 
+pub mod baseline;
 pub mod data;
 pub mod diagnose;
 pub mod effects;

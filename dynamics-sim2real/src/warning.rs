@@ -18,6 +18,13 @@ use serde::Serialize;
 #[derive(Debug, Clone, PartialEq, Serialize)]
 #[serde(tag = "kind", rename_all = "snake_case")]
 pub enum Warning {
+    /// What the importer of a recorded file ([`crate::data::import`]) notes
+    /// (a layout read sample by sample, a clock counted from its first
+    /// sample), with its place.
+    Imported {
+        /// The sentence, beginning with the file.
+        message: String,
+    },
     /// A column of the file that no joint uses.
     ColumnIgnored {
         /// The file.
@@ -115,6 +122,7 @@ pub enum Warning {
 impl fmt::Display for Warning {
     fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
         match self {
+            Warning::Imported { message } => write!(f, "{message}"),
             Warning::ColumnIgnored { file, column } => write!(f, "{file}: column `{column}` ignored"),
             Warning::Resampled { file, interval, jitter, min, max } => write!(
                 f,

@@ -17,7 +17,9 @@
 
 use dynamics_runtime::control::{ComputedTorque, Controller, Reference};
 use dynamics_runtime::nalgebra::{SMatrix, SVector};
-use dynamics_runtime::{Constrained, DynamicsError, Parameters, PerturbationJacobians, Robot};
+use dynamics_runtime::{
+    linearize, Constrained, DynamicsError, Parameters, PerturbationJacobians, Robot,
+};
 
 /// Halts: a controller's firmware would log and stop the drives here.
 #[panic_handler]
@@ -118,6 +120,19 @@ macro_rules! outputs {
                 u: &SVector<f64, $n>,
             ) -> Result<SVector<f64, $n>, DynamicsError> {
                 r.forward_dynamics(q, qd, u)
+            }
+
+            /// The zero-order-hold model of a step `h` about (q, qd, u):
+            /// forward-dynamics derivatives, state space, matrix exponential.
+            pub fn discrete_model(
+                r: &$robot,
+                q: &SVector<f64, $n>,
+                qd: &SVector<f64, $n>,
+                u: &SVector<f64, $n>,
+                h: f64,
+            ) -> Option<linearize::DiscreteStateSpace<$n>> {
+                let ss = linearize::state_space(r, q, qd, u).ok()?;
+                ss.discretize(h).ok()
             }
 
             /// The inertial regressor, one N x 10 block per link of

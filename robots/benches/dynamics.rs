@@ -9,7 +9,7 @@ use std::hint::black_box;
 
 use criterion::measurement::Measurement;
 use criterion::{criterion_group, criterion_main, Criterion};
-use dynamics_runtime::Robot;
+use dynamics_runtime::{linearize, Robot};
 use nalgebra::SVector;
 
 const STATES: usize = 1000;
@@ -104,6 +104,39 @@ fn bench_robot<R: Robot<N>, const N: usize, M: Measurement>(
         b.iter(|| {
             let [q, v, a] = next();
             black_box(r.forward_dynamics(black_box(q), black_box(v), black_box(a)))
+        })
+    });
+    group.bench_function("forward_dynamics_derivatives (ddq/dq, ddq/dqd)", |b| {
+        b.iter(|| {
+            let [q, v, a] = next();
+            black_box(linearize::forward_dynamics_derivatives(
+                r,
+                black_box(q),
+                black_box(v),
+                black_box(a),
+            ))
+        })
+    });
+    group.bench_function("state_space (A_c, B_c)", |b| {
+        b.iter(|| {
+            let [q, v, a] = next();
+            black_box(linearize::state_space(
+                r,
+                black_box(q),
+                black_box(v),
+                black_box(a),
+            ))
+        })
+    });
+    let models: Vec<_> = s
+        .iter()
+        .filter_map(|[q, v, a]| linearize::state_space(r, q, v, a).ok())
+        .collect();
+    let mut m = 0usize;
+    group.bench_function("zero_order_hold (A_d, B_d, h = 1 ms)", |b| {
+        b.iter(|| {
+            m = (m + 1) % models.len();
+            black_box(black_box(&models[m]).discretize(1e-3))
         })
     });
     group.finish();

@@ -83,3 +83,120 @@ pub fn traces_files(
 ) -> Result<Traces, GapError> {
     crate::each_robot!(&robot(name)?, r => gap::traces_files(r, train, holdout, report, options))
 }
+
+/// The built-in robots as a [`dynamics_cli::RobotSet`]: what the
+/// `dynamics` program runs on (`dynamics_cli::run_set(&Builtin)`), with the
+/// seed scenarios as an extra subcommand and the built-in diagnosis case
+/// as what it does without one.
+#[derive(Debug, Clone, Copy, Default)]
+pub struct Builtin;
+
+/// The robots whose shipped reference values are of that very model.
+const REFERENCE_VALUES: &[&str] = &[
+    "arm3r",
+    "rrp-rigid",
+    "mar",
+    "ur5",
+    "panda",
+    "arm3r-urdf",
+    "rrp-urdf",
+    "mar-urdf",
+];
+
+impl dynamics_cli::RobotSet for Builtin {
+    fn robots(&self) -> Vec<(String, String)> {
+        ROBOTS
+            .iter()
+            .map(|(n, d)| (n.to_string(), d.to_string()))
+            .collect()
+    }
+
+    fn visit<V: dynamics_cli::RobotVisitor>(&self, name: &str, visitor: V) -> Option<V::Output> {
+        let robot = AnyRobot::by_name(name).ok()?;
+        let (file, text) = robot.reference();
+        let info = dynamics_cli::RobotInfo {
+            name: name.to_string(),
+            states: Some((file.to_string(), text.to_string())),
+            reference_values: REFERENCE_VALUES.contains(&name),
+            motion: motion(name),
+        };
+        Some(crate::each_robot!(robot, r => visitor.visit(r, &info)))
+    }
+
+    fn default_robot(&self) -> Option<String> {
+        Some("arm3r".into())
+    }
+
+    fn commands(&self) -> Vec<clap::Command> {
+        vec![clap::Command::new("scenario")
+            .about("Run a scenario of the seeds by name, writing CSV and SVG plots")
+            .arg(clap::Arg::new("name").help("Scenario name; omit to list them"))
+            .arg(
+                clap::Arg::new("out")
+                    .long("out")
+                    .value_parser(clap::value_parser!(std::path::PathBuf))
+                    .help("Output folder (default `out/NAME`)"),
+            )]
+    }
+
+    fn run_command(&self, name: &str, m: &clap::ArgMatches) -> dynamics_cli::Res {
+        if name != "scenario" {
+            return Err(format!("no subcommand `{name}`").into());
+        }
+        let Some(scenario) = m.get_one::<String>("name") else {
+            for (n, what) in crate::scenarios::SCENARIOS {
+                println!("{n:14} {what}");
+            }
+            return Ok(());
+        };
+        let dir = m
+            .get_one::<std::path::PathBuf>("out")
+            .cloned()
+            .unwrap_or_else(|| std::path::PathBuf::from("out").join(scenario));
+        let lines = crate::scenarios::run(scenario, &dir)?;
+        println!("{scenario}: outputs in {}", dir.display());
+        for l in lines {
+            println!("  {l}");
+        }
+        Ok(())
+    }
+
+    /// The built-in case: Coulomb friction withheld at arm3r's j2,
+    /// generated in memory and diagnosed; the truth is printed after the
+    /// verdict.
+    fn demo(&self, args: &dynamics_cli::program::args::DiagnoseArgs) -> dynamics_cli::Res {
+        let dir = std::env::temp_dir().join(format!("dynamics-demo-{}", std::process::id()));
+        std::fs::create_dir_all(&dir)?;
+        let req = SynthRequest {
+            robot: "arm3r".into(),
+            kind: Some("coulomb_friction".parse()?),
+            joint: Some("j2".into()),
+            magnitude: Some(0.3),
+            seed: 7,
+            excitation: "sines".parse()?,
+            duration: 8.0,
+            noise: Default::default(),
+        };
+        eprintln!("built-in case: arm3r following sines, 8 s at 1 kHz, with a withheld effect (not told to the diagnoser)");
+        let data = synth(&req)?;
+        let (a, b) = (dir.join("train.csv"), dir.join("holdout.csv"));
+        std::fs::write(&a, &data.train)?;
+        std::fs::write(&b, &data.holdout)?;
+        let result = dynamics_cli::diagnose::diagnose_cmd(
+            &crate::Arm3r::default(),
+            dynamics_cli::gap::DataFile::csv(a),
+            dynamics_cli::gap::DataFile::csv(b),
+            args.json.clone(),
+            args.report.clone(),
+            args.noise(),
+        );
+        let _ = std::fs::remove_dir_all(&dir);
+        result?;
+        println!(
+            "truth of the built-in case (read after the verdict): {} at {}",
+            data.truth.kind,
+            data.truth.joint.unwrap_or_default()
+        );
+        Ok(())
+    }
+}

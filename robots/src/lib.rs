@@ -31,7 +31,7 @@ pub use mar::{Mar, MarParams};
 pub use piston::{Piston, PistonParams};
 pub use rrp::{Rrp, RrpParams};
 pub use urdf_robots::{
-    Arm3rUrdf, MarUrdf, Panda, PandaParams, PandaPayload, RrpUrdf, Ur5, Ur5Params,
+    Arm3rUrdf, MarUrdf, Panda, PandaArm, PandaParams, PandaPayload, RrpUrdf, Ur5, Ur5Params,
 };
 
 /// The README's example, compiled and run as a doc test.

@@ -3,7 +3,7 @@
 use dynamics_runtime::{DynamicsError, Parameters, Robot};
 use thiserror::Error;
 
-use crate::{Arm3r, Arm3rUrdf, Mar, MarUrdf, Panda, Rrp, RrpUrdf, Ur5};
+use crate::{Arm3r, Arm3rUrdf, Mar, MarUrdf, Panda, PandaArm, Rrp, RrpUrdf, Ur5};
 use dynamics_cli::eval::{evaluate, Evaluated};
 use dynamics_cli::states::{self, StatesError};
 
@@ -32,6 +32,10 @@ pub const ROBOTS: &[(&str, &str)] = &[
         "panda-damped",
         "the Panda with the URDF's joint damping (7 DOF)",
     ),
+    (
+        "panda-arm",
+        "the Panda without its hand, as in Gaz et al.'s logs (7 DOF)",
+    ),
     ("arm3r-urdf", "arm3r read from its URDF (3 DOF)"),
     ("rrp-urdf", "the RRP arm read from its URDF, rigid (3 DOF)"),
     ("mar-urdf", "the MAR read from its URDF (3 DOF)"),
@@ -50,6 +54,8 @@ pub enum AnyRobot {
     Ur5(Ur5),
     /// [`Panda`]
     Panda(Panda),
+    /// [`PandaArm`]
+    PandaArm(PandaArm),
     /// [`Arm3rUrdf`]
     Arm3rUrdf(Arm3rUrdf),
     /// [`RrpUrdf`]
@@ -83,6 +89,7 @@ macro_rules! each_robot {
             $crate::registry::AnyRobot::Mar($r) => $body,
             $crate::registry::AnyRobot::Ur5($r) => $body,
             $crate::registry::AnyRobot::Panda($r) => $body,
+            $crate::registry::AnyRobot::PandaArm($r) => $body,
             $crate::registry::AnyRobot::Arm3rUrdf($r) => $body,
             $crate::registry::AnyRobot::RrpUrdf($r) => $body,
             $crate::registry::AnyRobot::MarUrdf($r) => $body,
@@ -98,6 +105,7 @@ macro_rules! each {
             AnyRobot::Mar($r) => $body,
             AnyRobot::Ur5($r) => $body,
             AnyRobot::Panda($r) => $body,
+            AnyRobot::PandaArm($r) => $body,
             AnyRobot::Arm3rUrdf($r) => $body,
             AnyRobot::RrpUrdf($r) => $body,
             AnyRobot::MarUrdf($r) => $body,
@@ -123,6 +131,7 @@ impl AnyRobot {
             "ur5" => AnyRobot::Ur5(Ur5::default()),
             "panda" => AnyRobot::Panda(Panda::rigid()),
             "panda-damped" => AnyRobot::Panda(Panda::default()),
+            "panda-arm" => AnyRobot::PandaArm(PandaArm::rigid()),
             "arm3r-urdf" => AnyRobot::Arm3rUrdf(Arm3rUrdf::default()),
             "rrp-urdf" => AnyRobot::RrpUrdf(RrpUrdf::rigid()),
             "mar-urdf" => AnyRobot::MarUrdf(MarUrdf::default()),
@@ -151,7 +160,9 @@ impl AnyRobot {
         Ok(each!(self, r => evaluate(r, &states)?))
     }
 
-    /// The Pinocchio reference states shipped for this robot's rigid body.
+    /// The Pinocchio reference states shipped for this robot's rigid body
+    /// (`panda-arm` shares the Panda's states; its values are the hand's
+    /// model, so `dynamics check` leaves it out).
     pub fn reference(&self) -> (&'static str, &'static str) {
         match self {
             AnyRobot::Arm3r(_) | AnyRobot::Arm3rUrdf(_) => {
@@ -164,7 +175,9 @@ impl AnyRobot {
                 ("mar.json", include_str!("../data/pinocchio/mar.json"))
             }
             AnyRobot::Ur5(_) => ("ur5.json", include_str!("../data/pinocchio/ur5.json")),
-            AnyRobot::Panda(_) => ("panda.json", include_str!("../data/pinocchio/panda.json")),
+            AnyRobot::Panda(_) | AnyRobot::PandaArm(_) => {
+                ("panda.json", include_str!("../data/pinocchio/panda.json"))
+            }
         }
     }
 }

@@ -202,7 +202,7 @@ fn bad_input_is_a_clear_error() {
         (vec!["eval", "--robot", "r2d2"], "unknown robot `r2d2`"),
         (
             vec!["eval", "--robot", "arm3r", "--set", "mass=1"],
-            "unknown parameter `mass`",
+            "no parameter `mass`; known: m, b1, b2, b3",
         ),
         (
             vec!["eval", "--robot", "arm3r", "--set", "m=abc"],

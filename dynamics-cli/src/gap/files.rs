@@ -4,11 +4,10 @@
 use std::path::Path;
 
 use dynamics_runtime::Robot;
-use dynamics_sim2real::data::read_csv;
 use dynamics_sim2real::diagnose::traces::{traces, Traces};
 use dynamics_sim2real::diagnose::{diagnose, Options, Report};
 
-use super::GapError;
+use super::{DataFile, GapError};
 
 /// Diagnoses `train` against `holdout` (CSV files) for `robot`; the
 /// report's warnings (reading and preparing the files, what the data
@@ -20,8 +19,25 @@ pub fn diagnose_files<R: Robot<N> + Clone + Sync, const N: usize>(
     options: &Options,
     progress: &(dyn Fn(usize, usize) + Sync),
 ) -> Result<(Report, Vec<String>), GapError> {
-    let a = read_csv(train, &R::JOINT_NAMES)?;
-    let b = read_csv(holdout, &R::JOINT_NAMES)?;
+    diagnose_data(
+        robot,
+        &DataFile::csv(train),
+        &DataFile::csv(holdout),
+        options,
+        progress,
+    )
+}
+
+/// [`diagnose_files`] on data files of any layout ([`DataFile`]).
+pub fn diagnose_data<R: Robot<N> + Clone + Sync, const N: usize>(
+    robot: &R,
+    train: &DataFile,
+    holdout: &DataFile,
+    options: &Options,
+    progress: &(dyn Fn(usize, usize) + Sync),
+) -> Result<(Report, Vec<String>), GapError> {
+    let a = train.read(&R::JOINT_NAMES)?;
+    let b = holdout.read(&R::JOINT_NAMES)?;
     let report = diagnose(robot, &a, &b, options, progress)?;
     let warnings = report.warnings.iter().map(ToString::to_string).collect();
     Ok((report, warnings))
@@ -38,6 +54,23 @@ pub fn traces_files<R: Robot<N> + Clone, const N: usize>(
     report: &Report,
     options: &Options,
 ) -> Result<Traces, GapError> {
+    traces_data(
+        robot,
+        &DataFile::csv(train),
+        &DataFile::csv(holdout),
+        report,
+        options,
+    )
+}
+
+/// [`traces_files`] on data files of any layout ([`DataFile`]).
+pub fn traces_data<R: Robot<N> + Clone, const N: usize>(
+    robot: &R,
+    train: &DataFile,
+    holdout: &DataFile,
+    report: &Report,
+    options: &Options,
+) -> Result<Traces, GapError> {
     let chosen = report
         .which
         .verdict
@@ -50,12 +83,12 @@ pub fn traces_files<R: Robot<N> + Clone, const N: usize>(
 
 fn traces_for<R: Robot<N> + Clone, const N: usize>(
     robot: &R,
-    train: &Path,
-    holdout: &Path,
+    train: &DataFile,
+    holdout: &DataFile,
     chosen: Option<&dynamics_sim2real::diagnose::Ranked>,
     noise: Option<&dynamics_sim2real::diagnose::SensorNoise>,
 ) -> Result<Traces, GapError> {
-    let a = read_csv(train, &R::JOINT_NAMES)?;
-    let b = read_csv(holdout, &R::JOINT_NAMES)?;
+    let a = train.read(&R::JOINT_NAMES)?;
+    let b = holdout.read(&R::JOINT_NAMES)?;
     Ok(traces(robot, &a, &b, chosen, noise)?)
 }

@@ -3,11 +3,14 @@
 //! data files (`dynamics diagnose`, `files.rs`).
 
 mod files;
+mod source;
 mod synth;
 
-pub use files::{diagnose_files, traces_files};
+pub use files::{diagnose_data, diagnose_files, traces_data, traces_files};
+pub use source::{parse_window, DataFile};
 pub use synth::{synth, synth_recorded, Motion, Recording, SynthOutput, SynthRequest, Truth};
 
+use dynamics_sim2real::data::import::ImportError;
 use dynamics_sim2real::data::DataError;
 use dynamics_sim2real::diagnose::traces::TracesError;
 use dynamics_sim2real::diagnose::DiagnoseError;
@@ -28,6 +31,9 @@ pub enum GapError {
     /// Reading data.
     #[error(transparent)]
     Data(#[from] DataError),
+    /// Reading a recorded file through a column map.
+    #[error(transparent)]
+    Import(#[from] ImportError),
     /// Generating data.
     #[error(transparent)]
     Synth(#[from] SynthError),

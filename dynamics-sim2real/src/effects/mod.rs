@@ -5,13 +5,16 @@
 //! sensor faults applied to what is measured.
 //!
 //! [`Plant`] is a robot with effects attached; [`PlantSim`] integrates it.
+//! [`Calibrated`] folds known force effects into a robot's nominal model.
 
+mod calibrated;
 mod effect;
 mod inertial;
 mod kind;
 mod plant;
 mod tip;
 
+pub use calibrated::{Calibrated, CalibratedError};
 pub use effect::{smooth_sign, Effect, SIGN_SMOOTHING};
 pub use kind::{EffectKind, PlaceKind, UnknownEffect};
 pub use plant::{Plant, PlantError, PlantSim, PlantState, Switch};

@@ -7,6 +7,7 @@ mod effects;
 mod elastic_grip;
 mod environment;
 mod identify;
+mod linearize;
 mod logs;
 mod mar_eq10;
 mod mar_vibration;

@@ -1,0 +1,169 @@
+//! One subcommand on one robot: the nominal model made (`--set`,
+//! `--baseline`), then the subcommand's module called.
+
+use std::path::Path;
+
+use dynamics_runtime::Robot;
+use dynamics_sim2real::effects::Calibrated;
+
+use super::args::{BaselineArgs, CheckArgs, ModelArgs, RobotCommand};
+use super::{RobotInfo, RobotVisitor};
+use crate::tune::{apply_set, read_baseline};
+use crate::Res;
+
+/// The robot with `--set` applied and the `--baseline` effects folded in.
+fn nominal<R: Robot<N>, const N: usize>(
+    mut robot: R,
+    model: &ModelArgs,
+    baseline: Option<&BaselineArgs>,
+) -> Result<Calibrated<R, N>, Box<dyn std::error::Error>> {
+    apply_set(&mut robot, &model.set)?;
+    let effects = match baseline.and_then(|b| b.baseline.as_deref()) {
+        Some(path) => {
+            let effects = read_baseline::<R, N>(path)?;
+            eprintln!(
+                "baseline from {}: {}",
+                path.display(),
+                if effects.is_empty() {
+                    "no effects (its verdict names none)".to_string()
+                } else {
+                    effects
+                        .iter()
+                        .map(|e| format!("{e:?}"))
+                        .collect::<Vec<_>>()
+                        .join("; ")
+                }
+            );
+            effects
+        }
+        None => Vec::new(),
+    };
+    Ok(Calibrated::new(robot, effects).map_err(|e| format!("--baseline: {e}"))?)
+}
+
+/// Runs `command` on `robot`.
+pub fn run_on<R: Robot<N> + Clone + Sync, const N: usize>(
+    robot: R,
+    info: &RobotInfo,
+    command: RobotCommand,
+) -> Res {
+    match command {
+        RobotCommand::Check(args) => match check(robot, info, &args)? {
+            Some(true) => Ok(()),
+            Some(false) => Err("some values differ from the reference by more than 1e-10".into()),
+            None => Err(format!(
+                "no reference values for `{}`: give --reference FILE.json",
+                info.name
+            )
+            .into()),
+        },
+        RobotCommand::Eval(args) => {
+            let robot = nominal(robot, &args.model, Some(&args.baseline))?;
+            let states = info.states.as_ref().map(|(f, t)| (f.as_str(), t.as_str()));
+            crate::commands::eval(&info.name, robot, states, args.states, args.out)
+        }
+        RobotCommand::Simulate(args) => {
+            let robot = nominal(robot, &args.model, Some(&args.baseline))?;
+            crate::simulate::simulate(&robot, info, &args)
+        }
+        RobotCommand::Synth(a) => {
+            let robot = nominal(robot, &a.model, Some(&a.baseline))?;
+            crate::commands::synth_cmd(
+                &robot,
+                &info.motion,
+                &info.name,
+                a.effect,
+                a.joint,
+                a.magnitude,
+                a.seed,
+                &a.excitation,
+                a.duration,
+                [a.noise_q, a.noise_qd, a.noise_tau],
+                &a.out,
+                a.truth,
+                &crate::gap::Recording {
+                    rate: a.rate,
+                    damage: dynamics_sim2real::synth::Damage {
+                        jitter: a.jitter,
+                        repeats: a.repeats,
+                        holes: a.holes,
+                        glitches: a.glitches,
+                        q_late: a.q_late,
+                        ..Default::default()
+                    },
+                },
+            )
+        }
+        RobotCommand::Diagnose(a) => {
+            let noise = a.noise();
+            let robot = nominal(robot, &a.model, Some(&a.baseline))?;
+            let (Some(train), Some(holdout)) = (a.train.clone(), a.holdout.clone()) else {
+                return Err("give --train and --holdout (data files to diagnose)".into());
+            };
+            let (train, holdout) = a.data_files(train, holdout)?;
+            crate::diagnose::diagnose_cmd(&robot, train, holdout, a.json, a.report, noise)
+        }
+        RobotCommand::Identify(a) => {
+            let robot = nominal(robot, &a.model, None)?;
+            crate::identify::identify_cmd(&robot, a.train, a.holdout, a.json)
+        }
+    }
+}
+
+/// `check` on one robot: `None` when there are no reference values.
+fn check<R: Robot<N>, const N: usize>(
+    robot: R,
+    info: &RobotInfo,
+    args: &CheckArgs,
+) -> Result<Option<bool>, Box<dyn std::error::Error>> {
+    let robot = nominal(robot, &args.model, None)?;
+    let (file, text) = match &args.reference {
+        Some(path) => (
+            path.display().to_string(),
+            std::fs::read_to_string(path).map_err(|e| format!("{}: {e}", path.display()))?,
+        ),
+        None => match (&info.states, info.reference_values) {
+            (Some((f, t)), true) => (f.clone(), t.clone()),
+            _ => return Ok(None),
+        },
+    };
+    let name = Path::new(&file)
+        .file_name()
+        .map(|f| f.to_string_lossy().to_string())
+        .unwrap_or(file.clone());
+    println!(
+        "{} against {name} (worst relative error per field)",
+        info.name
+    );
+    Ok(Some(crate::commands::check(
+        &info.name, &robot, &file, &text,
+    )?))
+}
+
+/// Runs a subcommand on the robot visited.
+pub struct Run(pub RobotCommand);
+
+impl RobotVisitor for Run {
+    type Output = Res;
+    fn visit<R: Robot<N> + Clone + Sync, const N: usize>(self, robot: R, info: &RobotInfo) -> Res {
+        run_on(robot, info, self.0)
+    }
+}
+
+/// `check` on the robot visited if it has reference values: whether all
+/// are within 1e-10, `None` when it has none.
+pub struct CheckIfReference<'a>(pub &'a CheckArgs);
+
+impl RobotVisitor for CheckIfReference<'_> {
+    type Output = Result<Option<bool>, Box<dyn std::error::Error>>;
+    fn visit<R: Robot<N> + Clone + Sync, const N: usize>(
+        self,
+        robot: R,
+        info: &RobotInfo,
+    ) -> Self::Output {
+        if !info.reference_values {
+            return Ok(None);
+        }
+        check(robot, info, self.0)
+    }
+}

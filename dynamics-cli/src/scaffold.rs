@@ -1,0 +1,372 @@
+//! `dynamics new DIR --urdf FILE`: a ready crate for a user's own robot —
+//! Cargo.toml, the URDF copied beside it, `src/main.rs` with the `robot!`
+//! call and one line that hands `main` to the generic program
+//! ([`crate::run`]). The inputs are checked first, the URDF by the macro's
+//! own pipeline (`dynamics_codegen::expand`), so that a crate that is
+//! written also builds.
+
+use std::path::{Path, PathBuf};
+
+use clap::Args;
+use thiserror::Error;
+
+/// `new`.
+#[derive(Args, Debug, Clone)]
+pub struct NewArgs {
+    /// Folder to create (must not exist, or be empty).
+    pub dir: PathBuf,
+    /// The robot's URDF file.
+    #[arg(long, value_name = "FILE")]
+    pub urdf: PathBuf,
+    /// The robot's Rust type name (default: the URDF's robot name in UpperCamelCase).
+    #[arg(long, value_name = "TypeName")]
+    pub name: Option<String>,
+    /// Gravity in the world frame, m/s^2.
+    #[arg(
+        long,
+        value_name = "X,Y,Z",
+        default_value = "0,0,-9.81",
+        allow_hyphen_values = true
+    )]
+    pub gravity: String,
+    /// The dynamics workspace the crate depends on by path (default: the checkout this program
+    /// was built from).
+    #[arg(long, value_name = "WORKSPACE", conflicts_with = "registry")]
+    pub path: Option<PathBuf>,
+    /// Depend on the crates' registry versions instead of a checkout.
+    #[arg(long)]
+    pub registry: bool,
+}
+
+/// Why a crate could not be written.
+#[derive(Debug, Error)]
+pub enum NewError {
+    /// The target folder exists and is not empty (or is a file).
+    #[error("{dir}: exists and is not an empty folder; choose a new one")]
+    Occupied {
+        /// The folder.
+        dir: String,
+    },
+    /// The URDF file cannot be read.
+    #[error("--urdf {file}: {source}")]
+    Urdf {
+        /// The file.
+        file: String,
+        /// The cause.
+        source: std::io::Error,
+    },
+    /// The URDF does not make a robot.
+    #[error("--urdf {file}: {message}")]
+    Model {
+        /// The file.
+        file: String,
+        /// The macro's error(s).
+        message: String,
+    },
+    /// Not a Rust type name.
+    #[error("--name `{0}`: not a Rust type name in UpperCamelCase (a capital letter, then letters and digits)")]
+    Name(String),
+    /// Not three finite numbers.
+    #[error("--gravity `{0}`: expected three finite numbers x,y,z (m/s^2)")]
+    Gravity(String),
+    /// No dynamics workspace there.
+    #[error("{path}: not a checkout of the dynamics workspace (no dynamics-cli/Cargo.toml there); give --path WORKSPACE or --registry")]
+    Workspace {
+        /// The path.
+        path: String,
+    },
+    /// Writing failed.
+    #[error("{path}: {source}")]
+    Io {
+        /// The file.
+        path: String,
+        /// The cause.
+        source: std::io::Error,
+    },
+}
+
+/// The checkout this program was built from.
+fn built_from() -> PathBuf {
+    Path::new(env!("CARGO_MANIFEST_DIR"))
+        .parent()
+        .map(Path::to_path_buf)
+        .unwrap_or_default()
+}
+
+/// Parses `x,y,z`.
+///
+/// ```
+/// use dynamics_cli::scaffold::gravity;
+/// assert_eq!(gravity("0, 0, -9.81").unwrap(), [0.0, 0.0, -9.81]);
+/// assert!(gravity("0,-9.81").is_err());
+/// assert!(gravity("0,0,nan").is_err());
+/// ```
+pub fn gravity(text: &str) -> Result<[f64; 3], NewError> {
+    let v: Vec<f64> = text
+        .split(',')
+        .map(|s| s.trim().parse::<f64>())
+        .collect::<Result<_, _>>()
+        .map_err(|_| NewError::Gravity(text.into()))?;
+    match v.as_slice() {
+        [x, y, z] if v.iter().all(|c| c.is_finite()) => Ok([*x, *y, *z]),
+        _ => Err(NewError::Gravity(text.into())),
+    }
+}
+
+/// Whether `name` is an UpperCamelCase Rust type name.
+///
+/// ```
+/// use dynamics_cli::scaffold::type_name_ok;
+/// assert!(type_name_ok("MyUr5"));
+/// assert!(!type_name_ok("my_ur5") && !type_name_ok("5Axis") && !type_name_ok("Self"));
+/// ```
+pub fn type_name_ok(name: &str) -> bool {
+    let mut chars = name.chars();
+    chars.next().is_some_and(|c| c.is_ascii_uppercase())
+        && chars.all(|c| c.is_ascii_alphanumeric())
+        && name != "Self"
+}
+
+/// UpperCamelCase of a URDF robot name (`ur5_arm` -> `Ur5Arm`).
+fn camel(name: &str) -> String {
+    let out: String = name
+        .split(|c: char| !c.is_ascii_alphanumeric())
+        .filter(|w| !w.is_empty())
+        .map(|w| {
+            let mut c = w.chars();
+            c.next()
+                .map(|f| f.to_ascii_uppercase().to_string() + c.as_str())
+                .unwrap_or_default()
+        })
+        .collect();
+    if out.starts_with(|c: char| c.is_ascii_uppercase()) {
+        out
+    } else {
+        format!("Robot{out}")
+    }
+}
+
+/// The `name` attribute of the URDF's `<robot>` element.
+fn urdf_robot_name(text: &str) -> Option<String> {
+    let start = text.find("<robot")?;
+    let tag = &text[start..start + text[start..].find('>')?];
+    let at = tag.find("name")?;
+    let rest = tag[at + 4..].trim_start().strip_prefix('=')?.trim_start();
+    let quote = rest.chars().next().filter(|c| *c == '"' || *c == '\'')?;
+    let rest = &rest[1..];
+    Some(rest[..rest.find(quote)?].to_string())
+}
+
+/// A package name from the folder's name.
+fn package_name(dir: &Path) -> String {
+    let raw = dir
+        .file_name()
+        .map(|f| f.to_string_lossy().to_lowercase())
+        .unwrap_or_default();
+    let name: String = raw
+        .chars()
+        .map(|c| if c.is_ascii_alphanumeric() { c } else { '-' })
+        .collect();
+    let name = name.trim_matches('-').to_string();
+    if name.starts_with(|c: char| c.is_ascii_lowercase()) {
+        name
+    } else {
+        format!("robot-{name}").trim_end_matches('-').to_string()
+    }
+}
+
+/// The `robot!` body the crate gets.
+fn robot_body(name: &str, g: [f64; 3], urdf: &str) -> String {
+    format!(
+        "pub robot {name};\n    gravity = [{:?}, {:?}, {:?}];\n    urdf = {urdf:?};",
+        g[0], g[1], g[2]
+    )
+}
+
+/// The macro's own verdict on the robot: its `compile_error!` messages.
+fn check_model(body: &str, base_dir: &Path) -> Result<(), String> {
+    let tokens: proc_macro2::TokenStream = body.parse().map_err(|e| format!("{e}"))?;
+    let options = dynamics_codegen::Options {
+        base_dir: base_dir.to_path_buf(),
+        ir_dir: None,
+    };
+    let out = dynamics_codegen::expand(tokens, &options).to_string();
+    let mut messages = Vec::new();
+    let mut rest = out.as_str();
+    while let Some(at) = rest.find("compile_error") {
+        rest = &rest[at..];
+        let Some(open) = rest.find('"') else { break };
+        let mut msg = String::new();
+        let mut chars = rest[open + 1..].char_indices();
+        let mut end = rest.len();
+        while let Some((i, c)) = chars.next() {
+            match c {
+                '\\' => {
+                    if let Some((_, e)) = chars.next() {
+                        msg.push(if e == 'n' { '\n' } else { e });
+                    }
+                }
+                '"' => {
+                    end = open + 1 + i;
+                    break;
+                }
+                c => msg.push(c),
+            }
+        }
+        messages.push(msg);
+        rest = &rest[end.min(rest.len())..];
+    }
+    if messages.is_empty() {
+        Ok(())
+    } else {
+        Err(messages.join("; "))
+    }
+}
+
+/// What `new` writes: (relative path, content).
+fn files(
+    package: &str,
+    name: &str,
+    body: &str,
+    urdf_file: &str,
+    deps: &str,
+) -> Vec<(String, String)> {
+    let cargo = format!(
+        r#"[package]
+name = "{package}"
+version = "0.1.0"
+edition = "2021"
+publish = false
+
+[dependencies]
+{deps}
+# Its own workspace: builds outside the dynamics workspace.
+[workspace]
+
+[profile.release]
+debug = false
+"#
+    );
+    let main = format!(
+        r#"//! The `dynamics` program for the robot of `{urdf_file}` (written by
+//! `dynamics new`): `eval`, `check --reference`, `simulate`, `synth` and
+//! `diagnose`, with `--set NAME=VALUE` and `--baseline FILE.json`; see `--help`.
+
+dynamics_macros::robot! {{
+    /// The robot of `{urdf_file}`.
+    {body}
+}}
+
+fn main() -> std::process::ExitCode {{
+    dynamics_cli::run({name}::default())
+}}
+"#
+    );
+    vec![
+        ("Cargo.toml".into(), cargo),
+        ("src/main.rs".into(), main),
+        (".gitignore".into(), "/target\n".into()),
+    ]
+}
+
+/// Runs `dynamics new`.
+pub fn new(args: &NewArgs) -> crate::Res {
+    let dir = &args.dir;
+    let io = |path: &Path| {
+        let path = path.display().to_string();
+        move |source| NewError::Io { path, source }
+    };
+    if dir.exists() {
+        let empty = dir.is_dir() && std::fs::read_dir(dir).map_err(io(dir))?.next().is_none();
+        if !empty {
+            return Err(NewError::Occupied {
+                dir: dir.display().to_string(),
+            }
+            .into());
+        }
+    }
+    let urdf_name = args.urdf.display().to_string();
+    let text = std::fs::read_to_string(&args.urdf).map_err(|source| NewError::Urdf {
+        file: urdf_name.clone(),
+        source,
+    })?;
+    let name = match &args.name {
+        Some(n) => n.clone(),
+        None => camel(&urdf_robot_name(&text).unwrap_or_else(|| package_name(dir))),
+    };
+    if !type_name_ok(&name) {
+        return Err(NewError::Name(name).into());
+    }
+    let g = gravity(&args.gravity)?;
+    let file_name = args
+        .urdf
+        .file_name()
+        .map(|f| f.to_string_lossy().to_string())
+        .unwrap_or_else(|| "robot.urdf".into());
+    let body = robot_body(&name, g, &file_name);
+    let source_dir = args.urdf.parent().unwrap_or(Path::new("."));
+    let source_dir = if source_dir.as_os_str().is_empty() {
+        Path::new(".")
+    } else {
+        source_dir
+    };
+    check_model(&body, source_dir).map_err(|message| NewError::Model {
+        file: urdf_name.clone(),
+        message,
+    })?;
+    let version = env!("CARGO_PKG_VERSION");
+    let (deps, workspace) = if args.registry {
+        (
+            format!("dynamics-macros = \"{version}\"\ndynamics-runtime = \"{version}\"\ndynamics-cli = \"{version}\"\n"),
+            None,
+        )
+    } else {
+        let ws = args.path.clone().unwrap_or_else(built_from);
+        let ws = std::fs::canonicalize(&ws).unwrap_or(ws);
+        if !ws.join("dynamics-cli").join("Cargo.toml").is_file() {
+            return Err(NewError::Workspace {
+                path: ws.display().to_string(),
+            }
+            .into());
+        }
+        let dep = |c: &str| {
+            format!(
+                "{c} = {{ path = {:?} }}\n",
+                ws.join(c).display().to_string()
+            )
+        };
+        (
+            dep("dynamics-macros") + &dep("dynamics-runtime") + &dep("dynamics-cli"),
+            Some(ws),
+        )
+    };
+    let package = package_name(dir);
+    std::fs::create_dir_all(dir.join("src")).map_err(io(dir))?;
+    for (path, content) in files(&package, &name, &body, &file_name, &deps) {
+        let path = dir.join(path);
+        std::fs::write(&path, content).map_err(io(&path))?;
+    }
+    let copy = dir.join(&file_name);
+    std::fs::write(&copy, &text).map_err(io(&copy))?;
+    if let Some(ws) = &workspace {
+        // The same dependency versions as the workspace (and an offline build).
+        let lock = ws.join("Cargo.lock");
+        if lock.is_file() {
+            std::fs::copy(&lock, dir.join("Cargo.lock")).map_err(io(&lock))?;
+        }
+    }
+    let shown = dir.display();
+    println!("wrote {shown}: Cargo.toml, src/main.rs, {file_name} (robot {name})");
+    println!("build and run it:");
+    println!("  cd {shown} && cargo build --release");
+    println!("  ./target/release/{package} eval --states STATES.json     # or: cargo run --release -- --help");
+    if let Some(ws) = &workspace {
+        println!(
+            "to share the compiled dependencies with the workspace and build for this CPU as it does\n\
+             (its .cargo/config.toml sets -C target-cpu=native, which does not apply outside it):\n  \
+             CARGO_TARGET_DIR={} RUSTFLAGS=\"-C target-cpu=native\" cargo build --release   (the program is then in that target/release/)",
+            ws.join("target").display()
+        );
+    }
+    Ok(())
+}

@@ -1,0 +1,247 @@
+//! The nominal model a subcommand starts from: run-time parameters set by
+//! name (`--set NAME=VALUE`) and a calibrated baseline (`--baseline
+//! FILE.json`: the effects of a previous diagnosis report).
+
+use std::path::Path;
+
+use dynamics_runtime::{Parameters, Robot};
+use dynamics_sim2real::baseline::{self, BaselineError, Entry};
+use dynamics_sim2real::diagnose::Parameter;
+use dynamics_sim2real::effects::Effect;
+use serde_json::Value;
+use thiserror::Error;
+
+/// Why the nominal model could not be made.
+#[derive(Debug, Error)]
+pub enum TuneError {
+    /// `--set` not of the form NAME=VALUE, or VALUE not a finite number.
+    #[error("--set `{arg}`: {problem}")]
+    Set {
+        /// The argument as given.
+        arg: String,
+        /// What is wrong with it.
+        problem: String,
+    },
+    /// No parameter of that name.
+    #[error("--set `{arg}`: the robot has no parameter `{name}`; known: {known}")]
+    UnknownParameter {
+        /// The argument as given.
+        arg: String,
+        /// The name.
+        name: String,
+        /// The robot's parameters.
+        known: String,
+    },
+    /// The baseline file could not be read.
+    #[error("--baseline {file}: {source}")]
+    Read {
+        /// The file.
+        file: String,
+        /// The cause.
+        source: std::io::Error,
+    },
+    /// The baseline file is not JSON.
+    #[error("--baseline {file}: not valid JSON: {source}")]
+    Json {
+        /// The file.
+        file: String,
+        /// The parser's error (line and column).
+        source: serde_json::Error,
+    },
+    /// JSON, but no effects where they belong.
+    #[error("--baseline {file}: {place}: {problem}")]
+    Shape {
+        /// The file.
+        file: String,
+        /// Where in the document.
+        place: String,
+        /// What is wrong there.
+        problem: String,
+    },
+    /// An entry that is no effect of this robot.
+    #[error("--baseline {file}: {place}: {source}")]
+    Effect {
+        /// The file.
+        file: String,
+        /// Where in the document, e.g. `which.effects[1]`.
+        place: String,
+        /// The cause.
+        source: Box<BaselineError>,
+    },
+}
+
+/// Sets the run-time parameters `set` (each `NAME=VALUE`) on `robot`.
+///
+/// ```
+/// use dynamics_runtime::{Parameters, Robot};
+/// dynamics_macros::robot! {
+///     pub robot Pendulum; gravity = [0.0, -9.81, 0.0]; param m = 1.0;
+///     link base; link rod { mass = m; com = [1.0, 0.0, 0.0]; }
+///     joint j = revolute(base -> rod) { transfer = [rot_z(q)]; }
+/// }
+/// let mut p = Pendulum::default();
+/// dynamics_cli::tune::apply_set(&mut p, &["m=2.5".to_string()]).unwrap();
+/// assert_eq!(p.params().get("m"), Some(2.5));
+/// let err = dynamics_cli::tune::apply_set(&mut p, &["mass=1".to_string()]).unwrap_err();
+/// assert_eq!(err.to_string(), "--set `mass=1`: the robot has no parameter `mass`; known: m");
+/// assert!(dynamics_cli::tune::apply_set(&mut p, &["m=inf".to_string()]).is_err());
+/// ```
+pub fn apply_set<R: Robot<N>, const N: usize>(
+    robot: &mut R,
+    set: &[String],
+) -> Result<(), TuneError> {
+    for arg in set {
+        let bad = |problem: String| TuneError::Set {
+            arg: arg.clone(),
+            problem,
+        };
+        let (name, value) = arg
+            .split_once('=')
+            .ok_or_else(|| bad("expected NAME=VALUE".into()))?;
+        let (name, value) = (name.trim(), value.trim());
+        let v: f64 = value
+            .parse()
+            .map_err(|_| bad(format!("`{value}` is not a number")))?;
+        if !v.is_finite() {
+            return Err(bad(format!("`{value}` is not a finite number")));
+        }
+        if robot.params_mut().set(name, v).is_err() {
+            let names = <R::Params as Parameters>::NAMES;
+            return Err(TuneError::UnknownParameter {
+                arg: arg.clone(),
+                name: name.to_string(),
+                known: if names.is_empty() {
+                    "(none)".into()
+                } else {
+                    names.join(", ")
+                },
+            });
+        }
+    }
+    Ok(())
+}
+
+/// The effects of the baseline file `path` for robot `R`: the report's
+/// `which.effects[]` (or a top-level `effects[]`), else the effect its
+/// `which.verdict` names, with the parameters of the matching entry of
+/// `which.ranked[]`. A verdict that names no effect is an empty baseline.
+pub fn read_baseline<R: Robot<N>, const N: usize>(path: &Path) -> Result<Vec<Effect>, TuneError> {
+    let file = path.display().to_string();
+    let text = std::fs::read_to_string(path).map_err(|source| TuneError::Read {
+        file: file.clone(),
+        source,
+    })?;
+    let doc: Value = serde_json::from_str(&text).map_err(|source| TuneError::Json {
+        file: file.clone(),
+        source,
+    })?;
+    entries(&doc, &file)?
+        .into_iter()
+        .map(|(place, entry)| {
+            baseline::effect::<R, N>(&entry).map_err(|source| TuneError::Effect {
+                file: file.clone(),
+                place,
+                source: Box::new(source),
+            })
+        })
+        .collect()
+}
+
+/// The entries of a baseline document, each with its place in it.
+fn entries(doc: &Value, file: &str) -> Result<Vec<(String, Entry)>, TuneError> {
+    let shape = |place: &str, problem: &str| TuneError::Shape {
+        file: file.to_string(),
+        place: place.to_string(),
+        problem: problem.to_string(),
+    };
+    let list = |arr: &Vec<Value>, at: &str| -> Result<Vec<(String, Entry)>, TuneError> {
+        arr.iter()
+            .enumerate()
+            .map(|(i, v)| {
+                let place = format!("{at}[{i}]");
+                Ok((place.clone(), entry(v).map_err(|p| shape(&place, &p))?))
+            })
+            .collect()
+    };
+    if let Some(arr) = doc.pointer("/which/effects").and_then(Value::as_array) {
+        return list(arr, "which.effects");
+    }
+    if let Some(arr) = doc.get("effects").and_then(Value::as_array) {
+        return list(arr, "effects");
+    }
+    let verdict = doc.pointer("/which/verdict").ok_or_else(|| {
+        shape(
+            "top level",
+            "expected `which.effects` (a diagnosis report), `which.verdict` or `effects`",
+        )
+    })?;
+    let kind = verdict
+        .get("kind")
+        .and_then(Value::as_str)
+        .ok_or_else(|| shape("which.verdict.kind", "missing, or not a string"))?;
+    if kind == "none" || kind == "unexplained" {
+        return Ok(Vec::new());
+    }
+    let place = |v: &Value| (v.get("joint").cloned(), v.get("point").cloned());
+    let ranked = doc
+        .pointer("/which/ranked")
+        .and_then(Value::as_array)
+        .ok_or_else(|| shape("which.ranked", "missing, or not an array"))?;
+    let (i, top) = ranked
+        .iter()
+        .enumerate()
+        .find(|(_, r)| {
+            r.get("kind").and_then(Value::as_str) == Some(kind) && place(r) == place(verdict)
+        })
+        .ok_or_else(|| {
+            shape(
+                "which.ranked",
+                &format!("no entry for the verdict's `{kind}`"),
+            )
+        })?;
+    let at = format!("which.ranked[{i}]");
+    Ok(vec![(at.clone(), entry(top).map_err(|p| shape(&at, &p))?)])
+}
+
+/// One entry: `kind`, `joint` (or none), `parameters[]` of `name`, `value`.
+fn entry(v: &Value) -> Result<Entry, String> {
+    let kind = v
+        .get("kind")
+        .and_then(Value::as_str)
+        .ok_or("`kind` missing, or not a string")?
+        .to_string();
+    let joint = match v.get("joint") {
+        None | Some(Value::Null) => None,
+        Some(Value::String(s)) => Some(s.clone()),
+        Some(_) => return Err("`joint` is not a string".into()),
+    };
+    let params = match v.get("parameters") {
+        None | Some(Value::Null) => Vec::new(),
+        Some(Value::Array(a)) => a.clone(),
+        Some(_) => return Err("`parameters` is not an array".into()),
+    };
+    let parameters = params
+        .iter()
+        .enumerate()
+        .map(|(i, p)| {
+            let name = p
+                .get("name")
+                .and_then(Value::as_str)
+                .ok_or(format!("parameters[{i}].name missing, or not a string"))?;
+            let value = p
+                .get("value")
+                .and_then(Value::as_f64)
+                .ok_or(format!("parameters[{i}].value missing, or not a number"))?;
+            Ok(Parameter {
+                name: name.to_string(),
+                value,
+                std: p.get("std").and_then(Value::as_f64).unwrap_or(f64::NAN),
+            })
+        })
+        .collect::<Result<Vec<_>, String>>()?;
+    Ok(Entry {
+        kind,
+        joint,
+        parameters,
+    })
+}
