@@ -70,6 +70,8 @@ pub fn parameter_names(kind: EffectKind) -> &'static [&'static str] {
         EffectKind::TimeDelay => &["delay"],
         EffectKind::JointElasticity => &["motor_inertia", "stiffness", "damping"],
         EffectKind::Backlash => &["motor_inertia", "half_width", "contact_stiffness"],
+        EffectKind::EffortScale => &["scale_minus_one"],
+        EffectKind::EffortOffset => &["offset"],
         EffectKind::None | EffectKind::InertialParameters => &[],
     }
 }
@@ -148,6 +150,8 @@ pub fn effect<R: Robot<N>, const N: usize>(entry: &Entry) -> Result<Effect, Base
         EffectKind::EnvironmentResistance => Candidate::Environment(get("alpha")?),
         EffectKind::EncoderOffset => Candidate::EncoderOffset(joint()?),
         EffectKind::TimeDelay => Candidate::TimeDelay,
+        EffectKind::EffortScale => Candidate::EffortScale(joint()?),
+        EffectKind::EffortOffset => Candidate::EffortOffset(joint()?),
         EffectKind::JointElasticity => {
             return Ok(Effect::JointElasticity {
                 joint: joint()?,
