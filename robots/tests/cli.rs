@@ -472,7 +472,7 @@ fn report_traces_carry_the_fitted_effect() {
         magnitude: Some(0.2),
         seed: 21,
         excitation: "sines".parse().expect("an excitation"),
-        duration: 4.0,
+        duration: 8.0,
         noise: Default::default(),
     })
     .expect("synthesised");
