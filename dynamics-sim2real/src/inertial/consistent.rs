@@ -39,6 +39,18 @@ pub fn margin(pi: &SVector<f64, 10>) -> f64 {
     pseudo_inertia(pi).symmetric_eigenvalues().min()
 }
 
+/// The sum of the pseudo-inertia's negative eigenvalues: 0 for a physical
+/// body. What the search raises: unlike the smallest eigenvalue alone it
+/// moves when one of two negative eigenvalues does, and it does not stall
+/// where several sit at zero (a point mass, a flat body).
+fn negativity(pi: &SVector<f64, 10>) -> f64 {
+    pseudo_inertia(pi)
+        .symmetric_eigenvalues()
+        .iter()
+        .map(|e| e.min(0.0))
+        .sum()
+}
+
 /// A correction made physical.
 #[derive(Debug, Clone, PartialEq)]
 pub struct Completed {
@@ -55,8 +67,9 @@ pub struct Completed {
 /// Relative tolerance on the pseudo-inertia's smallest eigenvalue.
 const TOL: f64 = 1e-9;
 
-/// The best move `z` along `free` (10 x f) from `pi`: the largest smallest
-/// eigenvalue found, stopping once it is >= `goal`.
+/// The best move `z` along `free` (10 x f) from `pi`: the smallest
+/// negativity found, stopping once it is >= `goal` (`-tol`); returns the
+/// move and the smallest eigenvalue there.
 fn search(pi: &SVector<f64, 10>, free: &DMatrix<f64>, goal: f64) -> (SVector<f64, 10>, f64) {
     let f = free.ncols();
     let scale = pi.amax().max(1e-12);
@@ -70,7 +83,7 @@ fn search(pi: &SVector<f64, 10>, free: &DMatrix<f64>, goal: f64) -> (SVector<f64
         }
         p
     };
-    let mut best = margin(pi);
+    let mut best = negativity(pi);
     let mut step = scale;
     while best < goal && step > 1e-10 * scale && f > 0 {
         let mut improved = false;
@@ -78,7 +91,7 @@ fn search(pi: &SVector<f64, 10>, free: &DMatrix<f64>, goal: f64) -> (SVector<f64
             for sign in [1.0, -1.0] {
                 let mut t = z.clone();
                 t[c] += sign * step;
-                let m = margin(&at(&t));
+                let m = negativity(&at(&t));
                 if m > best {
                     best = m;
                     z = t;
@@ -94,7 +107,8 @@ fn search(pi: &SVector<f64, 10>, free: &DMatrix<f64>, goal: f64) -> (SVector<f64
             step *= 0.5;
         }
     }
-    (at(&z) - pi, best)
+    let done = at(&z);
+    (done - pi, margin(&done))
 }
 
 /// Makes `nominal + delta` physical by moving along the combinations
@@ -131,7 +145,7 @@ pub fn complete(
             moved: false,
         });
     }
-    let (mv, m) = search(&full, free, 0.0);
+    let (mv, m) = search(&full, free, -tol);
     if m >= -tol {
         return Some(Completed {
             delta: delta + mv,
@@ -145,7 +159,7 @@ pub fn complete(
     while hi - lo > 1e-3 {
         let s = 0.5 * (lo + hi);
         let p = nominal + delta * s;
-        let (mv, m) = search(&p, free, 0.0);
+        let (mv, m) = search(&p, free, -tol);
         if m >= -tol {
             lo = s;
             best = (delta * s + mv, mv.amax() > 0.0);
@@ -187,6 +201,26 @@ mod tests {
         let mut flat = r;
         flat[4] = 1.0; // triangle inequality broken
         assert!(margin(&flat) < 0.0 && check(&flat, 1e-9).is_err());
+    }
+
+    /// A point mass (a pseudo-inertia of rank one, on the boundary of the
+    /// physical set) whose centre of mass the data move sideways: the
+    /// free combinations (all but `m c_y`) take the inertia along.
+    #[test]
+    fn a_point_mass_moved_sideways_stays_physical() {
+        let nominal =
+            SVector::<f64, 10>::from([1.0, 0.3, 0.0, 0.0, 0.0, 0.0, 0.09, 0.0, 0.0, 0.09]);
+        let mut delta = SVector::<f64, 10>::zeros();
+        delta[2] = 0.01;
+        assert!(check(&(nominal + delta), 1e-9).is_err());
+        let mut free = DMatrix::<f64>::zeros(10, 9);
+        for (c, e) in [0, 1, 3, 4, 5, 6, 7, 8, 9].iter().enumerate() {
+            free[(*e, c)] = 1.0;
+        }
+        let done = complete(&nominal, &delta, &free).expect("physical nominal");
+        assert!(done.scale > 0.99, "{done:?}");
+        assert!(check(&(nominal + done.delta), 1e-6).is_ok(), "{done:?}");
+        assert_eq!(done.delta[2], delta[2] * done.scale);
     }
 
     /// A correction the data determine only in part: moved along the free
