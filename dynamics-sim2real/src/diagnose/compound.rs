@@ -12,8 +12,13 @@
 //! [`Options::nesting_margin`]), or swapping a chosen term for another of
 //! its family at the same place (by the nesting margin). It stops when
 //! the residual is within the noise floor on every joint
-//! ([`Options::floor_ratio`]) or no move earns its margin. A backward pass
-//! then drops any effect whose removal costs less than the margin. The
+//! ([`Options::floor_ratio`]) or no move earns its margin. A move must
+//! also pass block cross-validation on the training data (`validate.rs`):
+//! an added effect must lower the deviance of blocks of time predicted by
+//! the fit on the others by [`Options::cv_margin`], a swap must not raise
+//! it (the best of [`CV_TRIES`] moves that do is made). A backward pass
+//! then drops any effect whose removal costs less than the margin, or
+//! whose removal does not raise the cross-validated deviance. The
 //! motor sides of the chosen set, and of every joint still above noise,
 //! are then searched again with the other effects' effort removed, and the
 //! selection resumes from the set (alternation, [`ROUNDS`] times).
@@ -23,6 +28,7 @@ use nalgebra::SVector;
 use super::analysis::{fit, Prepared};
 use super::fit::aicc;
 use super::pool::{fixed_column, Pool, Solution};
+use super::validate::Folds;
 use super::Options;
 use crate::diagnose::candidate::Candidate;
 use dynamics_runtime::Robot;
@@ -102,16 +108,54 @@ fn nesting(c: Candidate, options: &Options) -> f64 {
     }
 }
 
+/// Moves tried, best first by the criterion, for one that also passes the
+/// cross-validation.
+const CV_TRIES: usize = 4;
+
+/// Parsimony: an added richer term gives way to the simpler nested term at
+/// its place when it does not beat it clearly (`adds`: the criterion of
+/// every single addition).
+fn parsimony(
+    pool: &Pool,
+    set: &[usize],
+    adds: &[(usize, f64)],
+    (c, trial, t): (f64, Vec<usize>, usize),
+    cur: f64,
+    options: &Options,
+) -> (f64, Vec<usize>) {
+    let cand = pool.terms[t].fit.candidate;
+    if let (Some(is_simpler), true) = (simpler(cand), trial.len() > set.len()) {
+        let alt = adds
+            .iter()
+            .filter(|(u, _)| {
+                let cu = pool.terms[*u].fit.candidate;
+                is_simpler(&cu) && cu.joint() == cand.joint()
+            })
+            .min_by(|a, b| a.1.total_cmp(&b.1));
+        if let Some(&(u, cu)) = alt {
+            if cu - c < nesting(cand, options)
+                && cur - cu >= options.add_margin.min(options.none_margin)
+            {
+                let mut s = set.to_vec();
+                s.push(u);
+                return (cu, s);
+            }
+        }
+    }
+    (c, trial)
+}
+
 /// Forward selection from `set`, then the backward pass.
 fn select<const N: usize>(pool: &Pool, mut set: Vec<usize>, options: &Options) -> Vec<usize> {
+    let folds = Folds::new(pool, N);
     let mut cur = crit(pool, &pool.solve(&set));
     for _ in 0..(6 * N + 12) {
         let sol = pool.solve(&set);
         if !set.is_empty() && within_noise::<N>(pool, &set, &sol, options.floor_ratio) {
             break;
         }
-        // Every move: (criterion, new set, required gain, added term).
-        let mut best: Option<(f64, Vec<usize>, usize)> = None;
+        // Every move that earns its margin: (criterion, new set, added term).
+        let mut moves: Vec<(f64, Vec<usize>, usize)> = Vec::new();
         let mut adds: Vec<(usize, f64)> = Vec::new();
         for t in 0..pool.terms.len() {
             if set.contains(&t) {
@@ -142,55 +186,64 @@ fn select<const N: usize>(pool: &Pool, mut set: Vec<usize>, options: &Options) -
             if trial.len() > set.len() {
                 adds.push((t, c));
             }
-            if cur - c >= need && best.as_ref().is_none_or(|b| c < b.0) {
-                best = Some((c, trial, t));
+            if cur - c >= need {
+                moves.push((c, trial, t));
             }
         }
-        let Some((mut c, mut trial, t)) = best else {
+        moves.sort_by(|a, b| a.0.total_cmp(&b.0));
+        // The best move (by the criterion) that also predicts blocks of the
+        // data it was not fitted on better than the set before it.
+        let cv_now = folds.as_ref().map(|f| f.deviance(pool, &set));
+        let mut chosen = None;
+        for (c, trial, t) in moves.into_iter().take(CV_TRIES) {
+            let (c, trial) = parsimony(pool, &set, &adds, (c, trial, t), cur, options);
+            let need = if trial.len() > set.len() {
+                options.cv_margin
+            } else {
+                0.0
+            };
+            let ok = match (&folds, cv_now) {
+                (Some(f), Some(now)) => now - f.deviance(pool, &trial) >= need,
+                _ => true,
+            };
+            if ok {
+                chosen = Some((c, trial));
+                break;
+            }
+        }
+        let Some((c, trial)) = chosen else {
             break;
         };
-        // Parsimony: the simpler nested term at the same place, when the
-        // richer one does not beat it clearly.
-        let cand = pool.terms[t].fit.candidate;
-        if let (Some(is_simpler), true) = (simpler(cand), trial.len() > set.len()) {
-            let alt = adds
-                .iter()
-                .filter(|(u, _)| {
-                    let cu = pool.terms[*u].fit.candidate;
-                    is_simpler(&cu) && cu.joint() == cand.joint()
-                })
-                .min_by(|a, b| a.1.total_cmp(&b.1));
-            if let Some(&(u, cu)) = alt {
-                if cu - c < nesting(cand, options)
-                    && cur - cu >= options.add_margin.min(options.none_margin)
-                {
-                    trial = set.clone();
-                    trial.push(u);
-                    c = cu;
-                }
-            }
-        }
         set = trial;
         cur = c;
     }
-    // Backward: drop what costs less than its margin.
+    // Backward: drop what costs less than its margin, or does not predict
+    // the blocks it was not fitted on.
     loop {
         let full = crit(pool, &pool.solve(&set));
+        let cv_full = folds.as_ref().map(|f| f.deviance(pool, &set));
+        let need = if set.len() == 1 {
+            options.none_margin
+        } else {
+            options.add_margin
+        };
         let weakest = (0..set.len())
             .map(|i| {
                 let mut s = set.clone();
                 s.remove(i);
-                (i, crit(pool, &pool.solve(&s)) - full)
+                let cost = crit(pool, &pool.solve(&s)) - full;
+                let cv_cost = match (&folds, cv_full) {
+                    (Some(f), Some(c)) => f.deviance(pool, &s) - c,
+                    _ => f64::INFINITY,
+                };
+                // Failing either test, the smaller shortfall first.
+                let short = (cost - need).min(cv_cost - options.cv_margin);
+                (i, short)
             })
             .min_by(|a, b| a.1.total_cmp(&b.1));
         match weakest {
-            Some((i, cost)) => {
-                let need = if set.len() == 1 {
-                    options.none_margin
-                } else {
-                    options.add_margin
-                };
-                if cost < need {
+            Some((i, short)) => {
+                if short < 0.0 {
                     set.remove(i);
                 } else {
                     break;

@@ -4,7 +4,7 @@
 //! grows when it alone is left out of the set, the others refitted), and
 //! the held-out gap left after each added effect.
 
-use nalgebra::{DVector, SVector};
+use nalgebra::{DMatrix, DVector, SVector};
 
 use super::analysis::{Fit, Prepared};
 use super::candidate::Candidate;
@@ -14,6 +14,7 @@ use super::pool::{fixed_column, linear_columns, Pool, Solution};
 use super::rank::ranked_entry;
 use super::report::{Explained, Parameter, Rival, ShrinkStep};
 use crate::effects::Effect;
+use crate::inertial::{check, complete, describe};
 use dynamics_runtime::Robot;
 
 /// One effect's held-out columns: its free ones and its fixed one.
@@ -179,6 +180,7 @@ pub fn entries<R: Robot<N>, const N: usize>(
     hold: &Holdout<N>,
     tip: &str,
     aicc0: f64,
+    nominal: &[SVector<f64, 10>],
 ) -> (Vec<Explained>, Vec<ShrinkStep>) {
     let n = pool.n();
     let sse0 = pool.yy;
@@ -240,6 +242,7 @@ pub fn entries<R: Robot<N>, const N: usize>(
                     &e.sol.theta[i],
                     &e.sol.std[i],
                     point.as_deref().unwrap_or("?"),
+                    nominal.get(b.link),
                 ),
                 None => (
                     ranked_entry::<R, N>(&f, tip, aicc0, n, shares[i], 0.0).parameters,
@@ -293,15 +296,21 @@ pub fn entries<R: Robot<N>, const N: usize>(
     (explained, steps)
 }
 
-/// A link correction's parameters (the minimum-norm change of the ten,
-/// with standard deviations through the combinations) and its words.
+/// A link correction's parameters and its words: the change along the
+/// combinations the data determine (standard deviations through them),
+/// moved along the others until the link with its nominal parameters
+/// `nominal` is a physical body (`inertial::complete`; when no such move
+/// exists the determined part is scaled back, and the words say so).
 fn link_parameters(
     b: &super::links::LinkBasis,
     theta: &[f64],
     std: &[f64],
     link: &str,
+    nominal: Option<&SVector<f64, 10>>,
 ) -> (Vec<Parameter>, Option<String>) {
-    let d = delta(b, theta);
+    let fitted = delta(b, theta);
+    let made = nominal.and_then(|nom| complete(nom, &fitted, &free_combinations(b)));
+    let d = made.as_ref().map_or(fitted, |c| c.delta);
     let names = [
         "d_m", "d_mcx", "d_mcy", "d_mcz", "d_ixx", "d_ixy", "d_iyy", "d_ixz", "d_iyz", "d_izz",
     ];
@@ -317,5 +326,43 @@ fn link_parameters(
             }
         })
         .collect();
-    (params, Some(words(link, &d)))
+    let text = match (nominal, &made) {
+        (Some(nom), Some(c)) => {
+            let mut t = describe(link, nom, &d);
+            if c.moved {
+                t += &format!(
+                    "; the data determine {} of the 10 combinations, the others are set to keep the link physical",
+                    b.v.ncols()
+                );
+            }
+            if c.scale < 1.0 {
+                t += &format!(
+                    "; scaled to {:.2} of the fit, which is not a physical body ({})",
+                    c.scale,
+                    check(&(nom + fitted), 1e-9)
+                        .err()
+                        .map_or(String::new(), |e| e.to_string())
+                );
+            }
+            t
+        }
+        (Some(nom), None) => format!(
+            "{}; the nominal link is not a physical body ({})",
+            words(link, &d),
+            check(nom, 1e-9)
+                .err()
+                .map_or(String::new(), |e| e.to_string())
+        ),
+        (None, _) => words(link, &d),
+    };
+    (params, Some(text))
+}
+
+/// An orthonormal basis of the combinations of a link's ten parameters
+/// the data do not determine (the complement of `b.v`).
+fn free_combinations(b: &super::links::LinkBasis) -> DMatrix<f64> {
+    let p = DMatrix::<f64>::identity(10, 10) - &b.v * b.v.transpose();
+    let eig = p.symmetric_eigen();
+    let keep: Vec<usize> = (0..10).filter(|&i| eig.eigenvalues[i] > 0.5).collect();
+    eig.eigenvectors.select_columns(&keep)
 }

@@ -52,6 +52,7 @@ mod shrink;
 mod signals;
 mod spread;
 pub mod traces;
+mod validate;
 mod verdict;
 mod visibility;
 mod windows;
@@ -95,6 +96,11 @@ pub struct Options {
     /// AICc improvement each effect after the first must add to the
     /// compound explanation (the first must add `none_margin`).
     pub add_margin: f64,
+    /// Cross-validated deviance (block cross-validation on the training
+    /// data, `validate.rs`) each effect of the compound explanation must
+    /// save: an effect is added, and kept, only if the set predicts blocks
+    /// of the data it was not fitted on better with it than without.
+    pub cv_margin: f64,
     /// The compound explanation stops adding effects once the residual RMS
     /// is within this many times the noise floor on every joint.
     pub floor_ratio: f64,
@@ -116,6 +122,7 @@ impl Default for Options {
             unexplained_ratio: 3.0,
             nesting_margin: 10.0,
             add_margin: 40.0,
+            cv_margin: 0.0,
             floor_ratio: 1.0,
             threads: 0,
             noise: None,
@@ -315,7 +322,12 @@ pub fn diagnose<R: Robot<N> + Clone + Sync, const N: usize>(
     // The explanation's entries and how far it shrinks the gap (held-out
     // data).
     let hold = explain::Holdout::new(&h, &hlinks, &pool, &explanation);
-    let (effects, steps) = explain::entries::<R, N>(&pool, &explanation, &hold, &tip_name, aicc0);
+    let mut nominal = vec![SVector::<f64, 10>::zeros(); R::LINK_NAMES.len()];
+    if robot.inertial_parameters(&mut nominal).is_err() {
+        nominal.clear();
+    }
+    let (effects, steps) =
+        explain::entries::<R, N>(&pool, &explanation, &hold, &tip_name, aicc0, &nominal);
     let all: Vec<usize> = (0..explanation.set.len()).collect();
     let r = hold.residual(&all, &explanation.sol.theta);
     let rms_fraction = explain::fraction(hold.plain(&hold_y(&hold)), hold.plain(&r));

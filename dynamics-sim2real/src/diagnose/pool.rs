@@ -242,10 +242,14 @@ impl Pool {
             .iter()
             .map(|&(_, c, _)| self.xty[c] - fixed.iter().map(|&f| self.gram[(c, f)]).sum::<f64>())
             .collect();
-        let mut active: Vec<bool> = free
-            .iter()
-            .map(|&(_, c, _)| self.gram[(c, c)] > 0.0)
-            .collect();
+        // Columns that a column before them in the set's order already
+        // spans are left out: two links' inertial parameters regroup (a
+        // link's mass is partly its parent's), and a term added after such
+        // a pair keeps its own columns.
+        let cols: Vec<usize> = free.iter().map(|f| f.1).collect();
+        let mut active = independent(&self.gram, &cols);
+        let dependent = active.iter().filter(|a| !**a).count();
+        k = k.saturating_sub(dependent);
         let (theta, std, sse) = loop {
             let idx: Vec<usize> = (0..free.len()).filter(|&i| active[i]).collect();
             let m = idx.len();
@@ -330,6 +334,46 @@ impl Pool {
     }
 }
 
+/// Relative size, in a column's own norm, of the part outside the span of
+/// the columns before it below which it counts as dependent.
+const DEPENDENT: f64 = 1e-8;
+
+/// Which of `cols` (indices into `gram`, in order) are independent of
+/// those kept before them: an incremental Cholesky factorisation of the
+/// unit-scaled Gram matrix, skipping a column whose pivot is under
+/// [`DEPENDENT`] (a zero column is dependent).
+fn independent(gram: &DMatrix<f64>, cols: &[usize]) -> Vec<bool> {
+    let m = cols.len();
+    let d: Vec<f64> = cols.iter().map(|&c| gram[(c, c)].max(0.0).sqrt()).collect();
+    let mut l = DMatrix::<f64>::zeros(m, m);
+    let mut keep = vec![false; m];
+    for i in 0..m {
+        if !(d[i] > 0.0 && d[i].is_finite()) {
+            continue;
+        }
+        for j in 0..i {
+            if !keep[j] {
+                continue;
+            }
+            let mut v = gram[(cols[i], cols[j])] / (d[i] * d[j]);
+            for p in 0..j {
+                v -= l[(i, p)] * l[(j, p)];
+            }
+            l[(i, j)] = v / l[(j, j)];
+        }
+        let pivot = 1.0 - (0..i).map(|p| l[(i, p)].powi(2)).sum::<f64>();
+        if pivot > DEPENDENT {
+            l[(i, i)] = pivot.sqrt();
+            keep[i] = true;
+        } else {
+            for p in 0..i {
+                l[(i, p)] = 0.0;
+            }
+        }
+    }
+    keep
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;
@@ -406,5 +450,38 @@ mod tests {
         assert!((r.norm_squared() / direct.sse - 1.0).abs() < 1e-9);
         // Without the fixed column the fit is worse.
         assert!(pool.solve(&[0, 1, 2]).sse > sol.sse + 1.0);
+    }
+
+    /// A term whose column a term before it already spans is left out of
+    /// the fit and of the parameter count, and a term after the pair is
+    /// still fitted (not dropped as the last column of a singular set).
+    #[test]
+    fn a_dependent_column_does_not_hide_the_terms_after_it() {
+        let n = 200;
+        let c0: Vec<f64> = (0..n).map(|i| (i as f64 * 0.05).sin()).collect();
+        let c1: Vec<f64> = (0..n).map(|i| (i as f64 * 0.011).cos()).collect();
+        let y: Vec<f64> = (0..n).map(|i| 2.0 * c0[i] + 0.5 * c1[i]).collect();
+        // Column 1 repeats column 0 (a regrouped link parameter).
+        let cols = [c0.clone(), c0.clone(), c1.clone()];
+        let x = DMatrix::from_fn(n, 3, |r, c| cols[c][r]);
+        let yv = DVector::from_vec(y);
+        let pool = Pool {
+            gram: x.tr_mul(&x),
+            xty: x.tr_mul(&yv),
+            yy: yv.norm_squared(),
+            x,
+            y: yv,
+            terms: vec![
+                term(Candidate::EffortOffset(0), vec![0], vec![false], None),
+                term(Candidate::EffortOffset(1), vec![1], vec![false], None),
+                term(Candidate::EffortOffset(2), vec![2], vec![false], None),
+            ],
+        };
+        let sol = pool.solve(&[0, 1, 2]);
+        assert!((sol.theta[0][0] - 2.0).abs() < 1e-9, "{:?}", sol.theta);
+        assert_eq!(sol.theta[1][0], 0.0);
+        assert!((sol.theta[2][0] - 0.5).abs() < 1e-9, "{:?}", sol.theta);
+        assert!(sol.sse < 1e-9);
+        assert_eq!(sol.k, 2);
     }
 }

@@ -9,6 +9,10 @@
 use nalgebra::{Matrix3, SVector, Vector3};
 use thiserror::Error;
 
+mod consistent;
+
+pub use consistent::{complete, margin, pseudo_inertia, Completed};
+
 /// Names of the ten parameters, in order.
 pub const PARAMETER_NAMES: [&str; 10] = [
     "m", "m c_x", "m c_y", "m c_z", "I_xx", "I_xy", "I_yy", "I_xz", "I_yz", "I_zz",

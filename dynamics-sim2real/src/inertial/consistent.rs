@@ -1,0 +1,263 @@
+//! A link correction made physical without changing what the data see.
+//!
+//! A link's ten parameters are a physical body (a nonnegative density
+//! could produce them) exactly when its pseudo-inertia matrix
+//! `J = [[1/2 tr(I) 1 - I, h], [h^T, m]]` (`I` about the frame origin,
+//! `h = m c`) is positive semi-definite (Wensing, Kim and Slotine, RA-L
+//! 2018): mass >= 0, inertia about the centre of mass positive
+//! semi-definite and within the triangle inequalities. A fitted
+//! correction is determined only along some combinations of the ten
+//! parameters; along the others (`free`) any value fits the data equally.
+//! [`complete`] moves the correction along the free combinations until
+//! `J` is positive semi-definite (a compass search on its smallest
+//! eigenvalue, which is concave in the parameters); only when no such
+//! move exists is the determined part scaled back, and the scale said.
+
+use nalgebra::{DMatrix, Matrix3, Matrix4, SVector};
+
+/// The pseudo-inertia matrix of `pi` (Pinocchio's order).
+pub fn pseudo_inertia(pi: &SVector<f64, 10>) -> Matrix4<f64> {
+    let i = Matrix3::new(
+        pi[4], pi[5], pi[7], //
+        pi[5], pi[6], pi[8], //
+        pi[7], pi[8], pi[9],
+    );
+    let s = Matrix3::identity() * (0.5 * i.trace()) - i;
+    let mut j = Matrix4::zeros();
+    j.fixed_view_mut::<3, 3>(0, 0).copy_from(&s);
+    for r in 0..3 {
+        j[(r, 3)] = pi[1 + r];
+        j[(3, r)] = pi[1 + r];
+    }
+    j[(3, 3)] = pi[0];
+    j
+}
+
+/// The smallest eigenvalue of the pseudo-inertia matrix: >= 0 for a
+/// physical body.
+pub fn margin(pi: &SVector<f64, 10>) -> f64 {
+    pseudo_inertia(pi).symmetric_eigenvalues().min()
+}
+
+/// The sum of the pseudo-inertia's negative eigenvalues: 0 for a physical
+/// body. What the search raises: unlike the smallest eigenvalue alone it
+/// moves when one of two negative eigenvalues does, and it does not stall
+/// where several sit at zero (a point mass, a flat body).
+fn negativity(pi: &SVector<f64, 10>) -> f64 {
+    pseudo_inertia(pi)
+        .symmetric_eigenvalues()
+        .iter()
+        .map(|e| e.min(0.0))
+        .sum()
+}
+
+/// A correction made physical.
+#[derive(Debug, Clone, PartialEq)]
+pub struct Completed {
+    /// The correction (the determined part times `scale`, plus a move
+    /// along the free combinations).
+    pub delta: SVector<f64, 10>,
+    /// How much of the determined part is kept: 1 unless no move along
+    /// the free combinations makes the link physical.
+    pub scale: f64,
+    /// Whether the free combinations were moved.
+    pub moved: bool,
+}
+
+/// Relative tolerance on the pseudo-inertia's smallest eigenvalue.
+const TOL: f64 = 1e-9;
+
+/// The best move `z` along `free` (10 x f) from `pi`: the smallest
+/// negativity found, stopping once it is >= `goal` (`-tol`); returns the
+/// move and the smallest eigenvalue there.
+fn search(pi: &SVector<f64, 10>, free: &DMatrix<f64>, goal: f64) -> (SVector<f64, 10>, f64) {
+    let f = free.ncols();
+    let scale = pi.amax().max(1e-12);
+    let mut z = vec![0.0; f];
+    let at = |z: &[f64]| -> SVector<f64, 10> {
+        let mut p = *pi;
+        for (c, v) in z.iter().enumerate() {
+            for r in 0..10 {
+                p[r] += free[(r, c)] * v;
+            }
+        }
+        p
+    };
+    let mut best = negativity(pi);
+    let mut step = scale;
+    while best < goal && step > 1e-10 * scale && f > 0 {
+        let mut improved = false;
+        for c in 0..f {
+            for sign in [1.0, -1.0] {
+                let mut t = z.clone();
+                t[c] += sign * step;
+                let m = negativity(&at(&t));
+                if m > best {
+                    best = m;
+                    z = t;
+                    improved = true;
+                    break;
+                }
+            }
+            if best >= goal {
+                break;
+            }
+        }
+        if !improved {
+            step *= 0.5;
+        }
+    }
+    let done = at(&z);
+    (done - pi, margin(&done))
+}
+
+/// Makes `nominal + delta` physical by moving along the combinations
+/// `free` (10 x f, the ones the data do not determine), or, failing that,
+/// by scaling `delta` back (the largest scale in [0, 1] found by
+/// bisection, 1e-3 apart). `None` when the nominal parameters themselves
+/// are not physical.
+///
+/// ```
+/// use dynamics_sim2real::inertial::{check, complete};
+/// use nalgebra::{DMatrix, SVector};
+/// // A 1 kg link whose fitted mass change of -1.2 kg is determined only
+/// // together with its first moment along x.
+/// let nominal = SVector::<f64, 10>::from([1.0, 0.1, 0.0, 0.0, 0.01, 0.0, 0.02, 0.0, 0.0, 0.02]);
+/// let delta = SVector::<f64, 10>::from([-1.2, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0]);
+/// let free = DMatrix::<f64>::zeros(10, 0);
+/// let c = complete(&nominal, &delta, &free).expect("a physical nominal link");
+/// assert!(c.scale < 1.0 && check(&(nominal + c.delta), 1e-6).is_ok());
+/// ```
+pub fn complete(
+    nominal: &SVector<f64, 10>,
+    delta: &SVector<f64, 10>,
+    free: &DMatrix<f64>,
+) -> Option<Completed> {
+    let tol = TOL * pseudo_inertia(nominal).norm().max(1e-300);
+    if margin(nominal) < -tol {
+        return None;
+    }
+    let full = nominal + delta;
+    if margin(&full) >= -tol {
+        return Some(Completed {
+            delta: *delta,
+            scale: 1.0,
+            moved: false,
+        });
+    }
+    let (mv, m) = search(&full, free, -tol);
+    if m >= -tol {
+        return Some(Completed {
+            delta: delta + mv,
+            scale: 1.0,
+            moved: true,
+        });
+    }
+    // Scale the determined part back: the largest scale with a move.
+    let (mut lo, mut hi) = (0.0, 1.0);
+    let mut best = (SVector::<f64, 10>::zeros(), false);
+    while hi - lo > 1e-3 {
+        let s = 0.5 * (lo + hi);
+        let p = nominal + delta * s;
+        let (mv, m) = search(&p, free, -tol);
+        if m >= -tol {
+            lo = s;
+            best = (delta * s + mv, mv.amax() > 0.0);
+        } else {
+            hi = s;
+        }
+    }
+    Some(Completed {
+        delta: best.0,
+        scale: lo,
+        moved: best.1,
+    })
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::inertial::check;
+
+    /// A rod along x: 2 kg, COM at 0.3 m.
+    fn rod() -> SVector<f64, 10> {
+        let (m, c, l) = (2.0, 0.3, 0.4);
+        let iyy = m * l * l / 12.0 + m * c * c;
+        SVector::from([m, m * c, 0.0, 0.0, 1e-4, 0.0, iyy, 0.0, 0.0, iyy])
+    }
+
+    /// The pseudo-inertia test agrees with the mass-properties check on
+    /// physical and unphysical parameter sets.
+    #[test]
+    fn pseudo_inertia_agrees_with_the_check() {
+        let r = rod();
+        assert!(margin(&r) >= 0.0 && check(&r, 1e-9).is_ok());
+        let mut neg = r;
+        neg[0] = -0.1;
+        assert!(margin(&neg) < 0.0 && check(&neg, 1e-9).is_err());
+        let mut far = r;
+        far[1] = 2.0 * 0.9; // COM at 0.9 m: the inertia about it is negative
+        assert!(margin(&far) < 0.0 && check(&far, 1e-9).is_err());
+        let mut flat = r;
+        flat[4] = 1.0; // triangle inequality broken
+        assert!(margin(&flat) < 0.0 && check(&flat, 1e-9).is_err());
+    }
+
+    /// A point mass (a pseudo-inertia of rank one, on the boundary of the
+    /// physical set) whose centre of mass the data move sideways: the
+    /// free combinations (all but `m c_y`) take the inertia along.
+    #[test]
+    fn a_point_mass_moved_sideways_stays_physical() {
+        let nominal =
+            SVector::<f64, 10>::from([1.0, 0.3, 0.0, 0.0, 0.0, 0.0, 0.09, 0.0, 0.0, 0.09]);
+        let mut delta = SVector::<f64, 10>::zeros();
+        delta[2] = 0.01;
+        assert!(check(&(nominal + delta), 1e-9).is_err());
+        let mut free = DMatrix::<f64>::zeros(10, 9);
+        for (c, e) in [0, 1, 3, 4, 5, 6, 7, 8, 9].iter().enumerate() {
+            free[(*e, c)] = 1.0;
+        }
+        let done = complete(&nominal, &delta, &free).expect("physical nominal");
+        assert!(done.scale > 0.99, "{done:?}");
+        assert!(check(&(nominal + done.delta), 1e-6).is_ok(), "{done:?}");
+        assert_eq!(done.delta[2], delta[2] * done.scale);
+    }
+
+    /// A correction the data determine only in part: moved along the free
+    /// combination it becomes physical, and its determined part is kept
+    /// (what the data see is unchanged).
+    #[test]
+    fn a_free_combination_makes_the_correction_physical() {
+        let nominal = rod();
+        // Determined: I_yy - I_zz; the data ask for I_yy - I_zz = +0.2,
+        // which with I_zz unchanged breaks the triangle inequality.
+        let det = SVector::<f64, 10>::from([0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 1.0, 0.0, 0.0, -1.0])
+            / 2f64.sqrt();
+        let delta = det * (0.2 * 2f64.sqrt());
+        assert!(check(&(nominal + delta), 1e-9).is_err());
+        // Free: everything orthogonal to `det`.
+        let mut free = DMatrix::<f64>::zeros(10, 9);
+        let mut c = 0;
+        for e in 0..10 {
+            let mut v = SVector::<f64, 10>::zeros();
+            v[e] = 1.0;
+            v -= det * det.dot(&v);
+            if v.norm() < 1e-9 || c == 9 {
+                continue;
+            }
+            for r in 0..c {
+                let u = SVector::<f64, 10>::from_fn(|i, _| free[(i, r)]);
+                v -= u * u.dot(&v);
+            }
+            if v.norm() > 1e-9 {
+                free.set_column(c, &v.normalize());
+                c += 1;
+            }
+        }
+        let done = complete(&nominal, &delta, &free).expect("physical nominal");
+        assert_eq!(done.scale, 1.0);
+        assert!(done.moved);
+        assert!(check(&(nominal + done.delta), 1e-6).is_ok(), "{done:?}");
+        assert!((det.dot(&done.delta) - det.dot(&delta)).abs() < 1e-9);
+    }
+}
