@@ -54,6 +54,7 @@ mod spread;
 pub mod traces;
 mod verdict;
 mod visibility;
+mod window;
 mod windows;
 mod yardstick;
 
@@ -249,6 +250,8 @@ pub fn diagnose<R: Robot<N> + Clone + Sync, const N: usize>(
         &mut warnings,
     );
     let fits = parallel::fit_all::<R, N>(&candidates, &p, options.threads, progress);
+    // Effects that start and stop: limited to the window the residual shows.
+    let (fits, limited) = window::windowed(fits, &p, options);
 
     // The compound explanation over every fitted term.
     let with_links =
@@ -262,6 +265,7 @@ pub fn diagnose<R: Robot<N> + Clone + Sync, const N: usize>(
         (vec![], vec![])
     };
     let mut pool = pool::Pool::new(&fits, &plinks, &p);
+    window::limit_pool(&mut pool, &limited, &p);
     let explanation = compound::explain::<R, N>(&mut pool, &p, options);
 
     // Best grid variant per (kind, place), ranked by AICc, simpler nested
@@ -275,7 +279,7 @@ pub fn diagnose<R: Robot<N> + Clone + Sync, const N: usize>(
     let ranked: Vec<Ranked> = best
         .iter()
         .map(|f| {
-            let hs = h.sse(&f.corrected(&h));
+            let hs = h.sse(&window::corrected(f, &h, &limited));
             rank::ranked_entry::<R, N>(
                 f,
                 &tip_name,
@@ -314,8 +318,11 @@ pub fn diagnose<R: Robot<N> + Clone + Sync, const N: usize>(
 
     // The explanation's entries and how far it shrinks the gap (held-out
     // data).
-    let hold = explain::Holdout::new(&h, &hlinks, &pool, &explanation);
-    let (effects, steps) = explain::entries::<R, N>(&pool, &explanation, &hold, &tip_name, aicc0);
+    let mut hold = explain::Holdout::new(&h, &hlinks, &pool, &explanation);
+    window::limit_holdout(&mut hold, &h, &pool, &explanation, &limited);
+    let (mut effects, steps) =
+        explain::entries::<R, N>(&pool, &explanation, &hold, &tip_name, aicc0);
+    window::annotate(&mut effects, &pool, &explanation, &limited);
     let all: Vec<usize> = (0..explanation.set.len()).collect();
     let r = hold.residual(&all, &explanation.sol.theta);
     let rms_fraction = explain::fraction(hold.plain(&hold_y(&hold)), hold.plain(&r));
