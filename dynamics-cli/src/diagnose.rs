@@ -83,6 +83,18 @@ pub fn diagnose_cmd<R: Robot<N> + Clone + Sync, const N: usize>(
             r.joint.clone().or(r.point.clone()).unwrap_or_default()
         );
     }
+    for e in &report.which.effects {
+        // An effect that starts and stops: where in time.
+        if let Some(w) = &e.window {
+            println!(
+                "  {} {} is on from {:.3} s to {:.3} s",
+                e.kind,
+                e.joint.clone().or(e.point.clone()).unwrap_or_default(),
+                w.start,
+                w.end
+            );
+        }
+    }
     println!(
         "shrink on held-out data: torque gap -{:.1} %, short-horizon simulation error -{:.1} %",
         100.0 * report.shrink.torque_fraction,

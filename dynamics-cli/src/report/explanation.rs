@@ -55,6 +55,11 @@ pub fn section(report: &Report) -> String {
             .clone()
             .or(e.point.clone())
             .unwrap_or("all signals".into());
+        // An effect that starts and stops: where in time.
+        let place = match &e.window {
+            Some(w) => format!("{place}, on from {:.3} s to {:.3} s", w.start, w.end),
+            None => place,
+        };
         let params = match &e.description {
             Some(d) => d.clone(),
             None => e
