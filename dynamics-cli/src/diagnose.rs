@@ -76,6 +76,9 @@ pub fn diagnose_cmd<R: Robot<N> + Clone + Sync, const N: usize>(
         v.joint.clone().or(v.point.clone()).unwrap_or_default(),
         v.status
     );
+    if let Some(c) = &v.channel {
+        println!("  late channel: {c}");
+    }
     if let (Some(r), Some(m)) = (&v.rival, &v.separating_motion) {
         println!(
             "  rival: {} {}; to separate them: {m}",

@@ -292,6 +292,7 @@ pub fn entries<R: Robot<N>, const N: usize>(
                     0.0
                 },
                 window: None,
+                channel: super::late::channel(f.candidate),
                 ambiguous_with: rival,
             }
         })

@@ -38,6 +38,7 @@ mod explain;
 mod filter;
 mod fit;
 mod horizon;
+mod late;
 mod links;
 mod motor;
 mod motor_fit;
@@ -243,12 +244,14 @@ pub fn diagnose<R: Robot<N> + Clone + Sync, const N: usize>(
     let hsse0 = h.sse(&h.sig.residual);
 
     // Fit every candidate, on all cores.
-    let candidates = visibility::identifiable(
+    let mut candidates = visibility::identifiable(
         Candidate::all::<N>(&options.kinds),
         &excitation,
         p.sig.dt,
         &mut warnings,
     );
+    // A late position stream, where the positions lag the measured velocities.
+    late::offer(&mut candidates, train, &p);
     let fits = parallel::fit_all::<R, N>(&candidates, &p, options.threads, progress);
     // Effects that start and stop: limited to the window the residual shows.
     let (fits, limited) = window::windowed(fits, &p, options);
