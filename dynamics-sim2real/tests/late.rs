@@ -60,6 +60,12 @@ fn a_late_position_stream_is_named_as_such() {
     assert!((d - 0.01).abs() < 0.002, "delay {d}");
     let e = &r.which.effects[0];
     assert_eq!(e.channel.as_deref(), Some("positions"));
+    let said: Vec<String> = r.warnings.iter().map(ToString::to_string).collect();
+    assert!(
+        said.iter()
+            .any(|w| w.starts_with("the positions lag the measured velocities by 10.")),
+        "{said:?}"
+    );
     assert!(r.shrink.fraction > 0.9, "shrink {}", r.shrink.fraction);
 }
 
@@ -84,4 +90,5 @@ fn consistent_channels_offer_no_late_positions() {
         .ranked
         .iter()
         .all(|e| e.channel.as_deref() != Some("positions")));
+    assert!(r.warnings.is_empty(), "{:?}", r.warnings);
 }

@@ -7,13 +7,14 @@
 //! so the smoothed rate of the measured positions minus the smoothed
 //! measured velocity, regressed on the acceleration over every joint and
 //! fit row, gives `-d`. Only when that delay is significant
-//! ([`SIGNIFICANCE`] standard deviations, and at least one sample) is the
+//! ([`SIGNIFICANCE`] standard deviations, and at least half a sample) is the
 //! `positions` channel offered as a candidate; its column is what the model
 //! misses when evaluated at `q - d qd`: `d K qd`.
 
 use super::analysis::Prepared;
 use super::candidate::Candidate;
 use crate::data::Measured;
+use crate::Warning;
 
 /// How many standard deviations the kinematic delay must stand from zero.
 pub const SIGNIFICANCE: f64 = 10.0;
@@ -29,10 +30,10 @@ pub struct Kinematic {
 }
 
 impl Kinematic {
-    /// Whether the positions are late (significantly, and by at least one
-    /// sample interval `dt`).
+    /// Whether the positions are late (significantly, and by at least half
+    /// a sample interval `dt`).
     pub fn late(&self, dt: f64) -> bool {
-        self.delay >= dt && self.delay >= SIGNIFICANCE * self.std
+        self.delay >= 0.5 * dt && self.delay >= SIGNIFICANCE * self.std
     }
 }
 
@@ -79,13 +80,23 @@ pub fn kinematic<const N: usize>(m: &Measured<N>, p: &Prepared<N>) -> Option<Kin
 }
 
 /// The `positions` candidate added to `candidates` when the positions of
-/// `m` are late by their kinematic consistency (and delays are asked for).
-pub fn offer<const N: usize>(candidates: &mut Vec<Candidate>, m: &Measured<N>, p: &Prepared<N>) {
+/// `m` are late by their kinematic consistency (and delays are asked
+/// for), with a warning saying by how much.
+pub fn offer<const N: usize>(
+    candidates: &mut Vec<Candidate>,
+    m: &Measured<N>,
+    p: &Prepared<N>,
+    warnings: &mut Vec<Warning>,
+) {
     if !candidates.contains(&Candidate::TimeDelay) {
         return;
     }
-    if kinematic(m, p).is_some_and(|k| k.late(p.sig.dt)) {
+    if let Some(k) = kinematic(m, p).filter(|k| k.late(p.sig.dt)) {
         candidates.push(Candidate::LatePositions);
+        warnings.push(Warning::LatePositions {
+            delay: k.delay,
+            std: k.std,
+        });
     }
 }
 

@@ -251,7 +251,7 @@ pub fn diagnose<R: Robot<N> + Clone + Sync, const N: usize>(
         &mut warnings,
     );
     // A late position stream, where the positions lag the measured velocities.
-    late::offer(&mut candidates, train, &p);
+    late::offer(&mut candidates, train, &p, &mut warnings);
     let fits = parallel::fit_all::<R, N>(&candidates, &p, options.threads, progress);
     // Effects that start and stop: limited to the window the residual shows.
     let (fits, limited) = window::windowed(fits, &p, options);
