@@ -48,6 +48,7 @@ mod pool;
 mod rank;
 mod refine;
 mod report;
+mod reversal;
 mod segments;
 mod shrink;
 mod signals;
@@ -298,7 +299,7 @@ pub fn diagnose<R: Robot<N> + Clone + Sync, const N: usize>(
     let gap = (0..N)
         .map(|j| rms(&p, &p.sig.residual, j) / p.sig.floor[j])
         .fold(0.0, f64::max);
-    let verdict = verdict::verdict(&ranked, gap, options);
+    let mut verdict = verdict::verdict(&ranked, gap, options);
 
     // Where (training data, nominal model).
     let pred = horizon::prediction_error(robot, &p, &[]);
@@ -326,6 +327,14 @@ pub fn diagnose<R: Robot<N> + Clone + Sync, const N: usize>(
     let (mut effects, steps) =
         explain::entries::<R, N>(&pool, &explanation, &hold, &tip_name, aicc0);
     window::annotate(&mut effects, &pool, &explanation, &limited);
+    // Coulomb friction or an effort offset where a velocity never reverses.
+    reversal::mark(
+        &mut verdict,
+        &mut effects,
+        &ranked,
+        &R::JOINT_NAMES,
+        &excitation,
+    );
     let all: Vec<usize> = (0..explanation.set.len()).collect();
     let r = hold.residual(&all, &explanation.sol.theta);
     let rms_fraction = explain::fraction(hold.plain(&hold_y(&hold)), hold.plain(&r));
