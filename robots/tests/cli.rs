@@ -635,3 +635,47 @@ fn a_windowed_effect_is_generated_and_found_with_its_window() {
         String::from_utf8_lossy(&out.stderr)
     );
 }
+
+/// The regression of the last commit on main: 4 s of arm3r data where j3's
+/// training velocity never reverses. Coulomb friction there is named, as
+/// ambiguous with an effort offset at j3 (these data cannot tell them
+/// apart), never `unexplained`.
+#[test]
+fn coulomb_friction_where_the_velocity_never_reverses_is_ambiguous() {
+    use dynamics_runtime::Robot;
+    use dynamics_sim2real::data::read_csv_str;
+    use dynamics_sim2real::diagnose::{diagnose, Options};
+    use dynamics_sim2real::effects::EffectKind;
+    use robots::Arm3r;
+    let data = robots::builtin::synth(&dynamics_cli::gap::SynthRequest {
+        robot: "arm3r".into(),
+        kind: Some(EffectKind::CoulombFriction),
+        joint: Some("j3".into()),
+        magnitude: Some(0.2),
+        seed: 21,
+        excitation: "sines".parse().expect("an excitation"),
+        duration: 4.0,
+        noise: Default::default(),
+    })
+    .expect("synthesised");
+    let read = |text: &str| read_csv_str(text, &Arm3r::JOINT_NAMES, "synth").expect("CSV");
+    let report = diagnose(
+        &Arm3r::default(),
+        &read(&data.train),
+        &read(&data.holdout),
+        &Options::default(),
+        &|_, _| {},
+    )
+    .expect("diagnosed");
+    let v = &report.which.verdict;
+    eprintln!("{v:?}");
+    assert_eq!(
+        (v.kind.as_str(), v.joint.as_deref(), v.status.as_str()),
+        ("coulomb_friction", Some("j3"), "ambiguous")
+    );
+    let rival = v.rival.as_ref().expect("a rival");
+    assert_eq!(
+        (rival.kind.as_str(), rival.joint.as_deref()),
+        ("effort_offset", Some("j3"))
+    );
+}
