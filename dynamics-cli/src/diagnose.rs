@@ -76,12 +76,27 @@ pub fn diagnose_cmd<R: Robot<N> + Clone + Sync, const N: usize>(
         v.joint.clone().or(v.point.clone()).unwrap_or_default(),
         v.status
     );
+    if let Some(c) = &v.channel {
+        println!("  late channel: {c}");
+    }
     if let (Some(r), Some(m)) = (&v.rival, &v.separating_motion) {
         println!(
             "  rival: {} {}; to separate them: {m}",
             r.kind,
             r.joint.clone().or(r.point.clone()).unwrap_or_default()
         );
+    }
+    for e in &report.which.effects {
+        // An effect that starts and stops: where in time.
+        if let Some(w) = &e.window {
+            println!(
+                "  {} {} is on from {:.3} s to {:.3} s",
+                e.kind,
+                e.joint.clone().or(e.point.clone()).unwrap_or_default(),
+                w.start,
+                w.end
+            );
+        }
     }
     println!(
         "shrink on held-out data: torque gap -{:.1} %, short-horizon simulation error -{:.1} %",

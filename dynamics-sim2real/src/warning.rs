@@ -117,6 +117,14 @@ pub enum Warning {
         /// Where the effect's signature reaches, Hz.
         needs: f64,
     },
+    /// The measured positions lag the integral of the measured velocities:
+    /// the position stream is late (`time_delay`, channel `positions`).
+    LatePositions {
+        /// The delay from the kinematic consistency, s.
+        delay: f64,
+        /// Its standard deviation, s.
+        std: f64,
+    },
 }
 
 impl fmt::Display for Warning {
@@ -161,6 +169,12 @@ impl fmt::Display for Warning {
                 f,
                 "`{effect}` (signatures up to {needs:.0} Hz) is not identifiable above {limit:.0} Hz on these data \
                  (sampled at {rate:.0} Hz; a signature needs four samples a period): searched only below, not guessed"
+            ),
+            Warning::LatePositions { delay, std } => write!(
+                f,
+                "the positions lag the measured velocities by {:.2} +- {:.2} ms: the position stream is late against velocity and effort",
+                delay * 1e3,
+                std * 1e3
             ),
         }
     }

@@ -8,7 +8,10 @@ mod synth;
 
 pub use files::{diagnose_data, diagnose_files, traces_data, traces_files};
 pub use source::{parse_window, DataFile};
-pub use synth::{synth, synth_recorded, Motion, Recording, SynthOutput, SynthRequest, Truth};
+pub use synth::{
+    holdout_window, synth, synth_recorded, Motion, Recording, SynthOutput, SynthRequest, Truth,
+    TruthWindow,
+};
 
 use dynamics_sim2real::data::import::ImportError;
 use dynamics_sim2real::data::DataError;

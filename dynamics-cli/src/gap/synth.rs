@@ -5,7 +5,7 @@
 
 use dynamics_runtime::Robot;
 use dynamics_sim2real::data::{write_csv, Measured};
-use dynamics_sim2real::effects::{Effect, EffectKind, PlaceKind, Tip};
+use dynamics_sim2real::effects::{Effect, EffectKind, PlaceKind, Tip, Window};
 use dynamics_sim2real::synth::{
     draw_effect, synthesize, synthesize_with_size, Damage, Excitation, ExcitationKind, Noise, Rng,
     Scales, SynthOptions,
@@ -51,6 +51,17 @@ pub struct Truth {
     /// --noise-tau` would be told by a user who knows the sensors.
     #[serde(default)]
     pub noise_tau: Vec<f64>,
+    /// When the effect is on in the training data (absent: all the time).
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub window: Option<TruthWindow>,
+    /// When it is on in the held-out data.
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub holdout_window: Option<TruthWindow>,
+    /// The late channel (`positions`: the position stream late against
+    /// velocity and effort, `synth --q-late`; `all`: everything late
+    /// together, the `time_delay` effect); absent when nothing is late.
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub late: Option<String>,
 }
 
 /// A synthesis request.
@@ -102,6 +113,10 @@ pub struct Recording {
     pub rate: f64,
     /// Damage to the log.
     pub damage: Damage,
+    /// When the withheld effect is on in the training run (`None`: all
+    /// the time); the held-out run has it moved earlier by a quarter of its
+    /// start (see [`holdout_window`]). Not for motor sides or a delay.
+    pub window: Option<Window>,
 }
 
 impl Default for Recording {
@@ -109,6 +124,7 @@ impl Default for Recording {
         Recording {
             rate: 1000.0,
             damage: Damage::default(),
+            window: None,
         }
     }
 }
@@ -130,6 +146,39 @@ fn options<const N: usize>(
         noise: req.noise,
         seed,
         ..Default::default()
+    }
+}
+
+/// The held-out run's window for a training window `w`: moved earlier by a
+/// quarter of its start (an encoder that slips at 4 s in training slips at
+/// 3 s there), so that a diagnosis that copied the training window's times
+/// would miss it.
+///
+/// ```
+/// use dynamics_cli::gap::holdout_window;
+/// let w = holdout_window("4:6".parse().unwrap());
+/// assert_eq!((w.start, w.end), (3.0, 5.0));
+/// ```
+pub fn holdout_window(w: Window) -> Window {
+    w.shifted(-0.25 * w.start)
+}
+
+/// A window as the truth file records it (an open end: the record's end).
+#[derive(Debug, Clone, Copy, PartialEq, Serialize, Deserialize)]
+pub struct TruthWindow {
+    /// Start, s from the record's first sample.
+    pub start: f64,
+    /// End, s.
+    pub end: f64,
+}
+
+impl TruthWindow {
+    fn of(w: Window, duration: f64) -> Self {
+        let w = w.clipped(duration);
+        TruthWindow {
+            start: w.start,
+            end: w.end,
+        }
     }
 }
 
@@ -329,10 +378,25 @@ pub fn synth_recorded<R: Robot<N> + Clone, const N: usize>(
         )));
     }
     let mut rng = Rng::new(req.seed.wrapping_mul(0x9E37_79B9).wrapping_add(17));
-    let train_opts = options::<N>(motion, req, req.seed, rec);
+    let mut train_opts = options::<N>(motion, req, req.seed, rec);
     let effect = effect_for(robot, req, &train_opts, &mut rng)?;
     let effects: Vec<Effect> = effect.into_iter().collect();
-    let hold_opts = options::<N>(motion, req, req.seed.wrapping_add(1_000_003), rec);
+    let mut hold_opts = options::<N>(motion, req, req.seed.wrapping_add(1_000_003), rec);
+    if let Some(w) = rec.window {
+        if effect.is_none() {
+            return Err(GapError::Request(
+                "a window needs an effect to limit (--effect)".into(),
+            ));
+        }
+        if w.start >= req.duration {
+            return Err(GapError::Request(format!(
+                "window [{}, {}) starts after the record's end ({} s)",
+                w.start, w.end, req.duration
+            )));
+        }
+        train_opts.windows = vec![Some(w)];
+        hold_opts.windows = vec![Some(holdout_window(w))];
+    }
     let to_csv = |m: &Measured<N>| -> String {
         let mut out = Vec::new();
         let _ = write_csv(&mut out, m, &R::JOINT_NAMES);
@@ -363,6 +427,17 @@ pub fn synth_recorded<R: Robot<N> + Clone, const N: usize>(
             snr,
             distinct_snr,
             noise_tau,
+            window: rec.window.map(|w| TruthWindow::of(w, req.duration)),
+            holdout_window: rec
+                .window
+                .map(|w| TruthWindow::of(holdout_window(w), req.duration)),
+            late: if rec.damage.q_late > 0.0 {
+                Some("positions".into())
+            } else if kind == EffectKind::TimeDelay {
+                Some("all".into())
+            } else {
+                None
+            },
         },
     })
 }

@@ -91,6 +91,12 @@ pub fn run_on<R: Robot<N> + Clone + Sync, const N: usize>(
                         q_late: a.q_late,
                         ..Default::default()
                     },
+                    window: a
+                        .window
+                        .as_deref()
+                        .map(str::parse)
+                        .transpose()
+                        .map_err(|e| format!("--window: {e}"))?,
                 },
             )
         }

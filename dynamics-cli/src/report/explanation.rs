@@ -55,6 +55,17 @@ pub fn section(report: &Report) -> String {
             .clone()
             .or(e.point.clone())
             .unwrap_or("all signals".into());
+        // A delay: which channel is late.
+        let place = match &e.channel {
+            Some(c) if c == "positions" => format!("{place} (the position stream late)"),
+            Some(_) => format!("{place} (positions and velocities late together)"),
+            None => place,
+        };
+        // An effect that starts and stops: where in time.
+        let place = match &e.window {
+            Some(w) => format!("{place}, on from {:.3} s to {:.3} s", w.start, w.end),
+            None => place,
+        };
         let params = match &e.description {
             Some(d) => d.clone(),
             None => e

@@ -28,8 +28,13 @@ pub enum Candidate {
     Environment(f64),
     /// Encoder offset at a joint.
     EncoderOffset(usize),
-    /// Delay of the measured motion.
+    /// Delay of the measured motion (positions and velocities late
+    /// together against the effort).
     TimeDelay,
+    /// The position channel late against velocity and effort: offered only
+    /// when the measured positions lag the integral of the independently
+    /// measured velocities (`late.rs`).
+    LatePositions,
     /// Two-mass elastic joint.
     Elasticity(usize),
     /// Dead zone between motor and link.
@@ -105,7 +110,7 @@ impl Candidate {
             Candidate::Payload => EffectKind::PayloadMass,
             Candidate::Environment(_) => EffectKind::EnvironmentResistance,
             Candidate::EncoderOffset(_) => EffectKind::EncoderOffset,
-            Candidate::TimeDelay => EffectKind::TimeDelay,
+            Candidate::TimeDelay | Candidate::LatePositions => EffectKind::TimeDelay,
             Candidate::Elasticity(_) => EffectKind::JointElasticity,
             Candidate::Backlash(_) => EffectKind::Backlash,
             Candidate::EffortScale(_) => EffectKind::EffortScale,
@@ -140,7 +145,7 @@ impl Candidate {
             Candidate::Payload => &[("mass", true)],
             Candidate::Environment(_) => &[("mu", true)],
             Candidate::EncoderOffset(_) => &[("offset", false)],
-            Candidate::TimeDelay => &[("delay", true)],
+            Candidate::TimeDelay | Candidate::LatePositions => &[("delay", true)],
             Candidate::EffortScale(_) => &[("scale_minus_one", false)],
             Candidate::EffortOffset(_) => &[("offset", false)],
             Candidate::Elasticity(_) | Candidate::Backlash(_) | Candidate::Inertial(_) => &[],
@@ -182,6 +187,9 @@ impl Candidate {
                     c[0] = sig.model_rate[k];
                 }
             }
+            // Positions d late: the model is evaluated at q - d qd, and
+            // misses d K qd.
+            Candidate::LatePositions => c[0] = basis.k[k] * qd,
             Candidate::EffortScale(j) => c[0][j] = sig.model[k][j],
             Candidate::EffortOffset(j) => c[0][j] = 1.0,
             Candidate::Elasticity(_) | Candidate::Backlash(_) | Candidate::Inertial(_) => {}
@@ -211,7 +219,7 @@ impl Candidate {
                 joint,
                 offset: p(0),
             },
-            Candidate::TimeDelay => Effect::TimeDelay { delay: p(0) },
+            Candidate::TimeDelay | Candidate::LatePositions => Effect::TimeDelay { delay: p(0) },
             Candidate::EffortScale(joint) => Effect::EffortScale {
                 joint,
                 scale: 1.0 + p(0),

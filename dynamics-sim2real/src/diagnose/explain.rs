@@ -76,6 +76,12 @@ impl<'a, const N: usize> Holdout<'a, N> {
         Holdout { h, cols, y }
     }
 
+    /// The free held-out columns of the effect at position `i` of the set
+    /// (limited to a window by `window.rs`).
+    pub fn free_mut(&mut self, i: usize) -> &mut [DVector<f64>] {
+        &mut self.cols[i].0
+    }
+
     /// The whitened held-out residual of the effects at positions `which`
     /// of the set, with parameters `theta` (one per position).
     pub fn residual(&self, which: &[usize], theta: &[Vec<f64>]) -> DVector<f64> {
@@ -289,6 +295,7 @@ pub fn entries<R: Robot<N>, const N: usize>(
                     0.0
                 },
                 window: None,
+                channel: super::late::channel(f.candidate),
                 ambiguous_with: rival,
             }
         })

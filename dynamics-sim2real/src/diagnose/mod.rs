@@ -38,6 +38,7 @@ mod explain;
 mod filter;
 mod fit;
 mod horizon;
+mod late;
 mod links;
 mod motor;
 mod motor_fit;
@@ -47,6 +48,7 @@ mod pool;
 mod rank;
 mod refine;
 mod report;
+mod reversal;
 mod segments;
 mod shrink;
 mod signals;
@@ -55,6 +57,7 @@ pub mod traces;
 mod validate;
 mod verdict;
 mod visibility;
+mod window;
 mod windows;
 mod yardstick;
 
@@ -249,13 +252,17 @@ pub fn diagnose<R: Robot<N> + Clone + Sync, const N: usize>(
     let hsse0 = h.sse(&h.sig.residual);
 
     // Fit every candidate, on all cores.
-    let candidates = visibility::identifiable(
+    let mut candidates = visibility::identifiable(
         Candidate::all::<N>(&options.kinds),
         &excitation,
         p.sig.dt,
         &mut warnings,
     );
+    // A late position stream, where the positions lag the measured velocities.
+    late::offer(&mut candidates, train, &p, &mut warnings);
     let fits = parallel::fit_all::<R, N>(&candidates, &p, options.threads, progress);
+    // Effects that start and stop: limited to the window the residual shows.
+    let (fits, limited) = window::windowed(fits, &p, options);
 
     // The compound explanation over every fitted term.
     let with_links =
@@ -269,6 +276,7 @@ pub fn diagnose<R: Robot<N> + Clone + Sync, const N: usize>(
         (vec![], vec![])
     };
     let mut pool = pool::Pool::new(&fits, &plinks, &p);
+    window::limit_pool(&mut pool, &limited, &p);
     let explanation = compound::explain::<R, N>(&mut pool, &p, options);
 
     // Best grid variant per (kind, place), ranked by AICc, simpler nested
@@ -282,7 +290,7 @@ pub fn diagnose<R: Robot<N> + Clone + Sync, const N: usize>(
     let ranked: Vec<Ranked> = best
         .iter()
         .map(|f| {
-            let hs = h.sse(&f.corrected(&h));
+            let hs = h.sse(&window::corrected(f, &h, &limited));
             rank::ranked_entry::<R, N>(
                 f,
                 &tip_name,
@@ -298,7 +306,7 @@ pub fn diagnose<R: Robot<N> + Clone + Sync, const N: usize>(
     let gap = (0..N)
         .map(|j| rms(&p, &p.sig.residual, j) / p.sig.floor[j])
         .fold(0.0, f64::max);
-    let verdict = verdict::verdict(&ranked, gap, options);
+    let mut verdict = verdict::verdict(&ranked, gap, options);
 
     // Where (training data, nominal model).
     let pred = horizon::prediction_error(robot, &p, &[]);
@@ -321,13 +329,23 @@ pub fn diagnose<R: Robot<N> + Clone + Sync, const N: usize>(
 
     // The explanation's entries and how far it shrinks the gap (held-out
     // data).
-    let hold = explain::Holdout::new(&h, &hlinks, &pool, &explanation);
+    let mut hold = explain::Holdout::new(&h, &hlinks, &pool, &explanation);
+    window::limit_holdout(&mut hold, &h, &pool, &explanation, &limited);
     let mut nominal = vec![SVector::<f64, 10>::zeros(); R::LINK_NAMES.len()];
     if robot.inertial_parameters(&mut nominal).is_err() {
         nominal.clear();
     }
-    let (effects, steps) =
+    let (mut effects, steps) =
         explain::entries::<R, N>(&pool, &explanation, &hold, &tip_name, aicc0, &nominal);
+    window::annotate(&mut effects, &pool, &explanation, &limited);
+    // Coulomb friction or an effort offset where a velocity never reverses.
+    reversal::mark(
+        &mut verdict,
+        &mut effects,
+        &ranked,
+        &R::JOINT_NAMES,
+        &excitation,
+    );
     let all: Vec<usize> = (0..explanation.set.len()).collect();
     let r = hold.residual(&all, &explanation.sol.theta);
     let rms_fraction = explain::fraction(hold.plain(&hold_y(&hold)), hold.plain(&r));

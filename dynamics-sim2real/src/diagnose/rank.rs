@@ -115,6 +115,7 @@ pub fn ranked_entry<R: Robot<N>, const N: usize>(
     }
     let a = f.aicc(n);
     Ranked {
+        channel: super::late::channel(c),
         kind: c.kind().name().to_string(),
         joint: c.joint().map(|j| R::JOINT_NAMES[j].to_string()),
         point: matches!(c, Candidate::Payload | Candidate::Environment(_)).then(|| tip.to_string()),

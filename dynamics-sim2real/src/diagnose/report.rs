@@ -94,6 +94,9 @@ pub struct Explained {
     /// When the effect is limited in time.
     #[serde(skip_serializing_if = "Option::is_none")]
     pub window: Option<EffectWindow>,
+    /// For `time_delay`: the late channel (see [`Ranked::channel`]).
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub channel: Option<String>,
     /// An effect the data cannot tell from this one within the set (the
     /// two are one ambiguous pair).
     #[serde(skip_serializing_if = "Option::is_none")]
@@ -172,6 +175,11 @@ pub struct Ranked {
     pub delta_aicc: f64,
     /// Share of the held-out gap above noise it explains.
     pub holdout_share: f64,
+    /// For `time_delay`: the late channel (`all`: positions and
+    /// velocities late together against the effort; `positions`: the
+    /// position stream late against velocity and effort).
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub channel: Option<String>,
 }
 
 /// The verdict.
@@ -186,6 +194,9 @@ pub struct Verdict {
     /// Point, for tip effects.
     #[serde(skip_serializing_if = "Option::is_none")]
     pub point: Option<String>,
+    /// For `time_delay`: the late channel (see [`Ranked::channel`]).
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub channel: Option<String>,
     /// `clear`, `ambiguous`, `within_noise` or `unexplained`.
     pub status: String,
     /// The rival that these data cannot tell apart, when ambiguous.
@@ -202,7 +213,7 @@ impl Verdict {
     ///
     /// ```
     /// use dynamics_sim2real::diagnose::Verdict;
-    /// let v = Verdict { kind: "unexplained".into(), joint: None, point: None,
+    /// let v = Verdict { kind: "unexplained".into(), joint: None, point: None, channel: None,
     ///     status: "unexplained".into(), rival: None, separating_motion: None };
     /// assert!(!v.names_effect());
     /// ```

@@ -18,6 +18,7 @@ pub fn verdict(ranked: &[Ranked], gap: f64, options: &Options) -> Verdict {
                 kind: top.kind.clone(),
                 joint: top.joint.clone(),
                 point: top.point.clone(),
+                channel: top.channel.clone(),
                 status: if rival.is_some() {
                     "ambiguous"
                 } else {
@@ -38,6 +39,7 @@ pub fn verdict(ranked: &[Ranked], gap: f64, options: &Options) -> Verdict {
                 kind: word.into(),
                 joint: None,
                 point: None,
+                channel: None,
                 status: if word == "none" { "within_noise" } else { word }.into(),
                 rival: None,
                 separating_motion: None,

@@ -110,8 +110,9 @@ pub(super) fn effort_sign<const N: usize>(
 }
 
 /// Drops the candidates these data cannot identify: every one at a joint
-/// that does not move; Coulomb and Stribeck friction where the velocity
-/// never reverses (an effort offset would fit as well); backlash, and
+/// that does not move; Stribeck friction where the velocity never reverses
+/// (no breakaway shows; Coulomb friction stays, named only as ambiguous
+/// with an effort offset: `reversal.rs`); backlash, and
 /// elasticity's resonances, above what the rate shows (interval `dt`).
 pub(super) fn identifiable(
     candidates: Vec<Candidate>,
@@ -129,7 +130,7 @@ pub(super) fn identifiable(
                 if !ex.moves[j] {
                     return false;
                 }
-                if !ex.reverses[j] && matches!(c, Candidate::Coulomb(_) | Candidate::Stribeck(..)) {
+                if !ex.reverses[j] && matches!(c, Candidate::Stribeck(..)) {
                     return false;
                 }
             }

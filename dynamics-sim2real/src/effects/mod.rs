@@ -13,9 +13,11 @@ mod inertial;
 mod kind;
 mod plant;
 mod tip;
+mod window;
 
 pub use calibrated::{Calibrated, CalibratedError};
 pub use effect::{smooth_sign, Effect, SIGN_SMOOTHING};
 pub use kind::{EffectKind, PlaceKind, UnknownEffect};
 pub use plant::{Plant, PlantError, PlantSim, PlantState, Switch};
 pub use tip::Tip;
+pub use window::{Window, WindowError};

@@ -16,6 +16,7 @@ mod compound;
 mod damage;
 mod draw;
 mod excitation;
+mod phases;
 mod rng;
 mod run;
 mod sensors;
@@ -78,6 +79,10 @@ pub struct SynthOptions<const N: usize> {
     pub seed: u64,
     /// What real logs carry, made on purpose (none by default).
     pub damage: Damage,
+    /// Effects that start and stop: effect `i` of the run is on only
+    /// inside `windows[i]` when that is given (missing entries, `None`:
+    /// always on). Not for motor sides (elasticity, backlash) or a delay.
+    pub windows: Vec<Option<crate::effects::Window>>,
 }
 
 impl<const N: usize> Default for SynthOptions<N> {
@@ -92,6 +97,7 @@ impl<const N: usize> Default for SynthOptions<N> {
             noise: Noise::default(),
             seed: 1,
             damage: Damage::default(),
+            windows: Vec::new(),
         }
     }
 }

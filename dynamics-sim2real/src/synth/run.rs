@@ -4,10 +4,11 @@
 
 use nalgebra::SVector;
 
+use super::phases::Phases;
 use super::sensors::delayed;
 use super::{Excitation, Noise, Rng, Scales, SynthError, SynthOptions};
 use crate::data::Measured;
-use crate::effects::{Effect, Plant};
+use crate::effects::Effect;
 use dynamics_runtime::control::Reference;
 use dynamics_runtime::ode::Tolerances;
 use dynamics_runtime::Robot;
@@ -15,19 +16,16 @@ use dynamics_runtime::Robot;
 /// One experiment: the plant, the reference, the controller, the sensors.
 pub(super) struct Run<'a, R, const N: usize> {
     robot: &'a R,
-    plant: Plant<R, N>,
+    /// The plants of the effects on at a time (windows), and the sensor
+    /// effects on at a time.
+    phases: Phases<R, N>,
     reference: Excitation<N>,
     pub(super) scales: Scales<N>,
     opts: &'a SynthOptions<N>,
-    offset: SVector<f64, N>,
     delay: f64,
     /// Joints whose drive turns a motor side (elasticity, backlash): their
     /// velocity loop reads the motor speed.
     motor: [bool; N],
-    /// Effort-sensor effects (scale, offset): the plant is driven by what
-    /// the recorded command means once they are undone.
-    sensor: Vec<Effect>,
-
     /// The random stream after the reference was drawn (sensor noise).
     pub(super) rng: Rng,
 }
@@ -48,7 +46,7 @@ impl<'a, R: Robot<N> + Clone, const N: usize> Run<'a, R, N> {
                 opts.duration, opts.rate
             )));
         }
-        let plant = Plant::new(robot.clone(), effects.to_vec())?;
+        let phases = Phases::new(robot, effects, &opts.windows)?;
         let mut rng = Rng::new(opts.seed);
         let reference = Excitation::new(
             opts.excitation,
@@ -58,31 +56,22 @@ impl<'a, R: Robot<N> + Clone, const N: usize> Run<'a, R, N> {
             &mut rng,
         );
         let scales = Scales::of(robot, &reference, opts.duration);
-        let (mut offset, mut delay) = (SVector::<f64, N>::zeros(), 0.0);
+        let mut delay = 0.0;
         let mut motor = [false; N];
         for e in effects {
             if let (true, Some(j)) = (e.has_motor(), e.joint()) {
                 motor[j.min(N - 1)] = true;
             }
-            match *e {
-                Effect::EncoderOffset { joint, offset: o } => offset[joint] += o,
-                Effect::TimeDelay { delay: d } => delay += d,
-                _ => {}
+            if let Effect::TimeDelay { delay: d } = *e {
+                delay += d;
             }
         }
-        let sensor = effects
-            .iter()
-            .copied()
-            .filter(|e| matches!(e, Effect::EffortScale { .. } | Effect::EffortOffset { .. }))
-            .collect();
         Ok(Run {
-            sensor,
             robot,
-            plant,
+            phases,
             reference,
             scales,
             opts,
-            offset,
             delay,
             motor,
             rng,
@@ -103,7 +92,7 @@ impl<'a, R: Robot<N> + Clone, const N: usize> Run<'a, R, N> {
         let times = clock(opts);
         let n = times.len();
         let r0 = self.reference.at(0.0);
-        let mut sim = self.plant.start(r0.q, r0.qd);
+        let mut sim = self.phases.first().start(r0.q, r0.qd);
         let tol = Tolerances {
             rtol: 1e-9,
             atol: 1e-11,
@@ -131,7 +120,7 @@ impl<'a, R: Robot<N> + Clone, const N: usize> Run<'a, R, N> {
             } else {
                 q_seen
             };
-            let q_seen = q_seen + self.offset;
+            let q_seen = q_seen + self.phases.offset_at(t);
             seen.push((q_seen, qd_seen));
             let q_meas = q_seen + rng.normal_vec(&SVector::repeat(noise.q));
             let qd_meas = qd_seen + rng.normal_vec(&SVector::repeat(noise.qd));
@@ -164,8 +153,8 @@ impl<'a, R: Robot<N> + Clone, const N: usize> Run<'a, R, N> {
             out.tau.push(tau_meas);
             applied.push(tau);
             if k + 1 < n {
-                let drive = Effect::applied_effort(&self.sensor, &tau);
-                sim.advance(&self.plant, times[k + 1], &drive, tol)?;
+                let drive = Effect::applied_effort(&self.phases.sensor_at(t), &tau);
+                sim.advance(self.phases.plant_at(t), times[k + 1], &drive, tol)?;
             }
         }
         // The effort is held over each sample interval: around sample k the

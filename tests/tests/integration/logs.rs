@@ -4,18 +4,30 @@
 //! rate), drawn at random; the diagnoser gets the CSV files only. Targets:
 //! the effect named first in at least 95 % of identifiable cases, the joint
 //! right in at least 95 % of those, controls `none`, median held-out shrink
-//! at least 0.9, and every damage present named by a warning.
+//! at least 0.9, and every damage present named by a warning. Then
+//! effects that start and stop (an encoder that slips at a drawn time and
+//! keeps the offset, a tool in a medium and a payload carried for a drawn
+//! window; the held-out run has the window a quarter of its start
+//! earlier) and a late position stream (named `time_delay`, channel
+//! `positions`, and warned), each under one damage: the window found must
+//! lie within [`WINDOW_TOLERANCE`] of the truth's.
 //! `LOGS_SEED_BASE=N` draws other cases (base 0 was the one looked at while
 //! building).
 
 use dynamics_cli::gap::{Recording, SynthRequest, Truth};
 use dynamics_sim2real::diagnose::Options;
 use dynamics_sim2real::effects::EffectKind;
+use dynamics_sim2real::effects::Window;
 use dynamics_sim2real::synth::{ExcitationKind, Noise, Rng};
 use dynamics_sim2real::Warning;
 use robots::builtin::{diagnose_files, synth_recorded};
 
+/// Single effects under damage, then effects in a window and late positions.
 const CASES: usize = 44;
+const LATER_CASES: usize = 12;
+/// How near the truth's edges a window found must lie, s (a few widths of
+/// the 40 ms smoothing filter).
+const WINDOW_TOLERANCE: f64 = 0.2;
 /// As in the clean scoring (`diagnosis.rs`): the effect's effort, and the
 /// part that tells it from the simpler effect it contains, at least this
 /// many times one sample's effort noise.
@@ -65,24 +77,72 @@ struct Outcome {
     identifiable: bool,
     shrink: f64,
     warned: bool,
+    /// For a windowed effect named: whether its window is within
+    /// [`WINDOW_TOLERANCE`]; for a late stream named: whether the channel
+    /// is `positions`; else true.
+    detail: bool,
 }
 
-fn run_case(i: usize, dir: &std::path::Path) -> Outcome {
+/// What case `i` withholds: its effect kind, a window, a late position
+/// stream (s), its damages.
+fn draw(i: usize, rng: &mut Rng) -> (EffectKind, Option<Window>, f64, Vec<&'static str>) {
+    if i < CASES {
+        let kind = if i.is_multiple_of(11) {
+            EffectKind::None
+        } else {
+            EffectKind::ALL[i % 11]
+        };
+        let mut damages = vec![DAMAGES[rng.below(DAMAGES.len())]];
+        if rng.below(2) == 0 {
+            let second = DAMAGES[rng.below(DAMAGES.len())];
+            if second != damages[0] {
+                damages.push(second);
+            }
+        }
+        return (kind, None, 0.0, damages);
+    }
+    let damages = vec![DAMAGES[rng.below(DAMAGES.len())]];
+    let start = rng.uniform(1.0, 3.0);
+    let length = rng.uniform(1.5, 2.5);
+    match (i - CASES) % 4 {
+        0 => (
+            EffectKind::EncoderOffset,
+            Some(Window {
+                start,
+                end: f64::INFINITY,
+            }),
+            0.0,
+            damages,
+        ),
+        1 => (
+            EffectKind::EnvironmentResistance,
+            Some(Window {
+                start,
+                end: start + length,
+            }),
+            0.0,
+            damages,
+        ),
+        2 => (
+            EffectKind::PayloadMass,
+            Some(Window {
+                start,
+                end: start + length,
+            }),
+            0.0,
+            damages,
+        ),
+        _ => (EffectKind::None, None, rng.uniform(0.01, 0.025), damages),
+    }
+}
+
+fn run_case(i: usize, dir: &std::path::Path, only: &[usize]) -> Outcome {
     let base = seed_base();
     let mut rng = Rng::new(5000 + base + i as u64);
-    let kind = if i.is_multiple_of(11) {
-        EffectKind::None
-    } else {
-        EffectKind::ALL[i % 11]
-    };
-    let mut damages = vec![DAMAGES[rng.below(DAMAGES.len())]];
-    if rng.below(2) == 0 {
-        let second = DAMAGES[rng.below(DAMAGES.len())];
-        if second != damages[0] {
-            damages.push(second);
-        }
-    }
-    let rec = recording(&damages);
+    let (kind, window, q_late, damages) = draw(i, &mut rng);
+    let mut rec = recording(&damages);
+    rec.window = window;
+    rec.damage.q_late = q_late;
     let mut robot = ROBOTS[rng.below(ROBOTS.len())];
     let mut excitation = [
         ExcitationKind::Sines,
@@ -133,9 +193,19 @@ fn run_case(i: usize, dir: &std::path::Path) -> Outcome {
     );
     std::fs::write(&a, &out.train).expect("writes");
     std::fs::write(&b, &out.holdout).expect("writes");
-    let truth = out.truth;
+    let mut truth = out.truth;
+    // A late position stream is a `time_delay` of channel `positions`.
+    if truth.late.as_deref() == Some("positions") {
+        truth.kind = "time_delay".into();
+    }
     let (report, _) =
         diagnose_files(robot, &a, &b, &Options::default(), &|_, _| {}).expect("diagnoses");
+    if !only.is_empty() {
+        eprintln!(
+            "{}",
+            serde_json::to_string_pretty(&report.which).unwrap_or_default()
+        );
+    }
     let v = &report.which.verdict;
     let first = report.which.ranked.first();
     let said = if v.names_effect() {
@@ -149,26 +219,55 @@ fn run_case(i: usize, dir: &std::path::Path) -> Outcome {
         .flatten();
     let warned = damages
         .iter()
-        .all(|d| report.warnings.iter().any(|w| names(w, d)));
+        .all(|d| report.warnings.iter().any(|w| names(w, d)))
+        && (q_late == 0.0
+            || report
+                .warnings
+                .iter()
+                .any(|w| matches!(w, Warning::LatePositions { .. })));
+    // The window found, and the late channel named.
+    let effect = report
+        .which
+        .effects
+        .iter()
+        .find(|e| e.kind == truth.kind && e.joint == truth.joint);
+    let found = effect.and_then(|e| e.window.clone());
+    let detail = match (&truth.window, said == truth.kind) {
+        (Some(w), true) => found.as_ref().is_some_and(|f| {
+            (f.start - w.start).abs() < WINDOW_TOLERANCE && (f.end - w.end).abs() < WINDOW_TOLERANCE
+        }),
+        (None, true) if q_late > 0.0 => v.channel.as_deref() == Some("positions"),
+        _ => true,
+    };
     // At 100 Hz, backlash (contact at 40-80 Hz) is beyond what the rate shows.
     let visible = !(rec.rate < 160.0 && truth.kind == "backlash");
     let identifiable = truth.kind != "none"
         && visible
         && truth.snr >= IDENTIFIABLE_SNR
         && truth.distinct_snr >= IDENTIFIABLE_SNR;
+    let window_said = |w: Option<(f64, f64)>| {
+        w.map(|(a, b)| format!(" [{a:.2}, {b:.2})"))
+            .unwrap_or_default()
+    };
     eprintln!(
-        "case {i:2} {robot:9} {:>22} {:>4} [{}] -> {:>22} {:>4} {:9} snr {:7.2} distinct {:7.2} shrink {:.2} warned {warned}",
+        "case {i:2} {robot:9} {:>22}{}{} {:>4} [{}] -> {:>22}{}{} {:>4} {:9} snr {:7.2} distinct {:7.2} shrink {:.2} warned {warned} {}",
         truth.kind,
+        window_said(truth.window.map(|w| (w.start, w.end))),
+        if q_late > 0.0 { format!(" positions {:.1} ms", q_late * 1e3) } else { String::new() },
         truth.joint.clone().unwrap_or_default(),
         damages.join(", "),
         said,
+        window_said(found.map(|w| (w.start, w.end))),
+        v.channel.as_ref().map(|c| format!(" ({c})")).unwrap_or_default(),
         said_joint.clone().unwrap_or_default(),
         v.status,
         truth.snr,
         truth.distinct_snr,
         report.shrink.fraction,
+        if detail { "" } else { "WINDOW/CHANNEL OFF" },
     );
     Outcome {
+        detail,
         truth,
         said,
         said_joint,
@@ -179,11 +278,18 @@ fn run_case(i: usize, dir: &std::path::Path) -> Outcome {
 }
 
 #[test]
-#[ignore = "issue 15's targets not met yet on seed base 0: 26/28 named (a Coulomb friction under a jittered clock taken for an encoder offset, a viscous friction at snr 2.0 at 100 Hz answered none); run with --ignored"]
+#[ignore = "81 s of diagnosis (56 cases); base 0 meets every target (36/37 named, joints 19/19, controls 4/4, median shrink 0.95, warnings 56/56, windows and channels 11/12), base 7000 falls short on naming (32/35: armature taken for elasticity twice on the MAR, a Stribeck friction at a joint whose velocity never reverses named Coulomb); run with --ignored"]
 fn diagnoser_names_the_effect_in_damaged_logs() {
     let dir = std::env::temp_dir().join(format!("dynamics-logs-{}", std::process::id()));
     std::fs::create_dir_all(&dir).expect("temp dir");
-    let outcomes: Vec<Outcome> = (0..CASES).map(|i| run_case(i, &dir)).collect();
+    // `LOGS_ONLY=3,17` runs only those cases (to look at one closely).
+    let only: Vec<usize> = std::env::var("LOGS_ONLY")
+        .map(|s| s.split(',').filter_map(|x| x.trim().parse().ok()).collect())
+        .unwrap_or_default();
+    let outcomes: Vec<Outcome> = (0..CASES + LATER_CASES)
+        .filter(|i| only.is_empty() || only.contains(i))
+        .map(|i| run_case(i, &dir, &only))
+        .collect();
     let _ = std::fs::remove_dir_all(&dir);
     let ident: Vec<&Outcome> = outcomes.iter().filter(|o| o.identifiable).collect();
     let named = ident.iter().filter(|o| o.said == o.truth.kind).count();
@@ -205,13 +311,20 @@ fn diagnoser_names_the_effect_in_damaged_logs() {
     shrinks.sort_by(f64::total_cmp);
     let median = shrinks.get(shrinks.len() / 2).copied().unwrap_or(0.0);
     let warned = outcomes.iter().filter(|o| o.warned).count();
+    let later: Vec<&&Outcome> = ident
+        .iter()
+        .filter(|o| o.truth.window.is_some() || o.truth.late.is_some())
+        .filter(|o| o.said == o.truth.kind)
+        .collect();
+    let detailed = later.iter().filter(|o| o.detail).count();
     eprintln!(
-        "seed base {}: named {named}/{} identifiable, joint {joint_right}/{}, controls {quiet}/{} none, median shrink {median:.2}, damage warned {warned}/{}",
+        "seed base {}: named {named}/{} identifiable, joint {joint_right}/{}, controls {quiet}/{} none, median shrink {median:.2}, damage warned {warned}/{}, windows and channels right {detailed}/{}",
         seed_base(),
         ident.len(),
         joints.len(),
         controls.len(),
-        outcomes.len()
+        outcomes.len(),
+        later.len()
     );
     assert!(
         named as f64 >= 0.95 * ident.len() as f64,
@@ -226,4 +339,11 @@ fn diagnoser_names_the_effect_in_damaged_logs() {
     assert_eq!(quiet, controls.len(), "controls");
     assert!(median >= 0.9, "median shrink {median}");
     assert_eq!(warned, outcomes.len(), "warnings");
+    // (A window's edge where the effect fades below the noise, a medium
+    // met at low speed, is not in the data: 90 %.)
+    assert!(
+        detailed as f64 >= 0.9 * later.len() as f64,
+        "windows and channels {detailed}/{}",
+        later.len()
+    );
 }
