@@ -41,6 +41,7 @@ mod horizon;
 mod links;
 mod motor;
 mod motor_fit;
+mod motor_sim;
 mod noise;
 mod parallel;
 mod pool;
