@@ -246,6 +246,46 @@ pub trait Robot<const N: usize> {
     fn inertial_parameters(&self, out: &mut [SVector<f64, 10>]) -> Result<(), DynamicsError>;
     /// A, Qqt1 + Qqt2 and Q(0) in one straight-line pass.
     fn motion_terms(&self, q: &SVector<f64, N>, qd: &SVector<f64, N>) -> MotionTerms<N>;
+    /// What the forward-dynamics derivatives need, in one pass: the
+    /// [`MotionTerms`] at (q, qd); then `accelerations` turns them into
+    /// qdd (a factorisation of A and a solve, kept by the caller); then K
+    /// and D at (q, qd, qdd) (see [`Robot::perturbation_jacobians`]), reusing
+    /// the kinematics computed for A. `None` when `accelerations` gives
+    /// `None`.
+    ///
+    /// The default calls [`Robot::motion_terms`] and
+    /// [`Robot::perturbation_jacobians`]; `robot!` emits one function.
+    ///
+    /// ```
+    /// use dynamics_runtime::Robot;
+    /// dynamics_macros::robot! {
+    ///     pub robot Pendulum;
+    ///     gravity = [0.0, -9.81, 0.0];
+    ///     link base;
+    ///     link rod { mass = 2.0; com = [0.5, 0.0, 0.0]; }
+    ///     joint j = revolute(base -> rod) { transfer = [rot_z(q)]; }
+    /// }
+    /// let p = Pendulum::default();
+    /// let (q, qd) = (nalgebra::Vector1::new(0.3), nalgebra::Vector1::new(-1.0));
+    /// let (qdd, pj) = p
+    ///     .motion_and_jacobians(&q, &qd, |t| Some(t.bias() / t.a[(0, 0)]))
+    ///     .unwrap();
+    /// assert_eq!(qdd, p.forward_dynamics(&q, &qd, &nalgebra::Vector1::zeros()).unwrap());
+    /// assert_eq!(pj, p.perturbation_jacobians(&q, &qd, &qdd));
+    /// ```
+    fn motion_and_jacobians<F>(
+        &self,
+        q: &SVector<f64, N>,
+        qd: &SVector<f64, N>,
+        mut accelerations: F,
+    ) -> Option<(SVector<f64, N>, PerturbationJacobians<N>)>
+    where
+        F: FnMut(&MotionTerms<N>) -> Option<SVector<f64, N>>,
+    {
+        let qdd = accelerations(&self.motion_terms(q, qd))?;
+        let pj = self.perturbation_jacobians(q, qd, &qdd);
+        Some((qdd, pj))
+    }
     /// T = 1/2 qd^T A qd.
     fn kinetic_energy(&self, q: &SVector<f64, N>, qd: &SVector<f64, N>) -> f64;
     /// Pi: gravity (V = -sum m gravity . c over moving bodies) plus springs.

@@ -39,6 +39,6 @@ mod node;
 mod text;
 
 pub use count::OpCount;
-pub use emit::{emit, emit_fused, emit_with, float, Calls, Emitted};
+pub use emit::{emit, emit_fused, emit_fused_stages, emit_with, float, Calls, Emitted};
 pub use graph::Graph;
 pub use node::{Id, Node, Var, F64};

@@ -37,14 +37,36 @@ impl<'a> Spelling<'a> {
 
 /// The `let` chain for `roots` and the tokens of each root's value.
 pub fn chain(g: &Graph, roots: &[Id], sp: &Spelling) -> (TokenStream, Vec<TokenStream>) {
-    let calls = dynamics_symbolic::Calls {
-        sin_cos: &quote!(::dynamics_runtime::trig::sin_cos),
-        sin_cos_n: &quote!(::dynamics_runtime::trig::sin_cos_n),
-        mul_add: &quote!(::dynamics_runtime::fma::mul_add),
-        math: &quote!(::dynamics_runtime::math),
-    };
-    let e = dynamics_symbolic::emit_fused(g, roots, &|v| sp.var(v), &calls);
+    let e = with_calls(|calls| dynamics_symbolic::emit_fused(g, roots, &|v| sp.var(v), calls));
     (e.lets, e.roots)
+}
+
+/// `f` with the runtime functions the emitted code calls.
+fn with_calls<T>(f: impl FnOnce(&dynamics_symbolic::Calls) -> T) -> T {
+    let (sin_cos, sin_cos_n) = (
+        quote!(::dynamics_runtime::trig::sin_cos),
+        quote!(::dynamics_runtime::trig::sin_cos_n),
+    );
+    let (mul_add, math) = (
+        quote!(::dynamics_runtime::fma::mul_add),
+        quote!(::dynamics_runtime::math),
+    );
+    f(&dynamics_symbolic::Calls {
+        sin_cos: &sin_cos,
+        sin_cos_n: &sin_cos_n,
+        mul_add: &mul_add,
+        math: &math,
+    })
+}
+
+/// The `let` chains of several stages of roots in one body, each binding
+/// only what earlier stages did not (code may run between them), with the
+/// tokens of each stage's roots.
+pub fn stages(g: &Graph, stages: &[&[Id]], sp: &Spelling) -> Vec<(TokenStream, Vec<TokenStream>)> {
+    with_calls(|calls| dynamics_symbolic::emit_fused_stages(g, stages, &|v| sp.var(v), calls))
+        .into_iter()
+        .map(|e| (e.lets, e.roots))
+        .collect()
 }
 
 /// Body returning an `SVector<f64, n>`.

@@ -64,6 +64,37 @@ pub fn emit(model: &Model, d: &Derived) -> TokenStream {
         }
     };
 
+    let fused = {
+        let p = &d.perturbation;
+        let mut first = a_roots.clone();
+        first.extend(&d.qqt);
+        first.extend(&d.q0);
+        let mut second: Vec<_> = p.k.iter().flatten().copied().collect();
+        second.extend(p.d.iter().flatten());
+        let stages = body::stages(g, &[&first, &second], &sp);
+        let (lets1, vals1) = &stages[0];
+        let (lets2, vals2) = &stages[1];
+        let nn = n * n;
+        let a_set = body::assign_matrix(g, &a_roots, &vals1[..nn], n, quote!(a));
+        let qqt_set = body::assign_vector(g, &d.qqt, &vals1[nn..nn + n], quote!(qqt));
+        let q0_set = body::assign_vector(g, &d.q0, &vals1[nn + n..], quote!(q0));
+        let k_set = body::assign_matrix(g, &second[..nn], &vals2[..nn], n, quote!(k));
+        let d_set = body::assign_matrix(g, &second[nn..], &vals2[nn..], n, quote!(d));
+        quote! {
+            #lets1
+            let mut a = ::dynamics_runtime::nalgebra::SMatrix::<f64, #n, #n>::zeros();
+            let mut qqt = ::dynamics_runtime::nalgebra::SVector::<f64, #n>::zeros();
+            let mut q0 = ::dynamics_runtime::nalgebra::SVector::<f64, #n>::zeros();
+            #a_set #qqt_set #q0_set
+            let qdd = accelerations(&::dynamics_runtime::MotionTerms { a, qqt, q0 })?;
+            #lets2
+            let mut k = ::dynamics_runtime::nalgebra::SMatrix::<f64, #n, #n>::zeros();
+            let mut d = ::dynamics_runtime::nalgebra::SMatrix::<f64, #n, #n>::zeros();
+            #k_set #d_set
+            ::core::option::Option::Some((qdd, ::dynamics_runtime::PerturbationJacobians { k, d }))
+        }
+    };
+
     let perturbation = {
         let p = &d.perturbation;
         let mut roots: Vec<_> = p.k.iter().flatten().copied().collect();
@@ -210,6 +241,14 @@ pub fn emit(model: &Model, d: &Derived) -> TokenStream {
             fn motion_terms(&self, q: &::dynamics_runtime::nalgebra::SVector<f64, #n>,
                 qd: &::dynamics_runtime::nalgebra::SVector<f64, #n>)
                 -> ::dynamics_runtime::MotionTerms<#n> { #terms }
+            fn motion_and_jacobians<F>(&self, q: &::dynamics_runtime::nalgebra::SVector<f64, #n>,
+                qd: &::dynamics_runtime::nalgebra::SVector<f64, #n>, mut accelerations: F)
+                -> ::core::option::Option<(::dynamics_runtime::nalgebra::SVector<f64, #n>,
+                    ::dynamics_runtime::PerturbationJacobians<#n>)>
+            where
+                F: ::core::ops::FnMut(&::dynamics_runtime::MotionTerms<#n>)
+                    -> ::core::option::Option<::dynamics_runtime::nalgebra::SVector<f64, #n>>,
+            { #fused }
             #[inline]
             fn kinetic_energy(&self, q: &::dynamics_runtime::nalgebra::SVector<f64, #n>,
                 qd: &::dynamics_runtime::nalgebra::SVector<f64, #n>) -> f64 { #kinetic }

@@ -122,17 +122,26 @@ fn solved<R: Robot<N>, const N: usize>(
     qd: &SVector<f64, N>,
     tau: &SVector<f64, N>,
 ) -> Result<(ForwardDerivatives<N>, Ldlt<N>), DynamicsError> {
-    for (quantity, v) in [("q", q), ("qd", qd), ("tau", tau)] {
-        if let Some(index) = v.iter().position(|x| !x.is_finite()) {
-            return Err(DynamicsError::NonFinite { quantity, index });
-        }
-    }
-    let terms = robot.motion_terms(q, qd);
-    let ldlt = Ldlt::new(&terms.a).ok_or_else(|| DynamicsError::SingularMassMatrix {
-        q: crate::Coordinates::new(q.as_slice()),
-    })?;
-    let qdd = finite("qdd", ldlt.solve(&(terms.bias() + tau)))?;
-    let pj = robot.perturbation_jacobians(q, qd, &qdd);
+    crate::check::finite("q", q)?;
+    crate::check::finite("qd", qd)?;
+    crate::check::finite("tau", tau)?;
+    // One pass: A and the bias, the factorisation and qdd, then K and D
+    // with the kinematics of A reused. The closure keeps the factors, or
+    // why it stopped (no factors and no failure: A is not positive definite).
+    let mut factors = None;
+    let mut failure = None;
+    let solved = robot.motion_and_jacobians(q, qd, |terms| {
+        let ldlt = Ldlt::new(&terms.a)?;
+        factors = Some(ldlt);
+        finite("qdd", ldlt.solve(&(terms.bias() + tau)))
+            .map_err(|e| failure = Some(e))
+            .ok()
+    });
+    let (Some((qdd, pj)), Some(ldlt)) = (solved, factors) else {
+        return Err(failure.unwrap_or(DynamicsError::SingularMassMatrix {
+            q: crate::Coordinates::new(q.as_slice()),
+        }));
+    };
     let ddq_dq = finite("ddq_dq", ldlt.solve_matrix(&pj.k, -1.0))?;
     let ddq_dv = finite("ddq_dv", ldlt.solve_matrix(&pj.d, -1.0))?;
     Ok((
@@ -151,7 +160,7 @@ fn finite<const R: usize, const C: usize>(
     quantity: &'static str,
     x: SMatrix<f64, R, C>,
 ) -> Result<SMatrix<f64, R, C>, DynamicsError> {
-    match x.iter().position(|v| !v.is_finite()) {
+    match crate::check::first_non_finite(x.as_slice()) {
         Some(index) => Err(DynamicsError::Diverged { quantity, index }),
         None => Ok(x),
     }

@@ -17,69 +17,82 @@ pub(crate) struct Ldlt<const N: usize> {
     inv_d: [f64; N],
 }
 
-/// Rows of a right-hand side (`rows[i]` = row `i` of the matrix).
-type Rows<const N: usize, const M: usize> = [SVector<f64, M>; N];
+/// Rows of a right-hand side (`rows[i]` = row `i` of the matrix), plain
+/// arrays so that a row update is one vector loop.
+type Rows<const N: usize, const M: usize> = [[f64; M]; N];
+
+/// `rows[i] -= f(k) * rows[k]` for every `k` in `ks` (`k < i` forward,
+/// `k > i` backward).
+#[inline(always)]
+fn eliminate<const N: usize, const M: usize>(
+    rows: &mut Rows<N, M>,
+    i: usize,
+    ks: core::ops::Range<usize>,
+    f: impl Fn(usize) -> f64,
+) {
+    for k in ks {
+        let (fk, rk) = (f(k), rows[k]);
+        for (x, y) in rows[i].iter_mut().zip(rk) {
+            *x = mul_add(-fk, y, *x);
+        }
+    }
+}
 
 impl<const N: usize> Ldlt<N> {
     /// Factors `a` (reading its lower triangle); `None` unless every pivot
     /// is positive (`a` positive definite) and finite.
     pub(crate) fn new(a: &SMatrix<f64, N, N>) -> Option<Self> {
+        // Right-looking: once column j's pivot is known, every later column
+        // is updated by independent multiply-adds, so the chain from one
+        // pivot to the next is one division, one product and one update.
+        // `s[k][i]` holds entry (i, k) of the partly reduced matrix.
+        let mut s: [[f64; N]; N] = core::array::from_fn(|k| core::array::from_fn(|i| a[(i, k)]));
         let mut l = SMatrix::<f64, N, N>::zeros();
-        let mut d = [0.0; N];
         let mut inv_d = [0.0; N];
         for j in 0..N {
-            // w_k = L_jk D_k for k < j.
-            let mut w = [0.0; N];
-            let mut dj = a[(j, j)];
-            for k in 0..j {
-                w[k] = l[(j, k)] * d[k];
-                dj = mul_add(-w[k], l[(j, k)], dj);
-            }
+            let dj = s[j][j];
             if !(dj > 0.0 && dj.is_finite()) {
                 return None;
             }
-            d[j] = dj;
             inv_d[j] = 1.0 / dj;
+            let col = s[j];
             for i in j + 1..N {
-                let mut s = a[(i, j)];
-                for k in 0..j {
-                    s = mul_add(-l[(i, k)], w[k], s);
+                l[(i, j)] = col[i] * inv_d[j];
+            }
+            for k in j + 1..N {
+                let f = l[(k, j)];
+                for i in k..N {
+                    s[k][i] = mul_add(-f, col[i], s[k][i]);
                 }
-                l[(i, j)] = s * inv_d[j];
             }
         }
         Some(Self { l, inv_d })
     }
 
     /// `A^-1 B` in place of `B`'s rows.
-    pub(crate) fn solve_rows<const M: usize>(&self, rows: &mut Rows<N, M>) {
+    fn solve_rows<const M: usize>(&self, rows: &mut Rows<N, M>) {
         for i in 0..N {
-            for k in 0..i {
-                let (lik, rk) = (self.l[(i, k)], rows[k]);
-                rows[i].zip_apply(&rk, |x, y| *x = mul_add(-lik, y, *x));
-            }
+            eliminate(rows, i, 0..i, |k| self.l[(i, k)]);
         }
-        for i in 0..N {
-            rows[i] *= self.inv_d[i];
+        for (row, inv_d) in rows.iter_mut().zip(self.inv_d) {
+            row.iter_mut().for_each(|x| *x *= inv_d);
         }
         for i in (0..N).rev() {
-            for k in i + 1..N {
-                let (lki, rk) = (self.l[(k, i)], rows[k]);
-                rows[i].zip_apply(&rk, |x, y| *x = mul_add(-lki, y, *x));
-            }
+            eliminate(rows, i, i + 1..N, |k| self.l[(k, i)]);
         }
     }
 
     /// `A^-1 b`.
     pub(crate) fn solve(&self, b: &SVector<f64, N>) -> SVector<f64, N> {
-        let mut rows: Rows<N, 1> = core::array::from_fn(|i| SVector::<f64, 1>::new(b[i]));
+        let mut rows: Rows<N, 1> = core::array::from_fn(|i| [b[i]]);
         self.solve_rows(&mut rows);
         SVector::from_fn(|i, _| rows[i][0])
     }
 
     /// `s A^-1 B` for a square `B`.
     pub(crate) fn solve_matrix(&self, b: &SMatrix<f64, N, N>, s: f64) -> SMatrix<f64, N, N> {
-        let mut rows: Rows<N, N> = core::array::from_fn(|i| b.row(i).transpose() * s);
+        let mut rows: Rows<N, N> =
+            core::array::from_fn(|i| core::array::from_fn(|j| b[(i, j)] * s));
         self.solve_rows(&mut rows);
         SMatrix::from_fn(|i, j| rows[i][j])
     }

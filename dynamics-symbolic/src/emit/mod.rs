@@ -171,6 +171,54 @@ pub fn emit_fused(
     emit_impl(graph, roots, var, Trig::Path(calls.sin_cos), Some(calls))
 }
 
+/// [`emit_fused()`] of several stages of roots, for one function body that
+/// runs code of its own between them (e.g. a solve whose result the next
+/// stage reads as variables): each stage binds only the values no earlier
+/// stage bound, and reads those by name.
+///
+/// ```
+/// use dynamics_symbolic::{emit_fused_stages, Calls, Graph, Var};
+/// use quote::quote;
+/// let mut g = Graph::new();
+/// let (x, y) = (g.var(Var(0)), g.var(Var(1)));
+/// let s = g.sin(x);
+/// let sy = g.mul(s, y);
+/// let names = |v: Var| if v.0 == 0 { quote!(x) } else { quote!(y) };
+/// let calls = Calls { sin_cos: &quote!(sc), sin_cos_n: &quote!(scn), mul_add: &quote!(fma), math: &quote!(m) };
+/// let stages = emit_fused_stages(&g, &[&[s], &[sy]], &names, &calls);
+/// assert_eq!(stages[0].lets.to_string(), "let t2 : f64 = sc (x) . 0 ;");
+/// assert_eq!(stages[1].lets.to_string(), "let t3 : f64 = y * t2 ;");
+/// ```
+pub fn emit_fused_stages(
+    graph: &Graph,
+    stages: &[&[Id]],
+    var: &dyn Fn(Var) -> TokenStream,
+    calls: &Calls,
+) -> Vec<Emitted> {
+    let mut bound = vec![false; graph.len()];
+    stages
+        .iter()
+        .map(|roots| {
+            let e = emit_staged(
+                graph,
+                roots,
+                var,
+                Trig::Path(calls.sin_cos),
+                Some(calls),
+                &bound,
+            );
+            for id in graph.reachable(roots) {
+                // A batched trig argument written only into the call is
+                // not bound: a later stage must bind it itself.
+                if !e.folded.contains(&id) {
+                    bound[id.index()] = true;
+                }
+            }
+            e.emitted
+        })
+        .collect()
+}
+
 fn emit_impl(
     graph: &Graph,
     roots: &[Id],
@@ -178,9 +226,29 @@ fn emit_impl(
     trig_fn: Trig<'_>,
     fast: Option<&Calls>,
 ) -> Emitted {
+    emit_staged(graph, roots, var, trig_fn, fast, &[]).emitted
+}
+
+/// The emission, and the nodes it folded into the trig call unbound.
+struct Staged {
+    emitted: Emitted,
+    folded: Vec<Id>,
+}
+
+/// The emission of what `roots` need beyond the nodes marked in `bound`
+/// (read by name).
+fn emit_staged(
+    graph: &Graph,
+    roots: &[Id],
+    var: &dyn Fn(Var) -> TokenStream,
+    trig_fn: Trig<'_>,
+    fast: Option<&Calls>,
+    bound: &[bool],
+) -> Staged {
     let mul_add = fast.map(|f| f.mul_add);
     let math = fast.map(|f| f.math);
-    let reach = graph.reachable(roots);
+    let mut reach = graph.reachable(roots);
+    reach.retain(|id| !bound.get(id.index()).copied().unwrap_or(false));
     let pairs = trig::pairs(graph, &reach);
     let operand = |id: Id| -> TokenStream {
         match graph.node(id) {
@@ -199,9 +267,11 @@ fn emit_impl(
     if let Some(calls) = fast {
         items.extend(batch.item(graph, &pairs, &operand, calls.sin_cos_n));
     }
+    let mut folded = Vec::new();
     for &id in &reach {
         let name = ident(id);
         if batch.folded(id) {
+            folded.push(id);
             continue;
         }
         let expr = match graph.node(id) {
@@ -255,9 +325,12 @@ fn emit_impl(
             expr,
         });
     }
-    Emitted {
-        lets: schedule::bind(items),
-        roots: roots.iter().map(|r| operand(*r)).collect(),
+    Staged {
+        emitted: Emitted {
+            lets: schedule::bind(items),
+            roots: roots.iter().map(|r| operand(*r)).collect(),
+        },
+        folded,
     }
 }
 

@@ -126,6 +126,48 @@ fn forward_dynamics_derivatives_match_finite_differences() {
     }
 }
 
+/// The one-pass `motion_and_jacobians` (A and the bias, then K and D at
+/// the accelerations it is handed) against the separate outputs.
+fn one_pass_matches_the_separate_outputs<R: Robot<N>, const N: usize>(robot: &R, seed: f64) {
+    let q = SVector::<f64, N>::from_fn(|i, _| (seed * (i as f64 + 1.0)).sin());
+    let qd = SVector::<f64, N>::from_fn(|i, _| (seed * 0.7 * (i as f64 + 2.0)).cos());
+    let qdd = SVector::<f64, N>::from_fn(|i, _| 1.5 - 0.4 * i as f64);
+    let mut seen = None;
+    let (back, pj) = robot
+        .motion_and_jacobians(&q, &qd, |t| {
+            seen = Some(*t);
+            Some(qdd)
+        })
+        .expect("the closure gives accelerations");
+    assert_eq!(back, qdd);
+    let close = |what: &str, a: &[f64], b: &[f64]| {
+        let scale = b.iter().fold(1.0f64, |m, x| m.max(x.abs()));
+        let err = a
+            .iter()
+            .zip(b)
+            .fold(0.0f64, |m, (x, y)| m.max((x - y).abs()));
+        assert!(err <= 1e-12 * scale, "{}: {what} off by {err:e}", R::NAME);
+    };
+    let (t, sep) = (seen.expect("called once"), robot.motion_terms(&q, &qd));
+    close("A", t.a.as_slice(), sep.a.as_slice());
+    close("bias", t.bias().as_slice(), sep.bias().as_slice());
+    let sep = robot.perturbation_jacobians(&q, &qd, &qdd);
+    close("K", pj.k.as_slice(), sep.k.as_slice());
+    close("D", pj.d.as_slice(), sep.d.as_slice());
+    assert!(robot.motion_and_jacobians(&q, &qd, |_| None).is_none());
+}
+
+#[test]
+fn one_pass_terms_match_the_separate_outputs() {
+    for seed in [0.3, 1.9] {
+        one_pass_matches_the_separate_outputs(&robots::Rrp::default(), seed);
+        one_pass_matches_the_separate_outputs(&robots::Mar::with_drives([0.0; 3]), seed);
+        one_pass_matches_the_separate_outputs(&robots::Arm3r::default(), seed);
+        one_pass_matches_the_separate_outputs(&robots::Ur5::default(), seed);
+        one_pass_matches_the_separate_outputs(&robots::Panda::default(), seed);
+    }
+}
+
 /// RK4 on `X' = M X`, `X(0) = I`, with `M = [[A_c, B_c], [0, 0]]`: the
 /// blocks of `X(h)` are the zero-order-hold matrices.
 fn zoh_by_rk4(
