@@ -27,6 +27,7 @@ use nalgebra::SVector;
 
 use super::analysis::{fit, Prepared};
 use super::fit::aicc;
+use super::parallel;
 use super::pool::{fixed_column, Pool, Solution};
 use super::validate::Folds;
 use super::Options;
@@ -288,14 +289,27 @@ pub fn without_others<const N: usize>(
     q
 }
 
-/// Searches the motor side of term `t` again on `q` (the others' effort
-/// removed) and puts it in the pool when the search succeeds.
-fn research<R: Robot<N>, const N: usize>(pool: &mut Pool, t: usize, q: &Prepared<N>) {
-    let c = pool.terms[t].fit.candidate;
-    let f = fit::<R, N>(c, q);
-    if f.motor.is_some() && f.sse.is_finite() {
-        let col = fixed_column(&f, q);
-        pool.set_fixed(t, f, col);
+/// Searches the motor sides of terms `todo` again on `q` (the others'
+/// effort removed), on `threads` threads, and puts each in the pool when
+/// its search succeeds.
+fn research<R: Robot<N>, const N: usize>(
+    pool: &mut Pool,
+    todo: &[usize],
+    q: &Prepared<N>,
+    threads: usize,
+) {
+    let terms = &pool.terms;
+    let found = parallel::map(todo, threads, |&t| {
+        let f = fit::<R, N>(terms[t].fit.candidate, q);
+        (f.motor.is_some() && f.sse.is_finite()).then(|| {
+            let col = fixed_column(&f, q);
+            (f, col)
+        })
+    });
+    for (&t, found) in todo.iter().zip(found) {
+        if let Some((f, col)) = found {
+            pool.set_fixed(t, f, col);
+        }
     }
 }
 
@@ -327,9 +341,7 @@ pub fn explain<R: Robot<N>, const N: usize>(
             break;
         }
         let base = without_others(p, pool, &set, &sol, None);
-        for t in todo {
-            research::<R, N>(pool, t, &base);
-        }
+        research::<R, N>(pool, &todo, &base, options.threads);
         let next = select::<N>(pool, set.clone(), options);
         if next == set {
             break;

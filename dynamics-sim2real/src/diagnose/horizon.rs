@@ -1,6 +1,7 @@
 //! Short-horizon simulation error: from the measured state at the start of
 //! each window, simulate the model (with or without an effect) under the
-//! recorded efforts and compare the predicted positions with the measured.
+//! recorded efforts and compare the predicted positions with the measured
+//! (windows on all cores).
 
 use nalgebra::SVector;
 
@@ -16,7 +17,7 @@ pub const SPACING: f64 = 0.5;
 
 /// RMS position prediction error per joint over windows of [`HORIZON`]
 /// seconds, for the model with `effects` attached (none: the nominal model).
-pub fn prediction_error<R: Robot<N> + Clone, const N: usize>(
+pub fn prediction_error<R: Robot<N> + Clone + Sync, const N: usize>(
     robot: &R,
     p: &Prepared<N>,
     effects: &[Effect],
@@ -45,19 +46,21 @@ pub fn prediction_error<R: Robot<N> + Clone, const N: usize>(
         atol: 1e-9,
         ..Default::default()
     };
-    let mut sum = SVector::<f64, N>::zeros();
-    let mut count = 0usize;
+    // Window starts, each window simulated on its own (on all cores).
+    let mut starts = Vec::new();
     let mut k0 = a;
     while k0 + shift + len < z {
-        if !sig.mask.clear(k0, k0 + shift + len + 1) {
-            k0 += step;
-            continue;
+        if sig.mask.clear(k0, k0 + shift + len + 1) {
+            starts.push(k0);
         }
+        k0 += step;
+    }
+    let plant = &plant;
+    let window = |&k0: &usize| -> Option<Vec<SVector<f64, N>>> {
         // True state at t0 is what the sensors show `delay` later.
         let q0 = sig.q[k0 + shift] - offset;
         let mut sim = plant.start(q0, sig.qd[k0 + shift]);
-        for (j, e) in plant.effects.iter().enumerate() {
-            let _ = j;
+        for e in plant.effects.iter() {
             if let Effect::JointElasticity {
                 joint, stiffness, ..
             } = *e
@@ -66,29 +69,33 @@ pub fn prediction_error<R: Robot<N> + Clone, const N: usize>(
             }
         }
         sim.t = sig.t[k0];
-        let mut ok = true;
+        let mut errors = Vec::with_capacity(len);
         for k in k0..k0 + len {
-            if sim
-                .advance(
-                    &plant,
-                    sig.t[k + 1],
-                    &Effect::applied_effort(&sensor, &sig.tau_raw[k]),
-                    tol,
-                )
-                .is_err()
-            {
-                ok = false;
-                break;
-            }
+            sim.advance(
+                plant,
+                sig.t[k + 1],
+                &Effect::applied_effort(&sensor, &sig.tau_raw[k]),
+                tol,
+            )
+            .ok()?;
             let predicted = sim.state.q + offset;
             let measured = sig.q[k + 1 + shift];
-            sum += (predicted - measured).component_mul(&(predicted - measured));
+            errors.push((predicted - measured).component_mul(&(predicted - measured)));
+        }
+        Some(errors)
+    };
+    let windows = super::parallel::map(&starts, 0, window);
+    // Summed in the order of the samples, as one pass over them would.
+    let mut sum = SVector::<f64, N>::zeros();
+    let mut count = 0usize;
+    for w in windows {
+        let Some(errors) = w else {
+            return SVector::repeat(f64::INFINITY);
+        };
+        for e in errors {
+            sum += e;
             count += 1;
         }
-        if !ok {
-            return SVector::repeat(f64::INFINITY);
-        }
-        k0 += step;
     }
     if count == 0 {
         return SVector::zeros();

@@ -42,6 +42,7 @@ mod late;
 mod links;
 mod motor;
 mod motor_fit;
+mod motor_sim;
 mod noise;
 mod parallel;
 mod pool;

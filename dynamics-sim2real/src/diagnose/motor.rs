@@ -5,6 +5,7 @@
 
 use std::f64::consts::PI;
 
+use super::motor_sim::transmitted_raw_many;
 use super::signals::Signals;
 use crate::effects::Effect;
 
@@ -159,7 +160,7 @@ pub fn motor_transmitted<const N: usize>(
 }
 
 /// [`motor_transmitted`] before smoothing (NaN outside the range, and
-/// everywhere when the simulation diverged).
+/// everywhere when the simulation diverged); `motor_sim.rs` integrates it.
 pub fn motor_transmitted_raw<const N: usize>(
     sig: &Signals<N>,
     j: usize,
@@ -167,98 +168,9 @@ pub fn motor_transmitted_raw<const N: usize>(
     backlash: bool,
     inertia: f64,
 ) -> Vec<f64> {
-    let n = sig.t.len();
-    let (a, z) = sig.range;
-    let mut out = vec![f64::NAN; n];
-    if z <= a + 1 {
-        return out;
-    }
-    let force = |e: f64, ed: f64| -> f64 {
-        if backlash {
-            if e > g.half_width {
-                (g.stiffness * (e - g.half_width) + g.damping * ed).max(0.0)
-            } else if e < -g.half_width {
-                (g.stiffness * (e + g.half_width) + g.damping * ed).min(0.0)
-            } else {
-                0.0
-            }
-        } else {
-            g.stiffness * e + g.damping * ed
-        }
-    };
-    let load = sig.model[a][j];
-    let mut th = if backlash {
-        sig.q[a][j] + load.signum() * (g.half_width + load.abs() / g.stiffness)
-    } else {
-        sig.q[a][j] + load / g.stiffness
-    };
-    let mut thd = sig.qd[a][j];
-    let (mut ql, mut vl) = (sig.q[a][j], sig.qd[a][j]);
-    let wo = 2.0 * PI * OBSERVER_HZ;
-    // Two RK4 steps a sample: omega h <= 0.8 up to the 250 Hz stiff rotor,
-    // well inside RK4's stability; the scoring named the same effects on
-    // five seed bases as with four steps.
-    const SUB: usize = 2;
-    // A multiply, not a divide, on the integration's dependent chain.
-    let (inv_jm, inv_i) = (1.0 / g.jm, 1.0 / inertia);
-    for k in a..z {
-        out[k] = force(th - ql, thd - vl);
-        if k + 1 >= z {
-            break;
-        }
-        let (q0, v0, a0, m0) = (sig.q[k][j], sig.qd[k][j], sig.qdd[k][j], sig.model[k][j]);
-        let (q1, v1, a1, m1) = (
-            sig.q[k + 1][j],
-            sig.qd[k + 1][j],
-            sig.qdd[k + 1][j],
-            sig.model[k + 1][j],
-        );
-        let h = (sig.t[k + 1] - sig.t[k]) / SUB as f64;
-        let tau = sig.tau_raw[k][j];
-        // State derivative of (motor angle, motor rate, link angle, link
-        // rate) at fraction s of the interval: the link follows the
-        // measured motion plus what the transmitted effort adds over the
-        // model's, pulled back to the measurement at OBSERVER_HZ.
-        let d = |x: [f64; 4], s: f64| -> [f64; 4] {
-            let qs = q0 + (q1 - q0) * s;
-            let vs = v0 + (v1 - v0) * s;
-            let as_ = a0 + (a1 - a0) * s;
-            let ms = m0 + (m1 - m0) * s;
-            let f = force(x[0] - x[2], x[1] - x[3]);
-            [
-                x[1],
-                (tau - f) * inv_jm,
-                x[3],
-                as_ + (f - ms) * inv_i + wo * wo * (qs - x[2]) + 2.0 * wo * (vs - x[3]),
-            ]
-        };
-        let mut x = [th, thd, ql, vl];
-        for i in 0..SUB {
-            let s0 = i as f64 / SUB as f64;
-            let sm = (i as f64 + 0.5) / SUB as f64;
-            let s1 = (i + 1) as f64 / SUB as f64;
-            let add = |x: [f64; 4], k: [f64; 4], c: f64| -> [f64; 4] {
-                [
-                    x[0] + c * k[0],
-                    x[1] + c * k[1],
-                    x[2] + c * k[2],
-                    x[3] + c * k[3],
-                ]
-            };
-            let k1 = d(x, s0);
-            let k2 = d(add(x, k1, 0.5 * h), sm);
-            let k3 = d(add(x, k2, 0.5 * h), sm);
-            let k4 = d(add(x, k3, h), s1);
-            for c in 0..4 {
-                x[c] += h / 6.0 * (k1[c] + 2.0 * k2[c] + 2.0 * k3[c] + k4[c]);
-            }
-        }
-        [th, thd, ql, vl] = x;
-        if !th.is_finite() || !thd.is_finite() || !ql.is_finite() {
-            return vec![f64::NAN; n];
-        }
-    }
-    out
+    transmitted_raw_many(sig, j, std::slice::from_ref(g), backlash, inertia)
+        .pop()
+        .unwrap_or_default()
 }
 
 /// Bandwidth with which the simulated link is pulled back to the measured

@@ -5,9 +5,8 @@
 
 use super::analysis::{whitened_nominal, Fit, Prepared};
 use super::candidate::Candidate;
-use super::motor::{
-    motor_feasible, motor_grid, motor_transmitted_raw, signature_limit, MotorGuess,
-};
+use super::motor::{motor_feasible, motor_grid, signature_limit, MotorGuess};
+use super::motor_sim::transmitted_raw_many;
 use super::refine::refine;
 use super::spread::motor_std;
 use dynamics_runtime::{JointKind, Robot};
@@ -40,18 +39,23 @@ pub(super) fn stiff_rotor<const N: usize>(linear: Fit, j: usize, p: &Prepared<N>
             half_width: 0.0,
         }
     };
-    let cost = |g: &MotorGuess| -> f64 {
-        let t = motor_transmitted_raw(&p.sig, j, g, false, inertia);
-        let sse: f64 = base - own
-            + p.rows
-                .iter()
-                .map(|&k| ((p.sig.sg.at(&t, 0, k) - p.sig.model[k][j]) * w).powi(2))
-                .sum::<f64>();
-        if sse.is_finite() {
-            sse
-        } else {
-            f64::INFINITY
-        }
+    // Whitened SSE with each rotor of `gs` (simulated side by side).
+    let costs = |gs: &[MotorGuess]| -> Vec<f64> {
+        transmitted_raw_many(&p.sig, j, gs, false, inertia)
+            .iter()
+            .map(|t| {
+                let sse: f64 = base - own
+                    + p.rows
+                        .iter()
+                        .map(|&k| ((p.sig.sg.at(t, 0, k) - p.sig.model[k][j]) * w).powi(2))
+                        .sum::<f64>();
+                if sse.is_finite() {
+                    sse
+                } else {
+                    f64::INFINITY
+                }
+            })
+            .collect()
     };
     let start = linear
         .theta
@@ -63,23 +67,28 @@ pub(super) fn stiff_rotor<const N: usize>(linear: Fit, j: usize, p: &Prepared<N>
     // couplings barely move the inertia), then the inertia at it.
     // Only couplings the rate shows (none at 100 Hz: the linear fit).
     let limit = signature_limit(p.sig.dt);
-    let f = STIFF_ROTOR
-        .0
+    let couplings: Vec<f64> = STIFF_ROTOR.0.into_iter().filter(|&f| f <= limit).collect();
+    let first = costs(
+        &couplings
+            .iter()
+            .map(|&f| guess(start, f))
+            .collect::<Vec<_>>(),
+    );
+    let best = couplings
         .into_iter()
-        .filter(|&f| f <= limit)
-        .map(|f| (f, cost(&guess(start, f))))
-        .min_by(|a, b| a.1.total_cmp(&b.1))
-        .map(|(f, _)| f);
-    let Some(f) = f else {
+        .zip(first)
+        .min_by(|a, b| a.1.total_cmp(&b.1));
+    let Some((f, c_start)) = best else {
         return linear;
     };
     let mut jm = start;
-    let mut c_best = cost(&guess(jm, f));
+    let mut c_best = c_start;
     let mut step = 0.35f64;
     while step > 0.01 {
         let mut moved = false;
-        for s in [step.exp(), (-step).exp()] {
-            let c = cost(&guess(jm * s, f));
+        let trials = [step.exp(), (-step).exp()];
+        let c = costs(&trials.map(|s| guess(jm * s, f)));
+        for (s, c) in trials.into_iter().zip(c) {
             if c < c_best {
                 (jm, c_best) = (jm * s, c);
                 moved = true;
@@ -115,35 +124,52 @@ pub(super) fn fit_motor<R: Robot<N>, const N: usize>(c: Candidate, p: &Prepared<
     // rows' windows of the transmitted effort).
     let inertia = p.basis.inertia[j];
     let limit = signature_limit(p.sig.dt);
-    let rows = |g: &MotorGuess| -> Vec<f64> {
-        let t = motor_transmitted_raw(&p.sig, j, g, backlash, inertia);
-        p.rows
+    let feasible = |g: &MotorGuess| motor_feasible(g, backlash, inertia, revolute, limit);
+    // Whitened rows of joint j with each guess of `gs` (simulated side by
+    // side).
+    let rows = |gs: &[MotorGuess]| -> Vec<Vec<f64>> {
+        transmitted_raw_many(&p.sig, j, gs, backlash, inertia)
             .iter()
-            .map(|&k| (p.sig.sg.at(&t, 0, k) - p.sig.model[k][j]) * w)
+            .map(|t| {
+                p.rows
+                    .iter()
+                    .map(|&k| (p.sig.sg.at(t, 0, k) - p.sig.model[k][j]) * w)
+                    .collect()
+            })
             .collect()
     };
-    let cost = |g: &MotorGuess| -> f64 {
-        if !motor_feasible(g, backlash, inertia, revolute, limit) {
-            return f64::INFINITY;
-        }
-        let sse_j: f64 = rows(g).iter().map(|r| r * r).sum();
-        let sse = base - own + sse_j;
-        if sse.is_finite() {
-            sse
-        } else {
-            f64::INFINITY
-        }
+    // Whitened SSE of each guess (infinite outside the physical box,
+    // which is not simulated).
+    let costs = |gs: &[MotorGuess]| -> Vec<f64> {
+        let inside: Vec<MotorGuess> = gs.iter().copied().filter(feasible).collect();
+        let mut simulated = rows(&inside).into_iter();
+        gs.iter()
+            .map(|g| {
+                if !feasible(g) {
+                    return f64::INFINITY;
+                }
+                let sse_j: f64 = simulated
+                    .next()
+                    .map_or(f64::NAN, |r| r.iter().map(|r| r * r).sum());
+                let sse = base - own + sse_j;
+                if sse.is_finite() {
+                    sse
+                } else {
+                    f64::INFINITY
+                }
+            })
+            .collect()
     };
     let mut start: Option<(MotorGuess, f64)> = None;
-    for g in motor_grid(backlash, inertia, revolute, limit) {
-        let sse = cost(&g);
+    let grid = motor_grid(backlash, inertia, revolute, limit);
+    for (g, sse) in grid.iter().zip(costs(&grid)) {
         if sse < start.map_or(f64::INFINITY, |s| s.1) {
-            start = Some((g, sse));
+            start = Some((*g, sse));
         }
     }
     let (motor, motor_std, sse) = match start {
         Some((g, sse)) => {
-            let (g, sse) = refine(g, sse, backlash, cost);
+            let (g, sse) = refine(g, sse, backlash, costs);
             // Its spread. (The Gauss-Newton step `motor_std` also offers
             // is not taken: on the scoring's seed base 0 it let a wrong
             // elastic joint fit a rotor inertia's data 22 AICc better.)

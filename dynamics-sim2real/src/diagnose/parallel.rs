@@ -1,5 +1,5 @@
-//! Work on all cores: a slice cut into one chunk per thread, results in
-//! the slice's order; fitting every candidate that way, with progress
+//! Work on all cores: the items of a slice shared among threads, results
+//! in the slice's order; fitting every candidate that way, with progress
 //! reported as each fit ends.
 
 use std::sync::atomic::{AtomicUsize, Ordering};
@@ -9,28 +9,43 @@ use super::candidate::Candidate;
 use dynamics_runtime::Robot;
 
 /// `f` of every item, computed on `threads` threads (0: all cores), in the
-/// order of `items`. A panic in `f` is passed on.
+/// order of `items`. Each thread takes the next item not yet taken, so
+/// that items of very different cost (a motor-side search against a
+/// linear fit) share the cores evenly. A panic in `f` is passed on.
 pub fn map<T: Sync, U: Send>(items: &[T], threads: usize, f: impl Fn(&T) -> U + Sync) -> Vec<U> {
     let threads = if threads == 0 {
         std::thread::available_parallelism().map_or(1, |n| n.get())
     } else {
         threads
+    }
+    .clamp(1, items.len().max(1));
+    let next = AtomicUsize::new(0);
+    let work = || {
+        let mut done = Vec::new();
+        loop {
+            let i = next.fetch_add(1, Ordering::Relaxed);
+            let Some(item) = items.get(i) else {
+                return done;
+            };
+            done.push((i, f(item)));
+        }
     };
-    let chunk = items.len().div_ceil(threads).max(1);
-    let f = &f;
-    std::thread::scope(|s| {
-        let handles: Vec<_> = items
-            .chunks(chunk)
-            .map(|c| s.spawn(move || c.iter().map(f).collect::<Vec<_>>()))
-            .collect();
-        handles
-            .into_iter()
-            .flat_map(|h| match h.join() {
-                Ok(v) => v,
-                Err(e) => std::panic::resume_unwind(e),
-            })
-            .collect()
-    })
+    let mut all: Vec<(usize, U)> = if threads == 1 {
+        work()
+    } else {
+        std::thread::scope(|s| {
+            let handles: Vec<_> = (0..threads).map(|_| s.spawn(work)).collect();
+            handles
+                .into_iter()
+                .flat_map(|h| match h.join() {
+                    Ok(v) => v,
+                    Err(e) => std::panic::resume_unwind(e),
+                })
+                .collect()
+        })
+    };
+    all.sort_by_key(|(i, _)| *i);
+    all.into_iter().map(|(_, u)| u).collect()
 }
 
 /// Fits `candidates` to `p` on `threads` threads (0: all cores), calling

@@ -9,12 +9,15 @@ pub const BUDGET: usize = 120;
 
 /// Minimises `cost` from `start` (cost `start_cost`) over motor inertia,
 /// stiffness, damping and, for backlash, the half-width; returns the best
-/// guess and its cost.
+/// guess and its cost. `costs` prices several guesses at once (the two
+/// directions of a step are priced together; the second is used, and
+/// counted, only where the first does not improve, as when they are
+/// tried one after the other).
 pub fn refine(
     start: MotorGuess,
     start_cost: f64,
     backlash: bool,
-    cost: impl Fn(&MotorGuess) -> f64,
+    costs: impl Fn(&[MotorGuess]) -> Vec<f64>,
 ) -> (MotorGuess, f64) {
     let dims = if backlash { 4 } else { 3 };
     let (mut best, mut best_cost) = (start, start_cost);
@@ -23,12 +26,12 @@ pub fn refine(
     while step > 0.005 && spent < BUDGET {
         let mut improved = false;
         for d in 0..dims {
-            for sign in [1.0, -1.0] {
-                let trial = scaled(&best, d, (sign * step).exp());
-                let c = cost(&trial);
+            let trials = [1.0, -1.0].map(|sign: f64| scaled(&best, d, (sign * step).exp()));
+            let c = costs(&trials);
+            for (trial, c) in trials.iter().zip(c) {
                 spent += 1;
                 if c.is_finite() && c < best_cost {
-                    (best, best_cost) = (trial, c);
+                    (best, best_cost) = (*trial, c);
                     improved = true;
                     break;
                 }
@@ -78,7 +81,9 @@ mod tests {
             damping: 2.0,
             half_width: 0.005,
         };
-        let (g, c) = refine(start, cost(&start), true, cost);
+        let (g, c) = refine(start, cost(&start), true, |gs| {
+            gs.iter().map(cost).collect()
+        });
         assert!(c < 0.02 * cost(&start), "cost {c}");
         assert!((g.stiffness / truth.stiffness - 1.0).abs() < 0.1);
     }

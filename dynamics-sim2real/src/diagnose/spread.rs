@@ -36,15 +36,15 @@ pub const STEP: f64 = 0.05;
 
 /// Standard deviations of the parameters of `g` (motor inertia,
 /// stiffness, damping and, for backlash, half-width; zero for the
-/// half-width of elasticity), from `residual(g)`: the whitened residual on
-/// the fit's rows; and the Gauss-Newton step (factors on the parameters)
+/// half-width of elasticity), from `residuals(gs)`: the whitened residual
+/// on the fit's rows of each guess of `gs` (all of them asked for at once); and the Gauss-Newton step (factors on the parameters)
 /// towards the least-squares optimum. Infinite standard deviations (and
 /// no step) where the data do not determine the parameters (a singular
 /// curvature, or a simulation that failed).
 pub fn motor_std(
     g: &MotorGuess,
     backlash: bool,
-    residual: impl Fn(&MotorGuess) -> Vec<f64>,
+    residuals: impl Fn(&[MotorGuess]) -> Vec<Vec<f64>>,
 ) -> (MotorGuess, Option<MotorGuess>) {
     let dims = if backlash { 4 } else { 3 };
     let inf = MotorGuess {
@@ -53,15 +53,22 @@ pub fn motor_std(
         damping: f64::INFINITY,
         half_width: if backlash { f64::INFINITY } else { 0.0 },
     };
-    let r0 = residual(g);
+    // The optimum, then each parameter up and down.
+    let mut guesses = vec![*g];
+    for d in 0..dims {
+        guesses.push(scaled(g, d, STEP.exp()));
+        guesses.push(scaled(g, d, (-STEP).exp()));
+    }
+    let mut rs = residuals(&guesses).into_iter();
+    let r0 = rs.next().unwrap_or_default();
     let m = r0.len();
     if m <= dims || r0.iter().any(|x| !x.is_finite()) {
         return (inf, None);
     }
     let mut jac = DMatrix::zeros(m, dims);
     for d in 0..dims {
-        let up = residual(&scaled(g, d, STEP.exp()));
-        let down = residual(&scaled(g, d, (-STEP).exp()));
+        let up = rs.next().unwrap_or_default();
+        let down = rs.next().unwrap_or_default();
         if up.len() != m || down.len() != m {
             return (inf, None);
         }
@@ -119,14 +126,22 @@ mod tests {
 
     /// Rows linear in the logarithms: `a_k ln(jm / 2.2) + b_k ln(k / 900)`
     /// plus a barely seen damping and white noise `e_k` of std `sigma`.
-    fn rows<'a>(a: &'a [f64], b: &'a [f64], e: &'a [f64]) -> impl Fn(&MotorGuess) -> Vec<f64> + 'a {
-        move |h: &MotorGuess| {
-            (0..a.len())
-                .map(|k| {
-                    a[k] * (h.jm / 2.2).ln()
-                        + b[k] * (h.stiffness / 900.0).ln()
-                        + 1e-9 * (h.damping / 3.0).ln()
-                        + e[k]
+    fn rows<'a>(
+        a: &'a [f64],
+        b: &'a [f64],
+        e: &'a [f64],
+    ) -> impl Fn(&[MotorGuess]) -> Vec<Vec<f64>> + 'a {
+        move |hs: &[MotorGuess]| {
+            hs.iter()
+                .map(|h| {
+                    (0..a.len())
+                        .map(|k| {
+                            a[k] * (h.jm / 2.2).ln()
+                                + b[k] * (h.stiffness / 900.0).ln()
+                                + 1e-9 * (h.damping / 3.0).ln()
+                                + e[k]
+                        })
+                        .collect()
                 })
                 .collect()
         }
