@@ -7,16 +7,8 @@ use dynamics_sim2real::effects::Effect;
 use dynamics_sim2real::synth::{synthesize, SynthOptions};
 use dynamics_sim2real::Warning;
 
-dynamics_macros::robot! {
-    /// A planar two-link arm in a vertical plane.
-    pub robot Arm2;
-    gravity = [0.0, -9.8, 0.0];
-    link base;
-    link upper { mass = 3.0; com = [0.1, 0.0, 0.0]; inertia = [1e-5, 0.02, 0.02]; }
-    link lower { mass = 1.5; com = [0.08, 0.0, 0.0]; inertia = [1e-5, 0.008, 0.008]; }
-    joint j1 = revolute(base -> upper) { transfer = [rot(q)]; }
-    joint j2 = revolute(upper -> lower) { transfer = [tu(0.25), rot(q)]; }
-}
+mod common;
+use common::Arm2;
 
 #[test]
 fn coulomb_friction_where_the_velocity_never_reverses_is_ambiguous_with_an_offset() {

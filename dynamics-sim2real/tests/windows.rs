@@ -10,16 +10,8 @@ use dynamics_sim2real::diagnose::{diagnose, Options, Report};
 use dynamics_sim2real::effects::{Effect, Window};
 use dynamics_sim2real::synth::{synthesize, SynthOptions};
 
-dynamics_macros::robot! {
-    /// A planar two-link arm in a vertical plane.
-    pub robot Arm2;
-    gravity = [0.0, -9.8, 0.0];
-    link base;
-    link upper { mass = 3.0; com = [0.1, 0.0, 0.0]; inertia = [1e-5, 0.02, 0.02]; }
-    link lower { mass = 1.5; com = [0.08, 0.0, 0.0]; inertia = [1e-5, 0.008, 0.008]; }
-    joint j1 = revolute(base -> upper) { transfer = [rot(q)]; }
-    joint j2 = revolute(upper -> lower) { transfer = [tu(0.25), rot(q)]; }
-}
+mod common;
+use common::Arm2;
 
 const DURATION: f64 = 6.0;
 /// A few widths of the diagnosis's smoothing filter (40 ms half-width).
