@@ -458,13 +458,17 @@ fn diagnose_writes_a_readable_report() {
     }
 }
 
-#[test]
-fn report_traces_carry_the_fitted_effect() {
+/// `duration` s of arm3r training and held-out data (seed 21, sines) with
+/// Coulomb friction of 0.2 N m at j3, as the CSVs `synth` writes.
+fn arm3r_coulomb_j3(
+    duration: f64,
+) -> (
+    dynamics_sim2real::data::Measured<3>,
+    dynamics_sim2real::data::Measured<3>,
+) {
     use dynamics_runtime::Robot;
     use dynamics_sim2real::data::read_csv_str;
-    use dynamics_sim2real::diagnose::{diagnose, traces::traces, Options};
     use dynamics_sim2real::effects::EffectKind;
-    use robots::Arm3r;
     let data = robots::builtin::synth(&dynamics_cli::gap::SynthRequest {
         robot: "arm3r".into(),
         kind: Some(EffectKind::CoulombFriction),
@@ -472,12 +476,19 @@ fn report_traces_carry_the_fitted_effect() {
         magnitude: Some(0.2),
         seed: 21,
         excitation: "sines".parse().expect("an excitation"),
-        duration: 8.0,
+        duration,
         noise: Default::default(),
     })
     .expect("synthesised");
-    let read = |text: &str| read_csv_str(text, &Arm3r::JOINT_NAMES, "synth").expect("CSV");
-    let (train, holdout) = (read(&data.train), read(&data.holdout));
+    let read = |text: &str| read_csv_str(text, &robots::Arm3r::JOINT_NAMES, "synth").expect("CSV");
+    (read(&data.train), read(&data.holdout))
+}
+
+#[test]
+fn report_traces_carry_the_fitted_effect() {
+    use dynamics_sim2real::diagnose::{diagnose, traces::traces, Options};
+    use robots::Arm3r;
+    let (train, holdout) = arm3r_coulomb_j3(8.0);
     let robot = Arm3r::default();
     let report =
         diagnose(&robot, &train, &holdout, &Options::default(), &|_, _| {}).expect("diagnosed");
@@ -642,27 +653,13 @@ fn a_windowed_effect_is_generated_and_found_with_its_window() {
 /// apart), never `unexplained`.
 #[test]
 fn coulomb_friction_where_the_velocity_never_reverses_is_ambiguous() {
-    use dynamics_runtime::Robot;
-    use dynamics_sim2real::data::read_csv_str;
     use dynamics_sim2real::diagnose::{diagnose, Options};
-    use dynamics_sim2real::effects::EffectKind;
     use robots::Arm3r;
-    let data = robots::builtin::synth(&dynamics_cli::gap::SynthRequest {
-        robot: "arm3r".into(),
-        kind: Some(EffectKind::CoulombFriction),
-        joint: Some("j3".into()),
-        magnitude: Some(0.2),
-        seed: 21,
-        excitation: "sines".parse().expect("an excitation"),
-        duration: 4.0,
-        noise: Default::default(),
-    })
-    .expect("synthesised");
-    let read = |text: &str| read_csv_str(text, &Arm3r::JOINT_NAMES, "synth").expect("CSV");
+    let (train, holdout) = arm3r_coulomb_j3(4.0);
     let report = diagnose(
         &Arm3r::default(),
-        &read(&data.train),
-        &read(&data.holdout),
+        &train,
+        &holdout,
         &Options::default(),
         &|_, _| {},
     )
