@@ -379,6 +379,17 @@ pub fn synth_recorded<R: Robot<N> + Clone, const N: usize>(
             req.duration
         )));
     }
+    for (name, late) in [
+        ("q-late", rec.damage.q_late),
+        ("tau-late", rec.damage.tau_late),
+    ] {
+        if !(late.is_finite() && late >= 0.0 && late < req.duration) {
+            return Err(GapError::Request(format!(
+                "{name} must be a delay of at least 0 s, shorter than the record ({} s), got {late}",
+                req.duration
+            )));
+        }
+    }
     let mut rng = Rng::new(req.seed.wrapping_mul(0x9E37_79B9).wrapping_add(17));
     let mut train_opts = options::<N>(motion, req, req.seed, rec);
     let effect = effect_for(robot, req, &train_opts, &mut rng)?;
