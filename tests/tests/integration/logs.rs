@@ -286,7 +286,17 @@ fn run_case(i: usize, dir: &std::path::Path, only: &[usize]) -> Outcome {
         damages.join(", "),
         said,
         window_said(found.map(|w| (w.start, w.end))),
-        v.channel.as_ref().map(|c| format!(" ({c})")).unwrap_or_default(),
+        v.channel
+            .as_ref()
+            .map(|c| {
+                // The delay found, beside the channel.
+                let d = first
+                    .and_then(|r| r.parameters.iter().find(|p| p.name == "delay"))
+                    .map(|p| format!(" {:.1} +- {:.1} ms", p.value * 1e3, p.std * 1e3))
+                    .unwrap_or_default();
+                format!(" ({c}{d})")
+            })
+            .unwrap_or_default(),
         said_joint.clone().unwrap_or_default(),
         v.status,
         truth.snr,
@@ -306,7 +316,7 @@ fn run_case(i: usize, dir: &std::path::Path, only: &[usize]) -> Outcome {
 }
 
 #[test]
-#[ignore = "81 s of diagnosis (56 cases); base 0 meets every target (36/37 named, joints 19/19, controls 4/4, median shrink 0.95, warnings 56/56, windows and channels 11/12), base 7000 falls short on naming (32/35: armature taken for elasticity twice on the MAR, a Stribeck friction at a joint whose velocity never reverses named Coulomb); run with --ignored"]
+#[ignore = "80 s of diagnosis (60 cases); base 0 meets every target (40/41 named, joints 19/19, controls 4/4, median shrink 0.96, warnings 60/60, windows and channels 15/16), base 7000 falls short on naming (36/39: armature taken for elasticity twice on the MAR, a Stribeck friction at a joint whose velocity never reverses named Coulomb); run with --ignored"]
 fn diagnoser_names_the_effect_in_damaged_logs() {
     let dir = std::env::temp_dir().join(format!("dynamics-logs-{}", std::process::id()));
     std::fs::create_dir_all(&dir).expect("temp dir");
