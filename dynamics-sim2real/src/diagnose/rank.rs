@@ -161,3 +161,58 @@ pub fn ranked_entry<R: Robot<N>, const N: usize>(
         holdout_share,
     }
 }
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    fn fit(candidate: Candidate, sse: f64, k: usize) -> Fit {
+        Fit {
+            candidate,
+            theta: vec![],
+            std: vec![],
+            motor: None,
+            motor_std: None,
+            sse,
+            k,
+        }
+    }
+
+    /// An elastic joint 30 AICc ahead of the rotor it contains goes first
+    /// unless the rotor leaves its joint within the noise floor; Stribeck
+    /// over Coulomb is left to the margin alone.
+    #[test]
+    fn a_motor_side_goes_behind_a_rotor_that_leaves_only_noise() {
+        let n = 900;
+        // AICc n ln(sse / n) + 2k + ...: sse 1000 against 1034 is 30 ahead
+        // after the 2 extra parameters' 4.
+        let fits = || {
+            vec![
+                fit(Candidate::Armature(1), 1034.0, 1),
+                fit(Candidate::Elasticity(1), 1000.0, 3),
+                fit(Candidate::Viscous(0), 1100.0, 1),
+            ]
+        };
+        let gain = aicc_of(1034.0, n, 1) - aicc_of(1000.0, n, 3);
+        assert!(gain > 25.0 && gain < 35.0, "{gain}");
+        let loud = best_per_place(fits(), n, 10.0, &|_| false);
+        assert_eq!(loud[0].candidate, Candidate::Elasticity(1));
+        let quiet = best_per_place(fits(), n, 10.0, &|f| {
+            assert_eq!(f.candidate, Candidate::Armature(1));
+            true
+        });
+        assert_eq!(quiet[0].candidate, Candidate::Armature(1));
+        assert_eq!(quiet[1].candidate, Candidate::Elasticity(1));
+        // Stribeck 30 ahead of Coulomb stays first whatever `quiet` says.
+        let friction = vec![
+            fit(Candidate::Coulomb(0), 1034.0, 1),
+            fit(Candidate::Stribeck(0, 0.03), 1000.0, 3),
+        ];
+        let s = best_per_place(friction, n, 10.0, &|_| true);
+        assert_eq!(s[0].candidate, Candidate::Stribeck(0, 0.03));
+    }
+
+    fn aicc_of(sse: f64, n: usize, k: usize) -> f64 {
+        super::super::fit::aicc(sse, n, k)
+    }
+}
