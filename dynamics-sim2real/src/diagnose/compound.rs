@@ -349,7 +349,9 @@ pub fn explain<R: Robot<N>, const N: usize>(
         set = next;
     }
     // Parsimony once more: a richer nested term the simpler one at its
-    // place now fits within the nesting margin gives way to it.
+    // place now fits within the nesting margin gives way to it, and so
+    // does a motor side where the rigid rotor in its stead leaves its joint
+    // within the noise floor (as in the ranking, `rank::within_floor`).
     for i in 0..set.len() {
         let me = pool.terms[set[i]].fit.candidate;
         let Some(is_simpler) = simpler(me) else {
@@ -368,7 +370,16 @@ pub fn explain<R: Robot<N>, const N: usize>(
             })
             .min_by(|a, b| a.1.total_cmp(&b.1));
         if let Some((u, c)) = alt {
-            if c - full < nesting(me, options) {
+            let quiet = || {
+                let mut s = set.clone();
+                s[i] = u;
+                let sol = pool.solve(&s);
+                matches!(me, Candidate::Elasticity(_) | Candidate::Backlash(_))
+                    && me.joint().is_some_and(|j| {
+                        !loud_joints::<N>(pool, &s, &sol, options.floor_ratio).contains(&j)
+                    })
+            };
+            if c - full < nesting(me, options) || quiet() {
                 set[i] = u;
             }
         }

@@ -107,7 +107,9 @@ pub struct Options {
     /// of the data it was not fitted on better with it than without.
     pub cv_margin: f64,
     /// The compound explanation stops adding effects once the residual RMS
-    /// is within this many times the noise floor on every joint.
+    /// is within this many times the noise floor on every joint; and a
+    /// motor side (elasticity, backlash) is not ranked before the rigid
+    /// rotor it contains where that rotor leaves its joint within it.
     pub floor_ratio: f64,
     /// Threads (0: all cores).
     pub threads: usize,
@@ -282,8 +284,11 @@ pub fn diagnose<R: Robot<N> + Clone + Sync, const N: usize>(
     let explanation = compound::explain::<R, N>(&mut pool, &p, options);
 
     // Best grid variant per (kind, place), ranked by AICc, simpler nested
-    // models first unless the richer one wins clearly.
-    let best = rank::best_per_place(fits, n, options.nesting_margin);
+    // models first unless the richer one wins clearly (and, for a motor
+    // side, unless the rotor alone leaves only noise).
+    let best = rank::best_per_place(fits, n, options.nesting_margin, &|f| {
+        rank::within_floor(f, &p, options.floor_ratio)
+    });
     let tip_name = Tip::of::<R, N>().name::<R, N>().to_string();
     let excess = |sse: f64, sse0: f64, n: usize| -> f64 {
         let gap0 = (sse0 - n as f64).max(1e-12);

@@ -165,12 +165,15 @@ pub struct Synthesized<const N: usize> {
     /// that the controller's reaction to sensor noise, which no sensor
     /// resolves in the motion, does not count as part of a delay.)
     pub effect_rms: SVector<f64, N>,
-    /// Per joint, the RMS of the part of that effort no rigid rotor
-    /// explains: at a joint with a motor side (elasticity, backlash), the
-    /// effort less its least-squares fit by an inertia times the link's
-    /// acceleration; elsewhere the same as `effect_rms`. The size of what
-    /// tells those effects from a plain rotor inertia (`armature`), which
-    /// they contain.
+    /// Per joint, the RMS of the part of that effort the simpler effect it
+    /// contains does not explain: at a joint with a motor side
+    /// (elasticity, backlash), the effort less its least-squares fit by an
+    /// inertia times the link's acceleration (a plain rotor inertia,
+    /// `armature`); at a joint with Stribeck friction whose velocity never
+    /// reverses, less its fit by a Coulomb friction (a constant effort
+    /// there: what is left is the rise at low speed, none if the joint never
+    /// slows to the Stribeck velocity); elsewhere the same as `effect_rms`.
+    /// The size of what tells those effects from the simpler one.
     pub distinct_rms: SVector<f64, N>,
     /// Per joint, the standard deviation of the effort noise of one sample.
     pub noise_sigma: SVector<f64, N>,
@@ -186,7 +189,8 @@ impl<const N: usize> Synthesized<N> {
     }
 
     /// The same ratio for `distinct_rms`: how far the withheld effects
-    /// stand out from a rigid rotor inertia.
+    /// stand out from the simpler effect they contain (a rigid rotor
+    /// inertia, a Coulomb friction).
     pub fn distinct_snr(&self) -> f64 {
         (0..N)
             .map(|j| self.distinct_rms[j] / self.noise_sigma[j].max(1e-300))
