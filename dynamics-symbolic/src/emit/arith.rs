@@ -5,6 +5,7 @@
 use proc_macro2::{Literal, TokenStream};
 use quote::quote;
 
+use super::contract::Contracted;
 use super::{by_ready, float};
 use crate::node::Id;
 
@@ -101,11 +102,14 @@ pub(super) fn plain_sum(
 }
 
 /// [`plain_sum`] with each scaled term after the first folded into a
-/// multiply-add: `f(b, -2.5f64, k + a)` for `k + a - 2.5 * b`.
+/// multiply-add: `f(b, -2.5f64, k + a)` for `k + a - 2.5 * b`, and each
+/// product `contracted` gives (its factors) too: `f(x, y, acc)` for
+/// `acc + x * y`, `f(-x, y, acc)` for `acc - x * y`.
 pub(super) fn fused_sum(
     k: f64,
     terms: &[(Id, f64)],
     operand: &dyn Fn(Id) -> TokenStream,
+    contracted: &dyn Fn(Id) -> Option<Contracted>,
     f: &TokenStream,
 ) -> TokenStream {
     let (mut acc, rest) = match (k != 0.0, terms) {
@@ -114,6 +118,15 @@ pub(super) fn fused_sum(
         (false, [first, rest @ ..]) => (plain_sum(0.0, &[*first], operand), rest),
     };
     for &(t, c) in rest {
+        if let Some(p) = contracted(t).filter(|_| c.abs() == 1.0) {
+            let (x, y) = (operand(p.a), operand(p.b));
+            acc = if (c < 0.0) != p.negative {
+                quote!(#f(-#x, #y, #acc))
+            } else {
+                quote!(#f(#x, #y, #acc))
+            };
+            continue;
+        }
         let x = operand(t);
         acc = if c == 1.0 {
             quote!(#acc + #x)

@@ -15,6 +15,7 @@
 //! multiplies, `x^-1` as `1.0 / x`), no allocation anywhere.
 
 mod arith;
+mod contract;
 mod schedule;
 mod trig;
 
@@ -208,8 +209,9 @@ pub fn emit_fused_stages(
                 &bound,
             );
             for id in graph.reachable(roots) {
-                // A batched trig argument written only into the call is
-                // not bound: a later stage must bind it itself.
+                // A batched trig argument written only into the call, or
+                // a product written into its sum, is not bound: a later
+                // stage must bind it itself.
                 if !e.folded.contains(&id) {
                     bound[id.index()] = true;
                 }
@@ -229,7 +231,7 @@ fn emit_impl(
     emit_staged(graph, roots, var, trig_fn, fast, &[]).emitted
 }
 
-/// The emission, and the nodes it folded into the trig call unbound.
+/// The emission, and the nodes it wrote into their users unbound.
 struct Staged {
     emitted: Emitted,
     folded: Vec<Id>,
@@ -262,6 +264,10 @@ fn emit_staged(
     };
     let level = schedule::levels(graph, &reach);
     let ready = schedule::ready_times(graph, &reach);
+    let contracted = match fast {
+        Some(_) => contract::products(graph, roots, &reach, &ready),
+        None => Default::default(),
+    };
     let mut items: Vec<Item> = Vec::new();
     let batch = trig::Batch::new(graph, roots, &reach, &pairs, fast.is_some());
     if let Some(calls) = fast {
@@ -270,7 +276,7 @@ fn emit_staged(
     let mut folded = Vec::new();
     for &id in &reach {
         let name = ident(id);
-        if batch.folded(id) {
+        if batch.folded(id) || contracted.contains_key(&id) {
             folded.push(id);
             continue;
         }
@@ -279,7 +285,13 @@ fn emit_staged(
             Node::Sum { constant, terms } => {
                 let terms = by_ready(terms.iter().map(|(t, c)| (*t, c.get())), &ready);
                 match mul_add {
-                    Some(f) => arith::fused_sum(constant.get(), &terms, &operand, f),
+                    Some(f) => arith::fused_sum(
+                        constant.get(),
+                        &terms,
+                        &operand,
+                        &|t| contracted.get(&t).copied(),
+                        f,
+                    ),
                     None => arith::plain_sum(constant.get(), &terms, &operand),
                 }
             }

@@ -37,9 +37,10 @@ fn phase(
 ) -> Result<PhaseEnd, SimError> {
     let mut ode = Dopri5::new(t0, x0, tol);
     let mut hit: Option<(f64, State, usize, f64, f64)> = None;
-    // A watch fires only once it has been seen positive: a mode entered on
-    // its own boundary (slip starting from rest) is not left again on the
-    // round-off of its first steps.
+    // A watch fires only once it has been seen positive, and not within
+    // [`EVENT_CHECK`] of the entry: a mode entered on its own boundary (slip
+    // starting from rest) is not left again on the round-off of its first
+    // steps.
     let mut armed = g(t0, &x0).map(|v| v > 0.0);
     ode.run(rhs, t_end, |step| {
         let (g0, g1) = (g(step.t0, &step.y0), g(step.t0 + step.h, &step.y1));
@@ -55,6 +56,12 @@ fn phase(
             } else {
                 step.t0
             };
+            if te <= t0 + EVENT_CHECK {
+                // Within the switch resolution of the entry: the round-off
+                // of the boundary the mode was entered on, not a new event.
+                armed[k] = false;
+                continue;
+            }
             if fired.is_none_or(|f| te < f.0) {
                 fired = Some((te, k));
             }
