@@ -125,6 +125,25 @@ pub enum Warning {
         /// Its standard deviation, s.
         std: f64,
     },
+    /// The measured effort lags the model's effort along the measured
+    /// motion, whose positions and velocities agree: the effort stream is
+    /// late (`time_delay`, channel `effort`).
+    LateEffort {
+        /// The delay fitted, s.
+        delay: f64,
+        /// Its standard deviation, s.
+        std: f64,
+    },
+    /// The motion lags the effort (`time_delay`, channel `all`) but the
+    /// velocities are derived from the positions: whether the position
+    /// stream alone is late or positions and velocities together cannot be
+    /// told on these data.
+    LateMotionUnresolved {
+        /// The delay fitted, s.
+        delay: f64,
+        /// Its standard deviation, s.
+        std: f64,
+    },
 }
 
 impl fmt::Display for Warning {
@@ -173,6 +192,18 @@ impl fmt::Display for Warning {
             Warning::LatePositions { delay, std } => write!(
                 f,
                 "the positions lag the measured velocities by {:.2} +- {:.2} ms: the position stream is late against velocity and effort",
+                delay * 1e3,
+                std * 1e3
+            ),
+            Warning::LateEffort { delay, std } => write!(
+                f,
+                "the effort lags the measured motion by {:.2} +- {:.2} ms (positions and velocities agree): the effort stream is late against position and velocity",
+                delay * 1e3,
+                std * 1e3
+            ),
+            Warning::LateMotionUnresolved { delay, std } => write!(
+                f,
+                "the motion lags the effort by {:.2} +- {:.2} ms; the velocities are derived from the positions, so whether the position stream alone is late or positions and velocities together cannot be told on these data (channel `all`)",
                 delay * 1e3,
                 std * 1e3
             ),

@@ -676,3 +676,90 @@ fn coulomb_friction_where_the_velocity_never_reverses_is_ambiguous() {
         ("effort_offset", Some("j3"))
     );
 }
+
+/// `synth --tau-late`: the effort stream 12 ms late against position and
+/// velocity; the truth names channel `effort`, and so does the diagnosis
+/// of the files (JSON and the printed verdict); a negative delay is
+/// refused.
+#[test]
+fn a_late_effort_stream_is_generated_and_named() {
+    let train = tmp("tau-late.csv");
+    let truth = tmp("tau-late-truth.json");
+    let out = dynamics()
+        .args(["synth", "--robot", "arm3r", "--effect", "none"])
+        .args([
+            "--duration",
+            "6",
+            "--seed",
+            "3",
+            "--tau-late",
+            "0.012",
+            "--out",
+        ])
+        .arg(&train)
+        .arg("--truth")
+        .arg(&truth)
+        .output()
+        .expect("runs");
+    assert!(
+        out.status.success(),
+        "{}",
+        String::from_utf8_lossy(&out.stderr)
+    );
+    let t: serde_json::Value =
+        serde_json::from_str(&std::fs::read_to_string(&truth).expect("truth")).expect("json");
+    assert_eq!(t["late"], "effort");
+    let json = tmp("tau-late-report.json");
+    let out = dynamics()
+        .args(["diagnose", "--robot", "arm3r", "--train"])
+        .arg(&train)
+        .arg("--holdout")
+        .arg(train.with_file_name("tau-late-holdout.csv"))
+        .arg("--json")
+        .arg(&json)
+        .output()
+        .expect("runs");
+    let text = String::from_utf8_lossy(&out.stdout);
+    assert!(out.status.success(), "{text}");
+    let report: serde_json::Value =
+        serde_json::from_str(&std::fs::read_to_string(&json).expect("report")).expect("json");
+    let v = &report["which"]["verdict"];
+    assert_eq!(
+        (&v["kind"], &v["channel"]),
+        (&"time_delay".into(), &"effort".into()),
+        "{v}"
+    );
+    let e = &report["which"]["effects"][0];
+    let d = e["parameters"][0]["value"].as_f64().expect("delay");
+    assert!((d - 0.012).abs() < 0.002, "delay {d}");
+    assert!(text.contains("late channel: effort"), "{text}");
+    assert!(
+        report["warnings"]
+            .as_array()
+            .expect("warnings")
+            .iter()
+            .any(|w| w["kind"] == "late_effort"),
+        "{report}"
+    );
+    let out = dynamics()
+        .args([
+            "synth",
+            "--robot",
+            "arm3r",
+            "--effect",
+            "none",
+            "--tau-late=-0.01",
+            "--out",
+        ])
+        .arg(tmp("bad-late.csv"))
+        .output()
+        .expect("runs");
+    assert!(!out.status.success());
+    assert!(
+        String::from_utf8_lossy(&out.stderr).contains(
+            "tau-late must be a delay of at least 0 s, shorter than the record (8 s), got -0.01"
+        ),
+        "{}",
+        String::from_utf8_lossy(&out.stderr)
+    );
+}

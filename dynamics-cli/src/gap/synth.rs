@@ -58,8 +58,10 @@ pub struct Truth {
     #[serde(default, skip_serializing_if = "Option::is_none")]
     pub holdout_window: Option<TruthWindow>,
     /// The late channel (`positions`: the position stream late against
-    /// velocity and effort, `synth --q-late`; `all`: everything late
-    /// together, the `time_delay` effect); absent when nothing is late.
+    /// velocity and effort, `synth --q-late`; `effort`: the effort late
+    /// against position and velocity, `synth --tau-late`; `all`: positions
+    /// and velocities late together against the effort, the `time_delay`
+    /// effect); absent when nothing is late.
     #[serde(default, skip_serializing_if = "Option::is_none")]
     pub late: Option<String>,
 }
@@ -99,7 +101,7 @@ pub struct Motion {
 
 /// How the sensors record: the sample rate and what real logs carry
 /// (`dynamics synth --rate --jitter --repeats --holes --glitches
-/// --q-late`).
+/// --q-late --tau-late`).
 ///
 /// ```
 /// use dynamics_cli::gap::Recording;
@@ -377,6 +379,17 @@ pub fn synth_recorded<R: Robot<N> + Clone, const N: usize>(
             req.duration
         )));
     }
+    for (name, late) in [
+        ("q-late", rec.damage.q_late),
+        ("tau-late", rec.damage.tau_late),
+    ] {
+        if !(late.is_finite() && late >= 0.0 && late < req.duration) {
+            return Err(GapError::Request(format!(
+                "{name} must be a delay of at least 0 s, shorter than the record ({} s), got {late}",
+                req.duration
+            )));
+        }
+    }
     let mut rng = Rng::new(req.seed.wrapping_mul(0x9E37_79B9).wrapping_add(17));
     let mut train_opts = options::<N>(motion, req, req.seed, rec);
     let effect = effect_for(robot, req, &train_opts, &mut rng)?;
@@ -433,6 +446,8 @@ pub fn synth_recorded<R: Robot<N> + Clone, const N: usize>(
                 .map(|w| TruthWindow::of(holdout_window(w), req.duration)),
             late: if rec.damage.q_late > 0.0 {
                 Some("positions".into())
+            } else if rec.damage.tau_late > 0.0 {
+                Some("effort".into())
             } else if kind == EffectKind::TimeDelay {
                 Some("all".into())
             } else {

@@ -177,6 +177,9 @@ pub struct SynthArgs {
     /// How late the position channel is against velocity and effort, s.
     #[arg(long, default_value_t = 0.0)]
     pub q_late: f64,
+    /// How late the effort channel is against position and velocity, s.
+    #[arg(long, default_value_t = 0.0)]
+    pub tau_late: f64,
     /// The effect starts and stops: on only from START to END s (END left out: to the end of
     /// the record; an encoder that slips at START and keeps its offset). The held-out run has
     /// it a quarter of START earlier.

@@ -89,6 +89,7 @@ pub fn run_on<R: Robot<N> + Clone + Sync, const N: usize>(
                         holes: a.holes,
                         glitches: a.glitches,
                         q_late: a.q_late,
+                        tau_late: a.tau_late,
                         ..Default::default()
                     },
                     window: a

@@ -58,6 +58,7 @@ pub fn section(report: &Report) -> String {
         // A delay: which channel is late.
         let place = match &e.channel {
             Some(c) if c == "positions" => format!("{place} (the position stream late)"),
+            Some(c) if c == "effort" => format!("{place} (the effort stream late)"),
             Some(_) => format!("{place} (positions and velocities late together)"),
             None => place,
         };

@@ -7,6 +7,7 @@
 use nalgebra::SVector;
 
 use super::basis::Basis;
+use super::shift::late_effort_column;
 use super::signals::Signals;
 use crate::effects::{Effect, EffectKind};
 
@@ -35,6 +36,11 @@ pub enum Candidate {
     /// when the measured positions lag the integral of the independently
     /// measured velocities (`late.rs`).
     LatePositions,
+    /// The effort channel late against position and velocity (which are
+    /// consistent with each other): the measured effort is the model's
+    /// `delay` earlier (`late.rs`); its column is the secant of the model's
+    /// effort over the delay it holds, s (0: the tangent, its rate).
+    LateEffort(f64),
     /// Two-mass elastic joint.
     Elasticity(usize),
     /// Dead zone between motor and link.
@@ -110,7 +116,9 @@ impl Candidate {
             Candidate::Payload => EffectKind::PayloadMass,
             Candidate::Environment(_) => EffectKind::EnvironmentResistance,
             Candidate::EncoderOffset(_) => EffectKind::EncoderOffset,
-            Candidate::TimeDelay | Candidate::LatePositions => EffectKind::TimeDelay,
+            Candidate::TimeDelay | Candidate::LatePositions | Candidate::LateEffort(_) => {
+                EffectKind::TimeDelay
+            }
             Candidate::Elasticity(_) => EffectKind::JointElasticity,
             Candidate::Backlash(_) => EffectKind::Backlash,
             Candidate::EffortScale(_) => EffectKind::EffortScale,
@@ -145,7 +153,9 @@ impl Candidate {
             Candidate::Payload => &[("mass", true)],
             Candidate::Environment(_) => &[("mu", true)],
             Candidate::EncoderOffset(_) => &[("offset", false)],
-            Candidate::TimeDelay | Candidate::LatePositions => &[("delay", true)],
+            Candidate::TimeDelay | Candidate::LatePositions | Candidate::LateEffort(_) => {
+                &[("delay", true)]
+            }
             Candidate::EffortScale(_) => &[("scale_minus_one", false)],
             Candidate::EffortOffset(_) => &[("offset", false)],
             Candidate::Elasticity(_) | Candidate::Backlash(_) | Candidate::Inertial(_) => &[],
@@ -190,6 +200,9 @@ impl Candidate {
             // Positions d late: the model is evaluated at q - d qd, and
             // misses d K qd.
             Candidate::LatePositions => c[0] = basis.k[k] * qd,
+            // The effort d late: the model's effort d earlier, which misses
+            // -d times its rate.
+            Candidate::LateEffort(d) => c[0] = late_effort_column(sig, k, d),
             Candidate::EffortScale(j) => c[0][j] = sig.model[k][j],
             Candidate::EffortOffset(j) => c[0][j] = 1.0,
             Candidate::Elasticity(_) | Candidate::Backlash(_) | Candidate::Inertial(_) => {}
@@ -220,6 +233,9 @@ impl Candidate {
                 offset: p(0),
             },
             Candidate::TimeDelay | Candidate::LatePositions => Effect::TimeDelay { delay: p(0) },
+            // The motion early against the effort: a negative delay, which
+            // only the held-out simulation reads (`horizon.rs`).
+            Candidate::LateEffort(_) => Effect::TimeDelay { delay: -p(0) },
             Candidate::EffortScale(joint) => Effect::EffortScale {
                 joint,
                 scale: 1.0 + p(0),

@@ -175,7 +175,10 @@ pub fn effects(pool: &Pool, e: &Explanation) -> Vec<Effect> {
         .iter()
         .enumerate()
         .filter_map(|(i, &t)| joint_fit(pool, t, &e.sol.theta[i], &e.sol.std[i]).effect())
-        .filter(|e| e.validate().is_ok())
+        // (A late effort is a negative delay here, `candidate.rs`.)
+        .filter(|e| {
+            e.validate().is_ok() || matches!(e, Effect::TimeDelay { delay } if delay.is_finite())
+        })
         .collect()
 }
 

@@ -1,7 +1,9 @@
 //! Short-horizon simulation error: from the measured state at the start of
 //! each window, simulate the model (with or without an effect) under the
 //! recorded efforts and compare the predicted positions with the measured
-//! (windows on all cores).
+//! (windows on all cores). A delay shifts the recorded motion against the
+//! recorded efforts: a positive one reads the motion that many samples
+//! later, a negative one (the effort late, `late.rs`) the efforts.
 
 use nalgebra::SVector;
 
@@ -37,7 +39,14 @@ pub fn prediction_error<R: Robot<N> + Clone + Sync, const N: usize>(
         return SVector::repeat(f64::INFINITY);
     };
     let dt = sig.dt;
-    let shift = (delay / dt).round() as usize;
+    // Samples the motion (`m`) or the efforts (`e`) are read later.
+    let shift = (delay / dt).round();
+    let (m, e) = if shift >= 0.0 {
+        (shift as usize, 0)
+    } else {
+        (0, (-shift) as usize)
+    };
+    let shift = m.max(e);
     let len = (HORIZON / dt).round() as usize;
     let step = ((SPACING / dt).round() as usize).max(1);
     let (a, z) = sig.range;
@@ -58,14 +67,14 @@ pub fn prediction_error<R: Robot<N> + Clone + Sync, const N: usize>(
     let plant = &plant;
     let window = |&k0: &usize| -> Option<Vec<SVector<f64, N>>> {
         // True state at t0 is what the sensors show `delay` later.
-        let q0 = sig.q[k0 + shift] - offset;
-        let mut sim = plant.start(q0, sig.qd[k0 + shift]);
+        let q0 = sig.q[k0 + m] - offset;
+        let mut sim = plant.start(q0, sig.qd[k0 + m]);
         for e in plant.effects.iter() {
             if let Effect::JointElasticity {
                 joint, stiffness, ..
             } = *e
             {
-                sim.state.qm[joint] = q0[joint] + sig.model[k0 + shift][joint] / stiffness;
+                sim.state.qm[joint] = q0[joint] + sig.model[k0 + m][joint] / stiffness;
             }
         }
         sim.t = sig.t[k0];
@@ -74,12 +83,12 @@ pub fn prediction_error<R: Robot<N> + Clone + Sync, const N: usize>(
             sim.advance(
                 plant,
                 sig.t[k + 1],
-                &Effect::applied_effort(&sensor, &sig.tau_raw[k]),
+                &Effect::applied_effort(&sensor, &sig.tau_raw[k + e]),
                 tol,
             )
             .ok()?;
             let predicted = sim.state.q + offset;
-            let measured = sig.q[k + 1 + shift];
+            let measured = sig.q[k + 1 + m];
             errors.push((predicted - measured).component_mul(&(predicted - measured)));
         }
         Some(errors)

@@ -52,6 +52,7 @@ mod refine;
 mod report;
 mod reversal;
 mod segments;
+mod shift;
 mod shrink;
 mod signals;
 mod spread;
@@ -341,6 +342,14 @@ pub fn diagnose<R: Robot<N> + Clone + Sync, const N: usize>(
     let (mut effects, steps) =
         explain::entries::<R, N>(&pool, &explanation, &hold, &tip_name, aicc0, &nominal);
     window::annotate(&mut effects, &pool, &explanation, &limited);
+    // A late effort stream, or a late motion whose channel is unresolved.
+    late::warn(
+        train.qd_measured,
+        &effects,
+        &verdict,
+        &ranked,
+        &mut warnings,
+    );
     // Coulomb friction or an effort offset where a velocity never reverses.
     reversal::mark(
         &mut verdict,

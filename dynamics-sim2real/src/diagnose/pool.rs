@@ -48,7 +48,7 @@ impl Term {
             Candidate::Payload => 3,
             Candidate::Environment(_) => 4,
             Candidate::EncoderOffset(_) => 5,
-            Candidate::TimeDelay | Candidate::LatePositions => 6,
+            Candidate::TimeDelay | Candidate::LatePositions | Candidate::LateEffort(_) => 6,
             Candidate::EffortScale(_) => 7,
             Candidate::EffortOffset(_) => 8,
             Candidate::Inertial(l) => return (9, Some(l)),

@@ -177,7 +177,8 @@ pub struct Ranked {
     pub holdout_share: f64,
     /// For `time_delay`: the late channel (`all`: positions and
     /// velocities late together against the effort; `positions`: the
-    /// position stream late against velocity and effort).
+    /// position stream late against velocity and effort; `effort`: the
+    /// effort stream late against position and velocity).
     #[serde(skip_serializing_if = "Option::is_none")]
     pub channel: Option<String>,
 }

@@ -182,7 +182,11 @@ fn candidate<R: Robot<N>, const N: usize>(r: &Ranked) -> Result<Candidate, Trace
         EffectKind::PayloadMass => Candidate::Payload,
         EffectKind::EnvironmentResistance => Candidate::Environment(parameter("alpha")?),
         EffectKind::EncoderOffset => Candidate::EncoderOffset(joint()?),
-        EffectKind::TimeDelay => Candidate::TimeDelay,
+        EffectKind::TimeDelay => match r.channel.as_deref() {
+            Some("positions") => Candidate::LatePositions,
+            Some("effort") => Candidate::LateEffort(parameter("delay")?),
+            _ => Candidate::TimeDelay,
+        },
         EffectKind::JointElasticity => Candidate::Elasticity(joint()?),
         EffectKind::Backlash => Candidate::Backlash(joint()?),
         EffectKind::EffortScale => Candidate::EffortScale(joint()?),

@@ -1,6 +1,7 @@
-//! What real logs carry, made on purpose: a jittered controller clock and
-//! a late position channel (in the experiment itself, `run.rs`), and, on
-//! the recorded rows, repeated samples, holes and glitches.
+//! What real logs carry, made on purpose: a jittered controller clock, a
+//! late position channel and a late effort channel (in the experiment
+//! itself, `run.rs`), and, on the recorded rows, repeated samples, holes
+//! and glitches.
 
 use nalgebra::SVector;
 
@@ -37,6 +38,11 @@ pub struct Damage {
     pub glitches: usize,
     /// How late the position channel is against velocity and effort, s.
     pub q_late: f64,
+    /// How late the effort channel is against position and velocity, s:
+    /// each recorded effort is the applied one `tau_late` earlier
+    /// (interpolated linearly between the controller's samples; the
+    /// controller itself is not delayed).
+    pub tau_late: f64,
 }
 
 impl Default for Damage {
@@ -48,6 +54,7 @@ impl Default for Damage {
             hole_length: 0.1,
             glitches: 0,
             q_late: 0.0,
+            tau_late: 0.0,
         }
     }
 }
@@ -60,6 +67,7 @@ impl Damage {
             || self.holes > 0
             || self.glitches > 0
             || self.q_late > 0.0
+            || self.tau_late > 0.0
     }
 
     /// Applies the row damage (repeats, holes, glitches) to `m`, drawing

@@ -1,11 +1,12 @@
 //! One synthetic experiment: the plant with the withheld effects, the
 //! reference, the cascade controller built on the nominal model, and the
-//! sensors (noise, encoder offsets, delay).
+//! sensors (noise, encoder offsets, delay, a late position or effort
+//! channel).
 
 use nalgebra::SVector;
 
 use super::phases::Phases;
-use super::sensors::delayed;
+use super::sensors::{delayed, effort_at};
 use super::{Excitation, Noise, Rng, Scales, SynthError, SynthOptions};
 use crate::data::Measured;
 use crate::effects::Effect;
@@ -79,7 +80,7 @@ impl<'a, R: Robot<N> + Clone, const N: usize> Run<'a, R, N> {
     }
 
     /// Runs the experiment with sensor noise `noise`; returns what the
-    /// sensors recorded and, per joint, the RMS of the applied effort minus
+    /// sensors recorded and, per joint, the RMS of the recorded effort minus
     /// the nominal inverse dynamics of the noise-free sensor readings, and
     /// of what of it no rigid rotor explains at the motor joints.
     #[allow(clippy::type_complexity)]
@@ -101,9 +102,12 @@ impl<'a, R: Robot<N> + Clone, const N: usize> Run<'a, R, N> {
         let kp = opts.bandwidth * opts.bandwidth;
         let kd = 2.0 * opts.bandwidth;
         let mut truth: Vec<(SVector<f64, N>, SVector<f64, N>)> = Vec::with_capacity(n);
-        // Noise-free sensor readings and applied efforts, for the effect size.
+        // Noise-free sensor readings, applied efforts and the efforts
+        // recorded, for the effect size.
         let mut seen: Vec<(SVector<f64, N>, SVector<f64, N>)> = Vec::with_capacity(n);
         let mut applied: Vec<SVector<f64, N>> = Vec::with_capacity(n);
+        // What the effort sensor reported of them (noise-free).
+        let mut recorded: Vec<SVector<f64, N>> = Vec::with_capacity(n);
         let mut out = Measured::<N> {
             qd_measured: true,
             ..Default::default()
@@ -136,7 +140,16 @@ impl<'a, R: Robot<N> + Clone, const N: usize> Run<'a, R, N> {
             });
             let v = r.qdd + (r.q - q_meas) * kp + (r.qd - drive_qd) * kd;
             let tau = robot.inverse_dynamics(&q_meas, &qd_meas, &v);
-            let mut tau_meas = tau;
+            applied.push(tau);
+            // What the effort sensor reports: the applied effort, or the
+            // one applied `tau_late` earlier.
+            let tau_seen = if opts.damage.tau_late > 0.0 {
+                effort_at(past, &applied, t - opts.damage.tau_late)
+            } else {
+                tau
+            };
+            recorded.push(tau_seen);
+            let mut tau_meas = tau_seen;
             for j in 0..N {
                 tau_meas[j] += noise.tau_relative * self.scales.peak_effort[j] * rng.normal();
             }
@@ -151,7 +164,6 @@ impl<'a, R: Robot<N> + Clone, const N: usize> Run<'a, R, N> {
             out.q.push(q_meas);
             out.qd.push(qd_meas);
             out.tau.push(tau_meas);
-            applied.push(tau);
             if k + 1 < n {
                 let drive = Effect::applied_effort(&self.phases.sensor_at(t), &tau);
                 sim.advance(self.phases.plant_at(t), times[k + 1], &drive, tol)?;
@@ -169,7 +181,7 @@ impl<'a, R: Robot<N> + Clone, const N: usize> Run<'a, R, N> {
         );
         for k in 1..n.saturating_sub(1) {
             let qdd = (seen[k + 1].1 - seen[k - 1].1) / (times[k + 1] - times[k - 1]);
-            let held = (applied[k - 1] + applied[k]) * 0.5;
+            let held = (recorded[k - 1] + recorded[k]) * 0.5;
             let gap = held - robot.inverse_dynamics(&seen[k].0, &seen[k].1, &qdd);
             sum += gap.component_mul(&gap);
             cross += gap.component_mul(&qdd);

@@ -8,9 +8,10 @@
 //! effects that start and stop (an encoder that slips at a drawn time and
 //! keeps the offset, a tool in a medium and a payload carried for a drawn
 //! window; the held-out run has the window a quarter of its start
-//! earlier) and a late position stream (named `time_delay`, channel
-//! `positions`, and warned), each under one damage: the window found must
-//! lie within [`WINDOW_TOLERANCE`] of the truth's.
+//! earlier), a late position stream (named `time_delay`, channel
+//! `positions`, and warned) and a late effort stream (channel `effort`,
+//! warned), each under one damage: the window found must lie within
+//! [`WINDOW_TOLERANCE`] of the truth's, the late channel be the one named.
 //! `LOGS_SEED_BASE=N` draws other cases (base 0 was the one looked at while
 //! building).
 
@@ -22,9 +23,13 @@ use dynamics_sim2real::synth::{ExcitationKind, Noise, Rng};
 use dynamics_sim2real::Warning;
 use robots::builtin::{diagnose_files, synth_recorded};
 
-/// Single effects under damage, then effects in a window and late positions.
+/// Single effects under damage, then effects in a window and late positions,
+/// then late efforts.
 const CASES: usize = 44;
-const LATER_CASES: usize = 12;
+const LATER_CASES: usize = 16;
+/// Of the later cases, the first this many cycle through the windows and
+/// late positions; the rest have the effort late.
+const CYCLED_CASES: usize = 12;
 /// How near the truth's edges a window found must lie, s (a few widths of
 /// the 40 ms smoothing filter).
 const WINDOW_TOLERANCE: f64 = 0.2;
@@ -79,13 +84,20 @@ struct Outcome {
     warned: bool,
     /// For a windowed effect named: whether its window is within
     /// [`WINDOW_TOLERANCE`]; for a late stream named: whether the channel
-    /// is `positions`; else true.
+    /// is the late one; else true.
     detail: bool,
 }
 
-/// What case `i` withholds: its effect kind, a window, a late position
-/// stream (s), its damages.
-fn draw(i: usize, rng: &mut Rng) -> (EffectKind, Option<Window>, f64, Vec<&'static str>) {
+/// A late stream: positions or effort, s.
+#[derive(Clone, Copy, Default)]
+struct Late {
+    q: f64,
+    tau: f64,
+}
+
+/// What case `i` withholds: its effect kind, a window, a late position or
+/// effort stream, its damages.
+fn draw(i: usize, rng: &mut Rng) -> (EffectKind, Option<Window>, Late, Vec<&'static str>) {
     if i < CASES {
         let kind = if i.is_multiple_of(11) {
             EffectKind::None
@@ -99,9 +111,13 @@ fn draw(i: usize, rng: &mut Rng) -> (EffectKind, Option<Window>, f64, Vec<&'stat
                 damages.push(second);
             }
         }
-        return (kind, None, 0.0, damages);
+        return (kind, None, Late::default(), damages);
     }
     let damages = vec![DAMAGES[rng.below(DAMAGES.len())]];
+    if i - CASES >= CYCLED_CASES {
+        let tau = rng.uniform(0.01, 0.025);
+        return (EffectKind::None, None, Late { q: 0.0, tau }, damages);
+    }
     let start = rng.uniform(1.0, 3.0);
     let length = rng.uniform(1.5, 2.5);
     match (i - CASES) % 4 {
@@ -111,7 +127,7 @@ fn draw(i: usize, rng: &mut Rng) -> (EffectKind, Option<Window>, f64, Vec<&'stat
                 start,
                 end: f64::INFINITY,
             }),
-            0.0,
+            Late::default(),
             damages,
         ),
         1 => (
@@ -120,7 +136,7 @@ fn draw(i: usize, rng: &mut Rng) -> (EffectKind, Option<Window>, f64, Vec<&'stat
                 start,
                 end: start + length,
             }),
-            0.0,
+            Late::default(),
             damages,
         ),
         2 => (
@@ -129,20 +145,24 @@ fn draw(i: usize, rng: &mut Rng) -> (EffectKind, Option<Window>, f64, Vec<&'stat
                 start,
                 end: start + length,
             }),
-            0.0,
+            Late::default(),
             damages,
         ),
-        _ => (EffectKind::None, None, rng.uniform(0.01, 0.025), damages),
+        _ => {
+            let q = rng.uniform(0.01, 0.025);
+            (EffectKind::None, None, Late { q, tau: 0.0 }, damages)
+        }
     }
 }
 
 fn run_case(i: usize, dir: &std::path::Path, only: &[usize]) -> Outcome {
     let base = seed_base();
     let mut rng = Rng::new(5000 + base + i as u64);
-    let (kind, window, q_late, damages) = draw(i, &mut rng);
+    let (kind, window, late, damages) = draw(i, &mut rng);
     let mut rec = recording(&damages);
     rec.window = window;
-    rec.damage.q_late = q_late;
+    rec.damage.q_late = late.q;
+    rec.damage.tau_late = late.tau;
     let mut robot = ROBOTS[rng.below(ROBOTS.len())];
     let mut excitation = [
         ExcitationKind::Sines,
@@ -194,8 +214,8 @@ fn run_case(i: usize, dir: &std::path::Path, only: &[usize]) -> Outcome {
     std::fs::write(&a, &out.train).expect("writes");
     std::fs::write(&b, &out.holdout).expect("writes");
     let mut truth = out.truth;
-    // A late position stream is a `time_delay` of channel `positions`.
-    if truth.late.as_deref() == Some("positions") {
+    // A late position or effort stream is a `time_delay` of that channel.
+    if matches!(truth.late.as_deref(), Some("positions" | "effort")) {
         truth.kind = "time_delay".into();
     }
     let (report, _) =
@@ -220,11 +240,16 @@ fn run_case(i: usize, dir: &std::path::Path, only: &[usize]) -> Outcome {
     let warned = damages
         .iter()
         .all(|d| report.warnings.iter().any(|w| names(w, d)))
-        && (q_late == 0.0
+        && (late.q == 0.0
             || report
                 .warnings
                 .iter()
-                .any(|w| matches!(w, Warning::LatePositions { .. })));
+                .any(|w| matches!(w, Warning::LatePositions { .. })))
+        && (late.tau == 0.0
+            || report
+                .warnings
+                .iter()
+                .any(|w| matches!(w, Warning::LateEffort { .. })));
     // The window found, and the late channel named.
     let effect = report
         .which
@@ -236,7 +261,7 @@ fn run_case(i: usize, dir: &std::path::Path, only: &[usize]) -> Outcome {
         (Some(w), true) => found.as_ref().is_some_and(|f| {
             (f.start - w.start).abs() < WINDOW_TOLERANCE && (f.end - w.end).abs() < WINDOW_TOLERANCE
         }),
-        (None, true) if q_late > 0.0 => v.channel.as_deref() == Some("positions"),
+        (None, true) if late.q > 0.0 || late.tau > 0.0 => v.channel == truth.late,
         _ => true,
     };
     // At 100 Hz, backlash (contact at 40-80 Hz) is beyond what the rate shows.
@@ -253,12 +278,25 @@ fn run_case(i: usize, dir: &std::path::Path, only: &[usize]) -> Outcome {
         "case {i:2} {robot:9} {:>22}{}{} {:>4} [{}] -> {:>22}{}{} {:>4} {:9} snr {:7.2} distinct {:7.2} shrink {:.2} warned {warned} {}",
         truth.kind,
         window_said(truth.window.map(|w| (w.start, w.end))),
-        if q_late > 0.0 { format!(" positions {:.1} ms", q_late * 1e3) } else { String::new() },
+        match truth.late.as_deref() {
+            Some(c @ ("positions" | "effort")) => format!(" {c} {:.1} ms", (late.q + late.tau) * 1e3),
+            _ => String::new(),
+        },
         truth.joint.clone().unwrap_or_default(),
         damages.join(", "),
         said,
         window_said(found.map(|w| (w.start, w.end))),
-        v.channel.as_ref().map(|c| format!(" ({c})")).unwrap_or_default(),
+        v.channel
+            .as_ref()
+            .map(|c| {
+                // The delay found, beside the channel.
+                let d = first
+                    .and_then(|r| r.parameters.iter().find(|p| p.name == "delay"))
+                    .map(|p| format!(" {:.1} +- {:.1} ms", p.value * 1e3, p.std * 1e3))
+                    .unwrap_or_default();
+                format!(" ({c}{d})")
+            })
+            .unwrap_or_default(),
         said_joint.clone().unwrap_or_default(),
         v.status,
         truth.snr,
@@ -278,7 +316,7 @@ fn run_case(i: usize, dir: &std::path::Path, only: &[usize]) -> Outcome {
 }
 
 #[test]
-#[ignore = "81 s of diagnosis (56 cases); base 0 meets every target (36/37 named, joints 19/19, controls 4/4, median shrink 0.95, warnings 56/56, windows and channels 11/12), base 7000 falls short on naming (32/35: armature taken for elasticity twice on the MAR, a Stribeck friction at a joint whose velocity never reverses named Coulomb); run with --ignored"]
+#[ignore = "80 s of diagnosis (60 cases); base 0 meets every target (40/41 named, joints 19/19, controls 4/4, median shrink 0.96, warnings 60/60, windows and channels 15/16), base 7000 falls short on naming (36/39: armature taken for elasticity twice on the MAR, a Stribeck friction at a joint whose velocity never reverses named Coulomb); run with --ignored"]
 fn diagnoser_names_the_effect_in_damaged_logs() {
     let dir = std::env::temp_dir().join(format!("dynamics-logs-{}", std::process::id()));
     std::fs::create_dir_all(&dir).expect("temp dir");
