@@ -81,7 +81,24 @@ fn run<R: Robot<N> + Clone + Sync, const N: usize>(robot: R, args: &[String]) ->
         .iter()
         .map(|j| j.torque_noise)
         .collect();
-    let base = baseline::baseline(&robot, &train, &holdout).map(|(b, a)| {
+    let fitted = baseline::baseline(&robot, &train, &holdout);
+    if let Some((b, a)) = &fitted {
+        let tool: Vec<String> = report
+            .shrink
+            .joints
+            .iter()
+            .map(|j| format!("{:.3}", j.torque_after))
+            .collect();
+        let row =
+            |v: &nalgebra::SVector<f64, N>| v.iter().map(|x| format!("{x:.3}")).collect::<Vec<_>>();
+        eprintln!(
+            "held-out RMS per joint, N m: nominal {:?}; baseline {:?}; diagnosis {:?}",
+            row(b),
+            row(a),
+            tool
+        );
+    }
+    let base = fitted.map(|(b, a)| {
         (
             above_noise(b.as_slice(), a.as_slice(), &floors),
             1.0 - a.norm() / b.norm(),
@@ -212,8 +229,8 @@ fn print_rows(report: &Report, args: &[String], how: &str, seconds: f64, base: O
     );
 }
 
-/// Per joint: the published friction beside the diagnosis's own fits
-/// (`named` when it is the verdict, `fit` when ranked but not named).
+/// Per joint: the published friction beside the diagnosis's single fits
+/// (`which.ranked`) and the effects its explanation names there.
 fn print_friction<const N: usize>(
     report: &Report,
     joints: &[&str; N],
@@ -226,7 +243,7 @@ fn print_friction<const N: usize>(
         urdf_friction(&text, joints)
     };
     println!();
-    println!("| joint | published Coulomb | published viscous | ours: Coulomb fc | ours: viscous fv | named |");
+    println!("| joint | published Coulomb | published viscous | ours: Coulomb fc | ours: viscous fv | named in the explanation (joint fit) |");
     println!("|---|---|---|---|---|---|");
     for (i, j) in joints.iter().enumerate() {
         let fit = |kind: &str| {
@@ -239,18 +256,24 @@ fn print_friction<const N: usize>(
                 .map(|p| format!("{:.3} ± {:.3}", p.value, p.std))
                 .unwrap_or_else(|| "-".into())
         };
-        let named = report.which.verdict.joint.as_deref() == Some(*j);
+        // The explanation's effects at this joint, with their joint fit.
+        let named: Vec<String> = report
+            .which
+            .effects
+            .iter()
+            .filter(|e| e.joint.as_deref() == Some(*j))
+            .map(|e| match e.parameters.first() {
+                Some(p) => format!("{} {:.3} ± {:.3}", e.kind, p.value, p.std),
+                None => e.kind.clone(),
+            })
+            .collect();
         println!(
             "| {j} | {} | {} | {} | {} | {} |",
             theirs[i].0,
             theirs[i].1,
             fit("coulomb_friction"),
             fit("viscous_friction"),
-            if named {
-                report.which.verdict.kind.as_str()
-            } else {
-                ""
-            }
+            named.join("; ")
         );
     }
     Ok(())

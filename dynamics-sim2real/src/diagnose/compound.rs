@@ -22,20 +22,32 @@
 //! motor sides of the chosen set, and of every joint still above noise,
 //! are then searched again with the other effects' effort removed, and the
 //! selection resumes from the set (alternation, [`ROUNDS`] times).
+//!
+//! Where the set leaves joints above their floor, the rows are weighed by
+//! the residual left rather than by the floor alone and the selection
+//! resumes (`weights.rs`); where it leaves every joint at [`EVERYWHERE`]
+//! x its floor (model error, not a missed effect), the search also starts
+//! from the full linear model (`eliminate.rs`) and keeps the better set.
 
 use nalgebra::SVector;
 
 use super::analysis::{fit, Prepared};
+use super::eliminate::{eliminate, full};
 use super::fit::aicc;
 use super::parallel;
 use super::pool::{fixed_column, Pool, Solution};
 use super::validate::Folds;
+use super::weights::{loud_joints, weights, within_noise, REWEIGHTS};
 use super::Options;
 use crate::diagnose::candidate::Candidate;
 use dynamics_runtime::Robot;
 
 /// Rounds of selection and motor-side search.
 pub const ROUNDS: usize = 2;
+
+/// Residual left on every joint, in units of the floor ratio, above which
+/// the search also starts from the full linear model.
+pub const EVERYWHERE: f64 = 2.0;
 
 /// The chosen set, its joint fit and the rival of each effect.
 #[derive(Debug, Clone)]
@@ -54,32 +66,10 @@ fn crit(pool: &Pool, s: &Solution) -> f64 {
     aicc(s.sse, pool.n(), s.k)
 }
 
-/// Whether the residual of `set` is within `ratio` times the noise floor
-/// on every joint (rows are whitened by the floor).
-fn within_noise<const N: usize>(pool: &Pool, set: &[usize], sol: &Solution, ratio: f64) -> bool {
-    let r = pool.residual(set, sol);
-    let rows = (r.len() / N).max(1);
-    (0..N).all(|j| {
-        let ms: f64 = (0..rows).map(|i| r[i * N + j].powi(2)).sum::<f64>() / rows as f64;
-        ms <= ratio * ratio
-    })
-}
-
-/// Joints whose residual under `set` is above `ratio` times the floor.
-fn loud_joints<const N: usize>(
-    pool: &Pool,
-    set: &[usize],
-    sol: &Solution,
-    ratio: f64,
-) -> Vec<usize> {
-    let r = pool.residual(set, sol);
-    let rows = (r.len() / N).max(1);
-    (0..N)
-        .filter(|&j| {
-            let ms: f64 = (0..rows).map(|i| r[i * N + j].powi(2)).sum::<f64>() / rows as f64;
-            ms > ratio * ratio
-        })
-        .collect()
+/// The criterion of `set` from its residual computed row by row.
+fn explicit_crit(pool: &Pool, set: &[usize]) -> f64 {
+    let sol = pool.solve(set);
+    aicc(pool.residual(set, &sol).norm_squared(), pool.n(), sol.k)
 }
 
 /// The simpler term a richer one nests at its place.
@@ -152,7 +142,7 @@ fn select<const N: usize>(pool: &Pool, mut set: Vec<usize>, options: &Options) -
     let mut cur = crit(pool, &pool.solve(&set));
     for _ in 0..(6 * N + 12) {
         let sol = pool.solve(&set);
-        if !set.is_empty() && within_noise::<N>(pool, &set, &sol, options.floor_ratio) {
+        if !set.is_empty() && within_noise(pool, &set, &sol, options.floor_ratio) {
             break;
         }
         // Every move that earns its margin: (criterion, new set, added term).
@@ -256,6 +246,23 @@ fn select<const N: usize>(pool: &Pool, mut set: Vec<usize>, options: &Options) -
     set
 }
 
+/// Feasible weighting from `set` (`weights.rs`): the selection resumes
+/// under the new weights until they settle.
+fn reweighted<const N: usize>(
+    pool: &mut Pool,
+    mut set: Vec<usize>,
+    options: &Options,
+) -> Vec<usize> {
+    for _ in 0..REWEIGHTS {
+        let Some(w) = weights(pool, &set) else {
+            break;
+        };
+        pool.reweight(&w);
+        set = select::<N>(pool, set, options);
+    }
+    set
+}
+
 /// `p` with the effort of the linear joint and tip terms of `set` (fitted
 /// `sol`), except position `skip`, added to the model: what a motor side at one joint is
 /// searched against.
@@ -321,9 +328,27 @@ pub fn explain<R: Robot<N>, const N: usize>(
     options: &Options,
 ) -> Explanation {
     let mut set = select::<N>(pool, vec![], options);
+    set = reweighted::<N>(pool, set, options);
+    // Model error left everywhere (every joint still at `EVERYWHERE` x its
+    // floor: a missed effect leaves its own joint loud, a real robot's
+    // model error all of them): the search from the other end, from every
+    // linear term at once, where effects that explain only together are
+    // found (`eliminate.rs`). Its set is kept if both its criterion (on the
+    // residual computed row by row, not through the Gram matrix, which
+    // nearly dependent columns make inexact) and its cross-validated
+    // deviance beat the forward path's.
+    let gap = pool.floor_rms(&pool.residual(&set, &pool.solve(&set)));
+    if gap.iter().all(|&r| r >= EVERYWHERE * options.floor_ratio) {
+        let start = eliminate(pool, full(pool), options.add_margin);
+        let other = select::<N>(pool, start, options);
+        let cv = |s: &[usize]| Folds::new(pool, N).map_or(0.0, |f| f.deviance(pool, s));
+        if explicit_crit(pool, &other) < explicit_crit(pool, &set) && cv(&other) < cv(&set) {
+            set = reweighted::<N>(pool, other, options);
+        }
+    }
     for _ in 0..ROUNDS {
         let sol = pool.solve(&set);
-        let loud = loud_joints::<N>(pool, &set, &sol, options.floor_ratio);
+        let loud = loud_joints(pool, &set, &sol, options.floor_ratio);
         // Motor sides: those chosen, and all at joints still above noise.
         let todo: Vec<usize> = (0..pool.terms.len())
             .filter(|&t| {

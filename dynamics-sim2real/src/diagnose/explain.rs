@@ -339,13 +339,20 @@ fn link_parameters(
     let text = match (nominal, &made) {
         (Some(nom), Some(c)) => {
             let mut t = describe(link, nom, &d);
-            if c.moved {
+            if c.moved && !c.projected {
                 t += &format!(
                     "; the data determine {} of the 10 combinations, the others are set to keep the link physical",
                     b.v.ncols()
                 );
             }
-            if c.scale < 1.0 {
+            if c.projected {
+                t += &format!(
+                    "; the fit is not a physical body ({}): the nearest one is given (its pseudo-inertia's negative eigenvalues set to zero)",
+                    check(&(nom + fitted), 1e-9)
+                        .err()
+                        .map_or(String::new(), |e| e.to_string())
+                );
+            } else if c.scale < 1.0 {
                 t += &format!(
                     "; scaled to {:.2} of the fit, which is not a physical body ({})",
                     c.scale,

@@ -72,6 +72,9 @@ pub struct Pool {
     pub yy: f64,
     /// The terms.
     pub terms: Vec<Term>,
+    /// Per joint, the weight of its rows on top of the whitening by the
+    /// noise floor (1: the floor alone; `reweight`).
+    pub weights: Vec<f64>,
 }
 
 /// A joint fit of a subset of terms.
@@ -196,12 +199,55 @@ impl Pool {
             xty,
             yy,
             terms,
+            weights: vec![1.0; N],
         }
+    }
+
+    /// Weighs the rows of joint `j` by `w[j]` on top of the whitening by
+    /// the floor (replacing the weights before): the fitted parameters keep
+    /// their units, the residual sums of squares are in the new weights.
+    pub fn reweight(&mut self, w: &[f64]) {
+        let joints = self.weights.len();
+        if w.len() != joints || joints == 0 {
+            return;
+        }
+        let s: Vec<f64> = (0..joints).map(|j| w[j] / self.weights[j]).collect();
+        for mut col in self.x.column_iter_mut() {
+            for (i, x) in col.iter_mut().enumerate() {
+                *x *= s[i % joints];
+            }
+        }
+        for (i, y) in self.y.iter_mut().enumerate() {
+            *y *= s[i % joints];
+        }
+        self.gram = self.x.tr_mul(&self.x);
+        self.xty = self.x.tr_mul(&self.y);
+        self.yy = self.y.norm_squared();
+        self.weights = w.to_vec();
+    }
+
+    /// Per joint RMS of the residual `r` (of this pool's rows) in units of
+    /// the noise floor (the weights taken out).
+    pub fn floor_rms(&self, r: &DVector<f64>) -> Vec<f64> {
+        let joints = self.weights.len().max(1);
+        let rows = (r.len() / joints).max(1);
+        (0..joints)
+            .map(|j| {
+                let ms: f64 = (0..rows).map(|i| r[i * joints + j].powi(2)).sum::<f64>();
+                (ms / rows as f64).sqrt() / self.weights[j]
+            })
+            .collect()
     }
 
     /// Replaces the fixed column of term `t` (a motor side searched again).
     pub fn set_fixed(&mut self, t: usize, fit: Fit, col: Vec<f64>) {
         let Some(c) = self.terms[t].fixed else { return };
+        let joints = self.weights.len().max(1);
+        let col: Vec<f64> = col
+            .iter()
+            .enumerate()
+            .map(|(i, x)| x * self.weights.get(i % joints).copied().unwrap_or(1.0))
+            .collect();
         self.x.set_column(c, &DVector::from_vec(col));
         let v = self.x.tr_mul(&self.x.column(c));
         self.gram.set_column(c, &v);
@@ -342,7 +388,7 @@ const DEPENDENT: f64 = 1e-8;
 /// those kept before them: an incremental Cholesky factorisation of the
 /// unit-scaled Gram matrix, skipping a column whose pivot is under
 /// [`DEPENDENT`] (a zero column is dependent).
-fn independent(gram: &DMatrix<f64>, cols: &[usize]) -> Vec<bool> {
+pub(super) fn independent(gram: &DMatrix<f64>, cols: &[usize]) -> Vec<bool> {
     let m = cols.len();
     let d: Vec<f64> = cols.iter().map(|&c| gram[(c, c)].max(0.0).sqrt()).collect();
     let mut l = DMatrix::<f64>::zeros(m, m);
@@ -423,6 +469,7 @@ mod tests {
             yy: yv.norm_squared(),
             x,
             y: yv.clone(),
+            weights: vec![1.0],
             terms: vec![
                 term(Candidate::Coulomb(0), vec![0], vec![true], None),
                 term(Candidate::Viscous(0), vec![1], vec![true], None),
@@ -471,6 +518,7 @@ mod tests {
             yy: yv.norm_squared(),
             x,
             y: yv,
+            weights: vec![1.0],
             terms: vec![
                 term(Candidate::EffortOffset(0), vec![0], vec![false], None),
                 term(Candidate::EffortOffset(1), vec![1], vec![false], None),
@@ -483,5 +531,52 @@ mod tests {
         assert!((sol.theta[2][0] - 0.5).abs() < 1e-9, "{:?}", sol.theta);
         assert!(sol.sse < 1e-9);
         assert_eq!(sol.k, 2);
+    }
+
+    /// Reweighting two joints' rows keeps the residual in floor units,
+    /// leaves an exact fit's parameter where it is, and moves a fit that
+    /// must compromise between the joints toward the heavier one, as a
+    /// direct weighted least-squares fit does.
+    #[test]
+    fn reweighting_the_joints_rows_is_weighted_least_squares() {
+        let rows = 200;
+        // Rows interleaved: joint 0, joint 1, joint 0, ...
+        let c0: Vec<f64> = (0..2 * rows)
+            .map(|i| ((i / 2) as f64 * 0.07).sin())
+            .collect();
+        // Joint 0 wants 2, joint 1 wants 3.
+        let y: Vec<f64> = (0..2 * rows)
+            .map(|i| if i % 2 == 0 { 2.0 } else { 3.0 } * c0[i])
+            .collect();
+        let x = DMatrix::from_column_slice(2 * rows, 1, &c0);
+        let yv = DVector::from_vec(y.clone());
+        let mut pool = Pool {
+            gram: x.tr_mul(&x),
+            xty: x.tr_mul(&yv),
+            yy: yv.norm_squared(),
+            x,
+            y: yv,
+            weights: vec![1.0, 1.0],
+            terms: vec![term(Candidate::EffortScale(0), vec![0], vec![false], None)],
+        };
+        let even = pool.solve(&[0]);
+        assert!((even.theta[0][0] - 2.5).abs() < 1e-9, "{:?}", even.theta);
+        let before = pool.floor_rms(&pool.residual(&[0], &even));
+        pool.reweight(&[1.0, 0.1]);
+        // The same parameters leave the same residual in floor units.
+        let again = pool.floor_rms(&pool.residual(&[0], &even));
+        for j in 0..2 {
+            assert!((again[j] / before[j] - 1.0).abs() < 1e-12);
+        }
+        // Weighted least squares: (2 * 1 + 3 * 0.01) / 1.01.
+        let heavy = pool.solve(&[0]);
+        assert!(
+            (heavy.theta[0][0] - 2.03 / 1.01).abs() < 1e-9,
+            "{:?}",
+            heavy.theta
+        );
+        // Back to even weights: the even fit again.
+        pool.reweight(&[1.0, 1.0]);
+        assert!((pool.solve(&[0]).theta[0][0] - 2.5).abs() < 1e-9);
     }
 }

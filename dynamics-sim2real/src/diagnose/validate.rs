@@ -57,6 +57,7 @@ impl Folds {
                     xty: &pool.xty - &xty,
                     yy: pool.yy - yy,
                     terms: pool.terms.clone(),
+                    weights: pool.weights.clone(),
                 };
                 Block {
                     gram,
@@ -163,6 +164,7 @@ mod tests {
             x: x.clone(),
             y: yv.clone(),
             terms,
+            weights: vec![1.0],
         };
         let folds = Folds::new(&pool, 1).expect("enough rows");
         let none = folds.deviance(&pool, &[]);

@@ -10,8 +10,10 @@
 //! parameters; along the others (`free`) any value fits the data equally.
 //! [`complete`] moves the correction along the free combinations until
 //! `J` is positive semi-definite (a compass search on its smallest
-//! eigenvalue, which is concave in the parameters); only when no such
-//! move exists is the determined part scaled back, and the scale said.
+//! eigenvalue, which is concave in the parameters); when no such move
+//! exists, the fit's nearest physical body is taken if it keeps most of
+//! the determined part, else the determined part is scaled back, and the
+//! scale said.
 
 use nalgebra::{DMatrix, Matrix3, Matrix4, SVector};
 
@@ -62,10 +64,18 @@ pub struct Completed {
     pub scale: f64,
     /// Whether the free combinations were moved.
     pub moved: bool,
+    /// Whether the correction is the fit's nearest physical body
+    /// ([`nearest_physical`]) instead of a scaled-back one: chosen when it
+    /// keeps more of what the data determine.
+    pub projected: bool,
 }
 
 /// Relative tolerance on the pseudo-inertia's smallest eigenvalue.
 const TOL: f64 = 1e-9;
+
+/// The largest part of the determined change (relative, in the ten
+/// parameters' norm) the nearest physical body may lose to be kept.
+const NEAR: f64 = 0.5;
 
 /// The best move `z` along `free` (10 x f) from `pi`: the smallest
 /// negativity found, stopping once it is >= `goal` (`-tol`); returns the
@@ -113,9 +123,11 @@ fn search(pi: &SVector<f64, 10>, free: &DMatrix<f64>, goal: f64) -> (SVector<f64
 
 /// Makes `nominal + delta` physical by moving along the combinations
 /// `free` (10 x f, the ones the data do not determine), or, failing that,
-/// by scaling `delta` back (the largest scale in [0, 1] found by
-/// bisection, 1e-3 apart). `None` when the nominal parameters themselves
-/// are not physical.
+/// by taking the fit's nearest physical body ([`nearest_physical`]) when
+/// it keeps more of the determined change than scaling back and loses at
+/// most half of it, else by scaling `delta` back (the largest scale in
+/// [0, 1] found by bisection, 1e-3 apart). `None` when the nominal
+/// parameters themselves are not physical.
 ///
 /// ```
 /// use dynamics_sim2real::inertial::{check, complete};
@@ -126,7 +138,9 @@ fn search(pi: &SVector<f64, 10>, free: &DMatrix<f64>, goal: f64) -> (SVector<f64
 /// let delta = SVector::<f64, 10>::from([-1.2, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0]);
 /// let free = DMatrix::<f64>::zeros(10, 0);
 /// let c = complete(&nominal, &delta, &free).expect("a physical nominal link");
-/// assert!(c.scale < 1.0 && check(&(nominal + c.delta), 1e-6).is_ok());
+/// // No body has -0.2 kg: the nearest one keeps most of the change.
+/// assert!(c.projected && check(&(nominal + c.delta), 1e-6).is_ok());
+/// assert!(c.delta[0] < -0.5);
 /// ```
 pub fn complete(
     nominal: &SVector<f64, 10>,
@@ -143,6 +157,7 @@ pub fn complete(
             delta: *delta,
             scale: 1.0,
             moved: false,
+            projected: false,
         });
     }
     let (mv, m) = search(&full, free, -tol);
@@ -151,6 +166,7 @@ pub fn complete(
             delta: delta + mv,
             scale: 1.0,
             moved: true,
+            projected: false,
         });
     }
     // Scale the determined part back: the largest scale with a move.
@@ -167,11 +183,70 @@ pub fn complete(
             hi = s;
         }
     }
+    // The nearest physical body to the fit, when it keeps most of the
+    // determined part (the scaled-back one keeps nothing at a scale of 0:
+    // a fit off the boundary in a direction the scale cannot follow); a
+    // fit far from every body (its nearest one would lose more than half of
+    // what the data determine) stays scaled back.
+    let near = nearest_physical(&full) - nominal;
+    let lost = |d: &SVector<f64, 10>| -> f64 {
+        let e = d - delta;
+        let along_free = free.tr_mul(&e);
+        (e.norm_squared() - along_free.norm_squared())
+            .max(0.0)
+            .sqrt()
+    };
+    let determined = lost(&SVector::zeros());
+    if margin(&(nominal + near)) >= -tol
+        && lost(&near) < lost(&best.0)
+        && lost(&near) <= NEAR * determined
+    {
+        return Some(Completed {
+            delta: near,
+            scale: 1.0,
+            moved: true,
+            projected: true,
+        });
+    }
     Some(Completed {
         delta: best.0,
         scale: lo,
         moved: best.1,
+        projected: false,
     })
+}
+
+/// The physical body nearest `pi` in the Frobenius norm of the
+/// pseudo-inertia matrix: that matrix with its negative eigenvalues set to
+/// zero, read back as ten parameters (`I = tr(S) 1 - S` from its upper
+/// block `S`, `h` from its last column, `m` from its corner).
+///
+/// ```
+/// use dynamics_sim2real::inertial::{margin, nearest_physical};
+/// use nalgebra::SVector;
+/// // A negative mass with a first moment: no body has it.
+/// let pi = SVector::<f64, 10>::from([-0.2, 0.1, 0.0, 0.0, 0.01, 0.0, 0.02, 0.0, 0.0, 0.02]);
+/// let near = nearest_physical(&pi);
+/// assert!(margin(&pi) < 0.0 && margin(&near) > -1e-12);
+/// ```
+pub fn nearest_physical(pi: &SVector<f64, 10>) -> SVector<f64, 10> {
+    let eig = pseudo_inertia(pi).symmetric_eigen();
+    let clipped = eig.eigenvalues.map(|e| e.max(0.0));
+    let j = eig.eigenvectors * Matrix4::from_diagonal(&clipped) * eig.eigenvectors.transpose();
+    let s = j.fixed_view::<3, 3>(0, 0).into_owned();
+    let i = Matrix3::identity() * s.trace() - s;
+    SVector::from([
+        j[(3, 3)],
+        j[(0, 3)],
+        j[(1, 3)],
+        j[(2, 3)],
+        i[(0, 0)],
+        i[(0, 1)],
+        i[(1, 1)],
+        i[(0, 2)],
+        i[(1, 2)],
+        i[(2, 2)],
+    ])
 }
 
 #[cfg(test)]
@@ -259,5 +334,31 @@ mod tests {
         assert!(done.moved);
         assert!(check(&(nominal + done.delta), 1e-6).is_ok(), "{done:?}");
         assert!((det.dot(&done.delta) - det.dot(&delta)).abs() < 1e-9);
+    }
+
+    /// A point mass on the x axis cannot lose inertia about x: a fit
+    /// asking for that and for 0.5 kg more (every combination determined)
+    /// is not physical at any scale but 0, which keeps nothing; the
+    /// nearest physical body keeps the added mass and is a body.
+    #[test]
+    fn the_nearest_body_keeps_what_scaling_back_loses() {
+        let nominal =
+            SVector::<f64, 10>::from([1.0, 0.3, 0.0, 0.0, 0.0, 0.0, 0.09, 0.0, 0.0, 0.09]);
+        assert!(margin(&nominal) > -1e-12);
+        let mut delta = SVector::<f64, 10>::zeros();
+        delta[0] = 0.5;
+        delta[4] = -0.01;
+        for s in [1.0, 0.1, 0.01] {
+            assert!(margin(&(nominal + delta * s)) < -1e-6, "{s}");
+        }
+        let free = DMatrix::<f64>::zeros(10, 0);
+        let done = complete(&nominal, &delta, &free).expect("physical nominal");
+        assert!(done.projected, "{done:?}");
+        assert!(check(&(nominal + done.delta), 1e-6).is_ok(), "{done:?}");
+        assert!((done.delta[0] - 0.5).abs() < 0.05, "{done:?}");
+        assert!((done.delta - delta).norm() < delta.norm());
+        // A fit that a free move makes physical is not projected.
+        let fine = complete(&nominal, &(delta * 0.0), &free).expect("physical");
+        assert!(!fine.projected && fine.scale == 1.0);
     }
 }

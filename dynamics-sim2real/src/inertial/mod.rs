@@ -11,7 +11,7 @@ use thiserror::Error;
 
 mod consistent;
 
-pub use consistent::{complete, margin, pseudo_inertia, Completed};
+pub use consistent::{complete, margin, nearest_physical, pseudo_inertia, Completed};
 
 /// Names of the ten parameters, in order.
 pub const PARAMETER_NAMES: [&str; 10] = [
