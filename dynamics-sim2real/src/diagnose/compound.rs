@@ -401,7 +401,7 @@ pub fn explain<R: Robot<N>, const N: usize>(
                 let sol = pool.solve(&s);
                 matches!(me, Candidate::Elasticity(_) | Candidate::Backlash(_))
                     && me.joint().is_some_and(|j| {
-                        !loud_joints::<N>(pool, &s, &sol, options.floor_ratio).contains(&j)
+                        !loud_joints(pool, &s, &sol, options.floor_ratio).contains(&j)
                     })
             };
             if c - full < nesting(me, options) || quiet() {
