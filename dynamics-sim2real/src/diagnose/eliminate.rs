@@ -107,27 +107,11 @@ pub fn eliminate(pool: &Pool, mut set: Vec<usize>, margin: f64) -> Vec<usize> {
 #[cfg(test)]
 mod tests {
     use super::*;
-    use crate::diagnose::analysis::Fit;
     use crate::diagnose::candidate::Candidate;
-    use crate::diagnose::pool::Term;
+    use crate::diagnose::pool::{test_term, Term};
 
     fn term(c: Candidate, col: usize) -> Term {
-        Term {
-            fit: Fit {
-                candidate: c,
-                theta: vec![],
-                std: vec![],
-                motor: None,
-                motor_std: None,
-                sse: 0.0,
-                k: 1,
-            },
-            cols: vec![col],
-            nonneg: vec![false],
-            fixed: None,
-            k: 1,
-            link: None,
-        }
+        test_term(c, vec![col], vec![false], None)
     }
 
     /// Two columns that explain the data only together (each alone earns

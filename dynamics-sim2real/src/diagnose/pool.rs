@@ -420,30 +420,39 @@ pub(super) fn independent(gram: &DMatrix<f64>, cols: &[usize]) -> Vec<bool> {
     keep
 }
 
+/// A term of `cols` for unit tests (`nonneg`: which are held >= 0;
+/// `fixed`: a column of its own searched fit).
+#[cfg(test)]
+pub(crate) fn test_term(
+    c: Candidate,
+    cols: Vec<usize>,
+    nonneg: Vec<bool>,
+    fixed: Option<usize>,
+) -> Term {
+    let k = cols.len().max(fixed.map_or(0, |_| 3));
+    Term {
+        fit: Fit {
+            candidate: c,
+            theta: vec![],
+            std: vec![],
+            motor: None,
+            motor_std: None,
+            sse: 0.0,
+            k,
+        },
+        cols,
+        nonneg,
+        fixed,
+        k,
+        link: None,
+    }
+}
+
 #[cfg(test)]
 mod tests {
+    use super::test_term as term;
     use super::*;
     use crate::diagnose::fit::constrained_least_squares;
-
-    fn term(c: Candidate, cols: Vec<usize>, nonneg: Vec<bool>, fixed: Option<usize>) -> Term {
-        let k = cols.len().max(fixed.map_or(0, |_| 3));
-        Term {
-            fit: Fit {
-                candidate: c,
-                theta: vec![],
-                std: vec![],
-                motor: None,
-                motor_std: None,
-                sse: 0.0,
-                k,
-            },
-            cols,
-            nonneg,
-            fixed,
-            k,
-            link: None,
-        }
-    }
 
     /// The Gram route against a direct least-squares fit of the same
     /// columns, with a fixed column subtracted and a sign constraint that

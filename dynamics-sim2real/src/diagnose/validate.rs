@@ -115,27 +115,11 @@ impl Folds {
 #[cfg(test)]
 mod tests {
     use super::*;
-    use crate::diagnose::analysis::Fit;
     use crate::diagnose::candidate::Candidate;
-    use crate::diagnose::pool::Term;
+    use crate::diagnose::pool::{test_term, Term};
 
     fn term(c: Candidate, col: usize) -> Term {
-        Term {
-            fit: Fit {
-                candidate: c,
-                theta: vec![],
-                std: vec![],
-                motor: None,
-                motor_std: None,
-                sse: 0.0,
-                k: 1,
-            },
-            cols: vec![col],
-            nonneg: vec![false],
-            fixed: None,
-            k: 1,
-            link: None,
-        }
+        test_term(c, vec![col], vec![false], None)
     }
 
     /// A column that carries the signal lowers the cross-validated
