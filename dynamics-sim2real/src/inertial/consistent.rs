@@ -77,10 +77,24 @@ const TOL: f64 = 1e-9;
 /// parameters' norm) the nearest physical body may lose to be kept.
 const NEAR: f64 = 0.5;
 
+/// Evaluations of the pseudo-inertia's eigenvalues one [`complete`] may
+/// spend in its searches (about half a second): the compass search creeps
+/// along a curved boundary (a point mass needs some 1e5), and without a
+/// budget one link of a real log took several seconds. A search that runs
+/// out of it stops where it is, and `complete` goes on to scaling back and
+/// the nearest body as when no move is found.
+const BUDGET: usize = 400_000;
+
 /// The best move `z` along `free` (10 x f) from `pi`: the smallest
-/// negativity found, stopping once it is >= `goal` (`-tol`); returns the
-/// move and the smallest eigenvalue there.
-fn search(pi: &SVector<f64, 10>, free: &DMatrix<f64>, goal: f64) -> (SVector<f64, 10>, f64) {
+/// negativity found, stopping once it is >= `goal` (`-tol`) or `budget`
+/// evaluations are spent (counted down); returns the move and the
+/// smallest eigenvalue there.
+fn search(
+    pi: &SVector<f64, 10>,
+    free: &DMatrix<f64>,
+    goal: f64,
+    budget: &mut usize,
+) -> (SVector<f64, 10>, f64) {
     let f = free.ncols();
     let scale = pi.amax().max(1e-12);
     let mut z = vec![0.0; f];
@@ -95,12 +109,13 @@ fn search(pi: &SVector<f64, 10>, free: &DMatrix<f64>, goal: f64) -> (SVector<f64
     };
     let mut best = negativity(pi);
     let mut step = scale;
-    while best < goal && step > 1e-10 * scale && f > 0 {
+    while best < goal && step > 1e-10 * scale && f > 0 && *budget > 0 {
         let mut improved = false;
         for c in 0..f {
             for sign in [1.0, -1.0] {
                 let mut t = z.clone();
                 t[c] += sign * step;
+                *budget = budget.saturating_sub(1);
                 let m = negativity(&at(&t));
                 if m > best {
                     best = m;
@@ -160,7 +175,8 @@ pub fn complete(
             projected: false,
         });
     }
-    let (mv, m) = search(&full, free, -tol);
+    let mut budget = BUDGET;
+    let (mv, m) = search(&full, free, -tol, &mut budget);
     if m >= -tol {
         return Some(Completed {
             delta: delta + mv,
@@ -175,7 +191,7 @@ pub fn complete(
     while hi - lo > 1e-3 {
         let s = 0.5 * (lo + hi);
         let p = nominal + delta * s;
-        let (mv, m) = search(&p, free, -tol);
+        let (mv, m) = search(&p, free, -tol, &mut budget);
         if m >= -tol {
             lo = s;
             best = (delta * s + mv, mv.amax() > 0.0);
