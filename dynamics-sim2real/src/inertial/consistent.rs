@@ -251,18 +251,7 @@ pub fn nearest_physical(pi: &SVector<f64, 10>) -> SVector<f64, 10> {
     let j = eig.eigenvectors * Matrix4::from_diagonal(&clipped) * eig.eigenvectors.transpose();
     let s = j.fixed_view::<3, 3>(0, 0).into_owned();
     let i = Matrix3::identity() * s.trace() - s;
-    SVector::from([
-        j[(3, 3)],
-        j[(0, 3)],
-        j[(1, 3)],
-        j[(2, 3)],
-        i[(0, 0)],
-        i[(0, 1)],
-        i[(1, 1)],
-        i[(0, 2)],
-        i[(1, 2)],
-        i[(2, 2)],
-    ])
+    super::parameters(j[(3, 3)], j.fixed_view::<3, 1>(0, 3).into_owned(), &i)
 }
 
 #[cfg(test)]

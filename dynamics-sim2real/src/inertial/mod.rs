@@ -38,6 +38,24 @@ fn origin_inertia(pi: &SVector<f64, 10>) -> Matrix3<f64> {
     )
 }
 
+/// The ten parameters of mass `m`, first moments `h` (`m c`) and the
+/// inertia `i` about the frame origin: the inverse of [`origin_inertia`]
+/// and the first four entries.
+fn parameters(m: f64, h: Vector3<f64>, i: &Matrix3<f64>) -> SVector<f64, 10> {
+    SVector::from([
+        m,
+        h.x,
+        h.y,
+        h.z,
+        i[(0, 0)],
+        i[(0, 1)],
+        i[(1, 1)],
+        i[(0, 2)],
+        i[(1, 2)],
+        i[(2, 2)],
+    ])
+}
+
 /// Mass properties of `pi` (the centre of mass at the origin and the
 /// inertia about the origin when the mass is not positive).
 ///
@@ -206,18 +224,7 @@ mod tests {
         ));
         let i = r * ic * r.transpose()
             + (Matrix3::identity() * c.norm_squared() - c * c.transpose()) * m;
-        SVector::from([
-            m,
-            m * c.x,
-            m * c.y,
-            m * c.z,
-            i[(0, 0)],
-            i[(0, 1)],
-            i[(1, 1)],
-            i[(0, 2)],
-            i[(1, 2)],
-            i[(2, 2)],
-        ])
+        parameters(m, c * m, &i)
     }
 
     #[test]
