@@ -62,6 +62,24 @@ pub struct Explanation {
     pub rivals: Vec<Option<usize>>,
 }
 
+/// Criteria closer than this (in the criterion's units, where margins are
+/// several units) are a tie, broken by the pool's order of the terms: a
+/// selection must not hang on the last bits of a sum, which differ from
+/// build to build (the model's sums are fused multiply-adds where the CPU
+/// has them, `dynamics_runtime::fma`).
+pub const TIE: f64 = 1e-3;
+
+/// The criterion `c` rounded to [`TIE`], for ordering.
+pub fn tie_key(c: f64) -> i64 {
+    if c.is_finite() {
+        (c / TIE).round() as i64
+    } else if c > 0.0 {
+        i64::MAX
+    } else {
+        i64::MIN
+    }
+}
+
 fn crit(pool: &Pool, s: &Solution) -> f64 {
     aicc(s.sse, pool.n(), s.k)
 }
@@ -122,7 +140,7 @@ fn parsimony(
                 let cu = pool.terms[*u].fit.candidate;
                 is_simpler(&cu) && cu.joint() == cand.joint()
             })
-            .min_by(|a, b| a.1.total_cmp(&b.1));
+            .min_by_key(|a| (tie_key(a.1), a.0));
         if let Some(&(u, cu)) = alt {
             if cu - c < nesting(cand, options)
                 && cur - cu >= options.add_margin.min(options.none_margin)
@@ -181,7 +199,7 @@ fn select<const N: usize>(pool: &Pool, mut set: Vec<usize>, options: &Options) -
                 moves.push((c, trial, t));
             }
         }
-        moves.sort_by(|a, b| a.0.total_cmp(&b.0));
+        moves.sort_by_key(|a| (tie_key(a.0), a.2));
         // The best move (by the criterion) that also predicts blocks of the
         // data it was not fitted on better than the set before it.
         let cv_now = folds.as_ref().map(|f| f.deviance(pool, &set));
@@ -231,7 +249,7 @@ fn select<const N: usize>(pool: &Pool, mut set: Vec<usize>, options: &Options) -
                 let short = (cost - need).min(cv_cost - options.cv_margin);
                 (i, short)
             })
-            .min_by(|a, b| a.1.total_cmp(&b.1));
+            .min_by_key(|a| (tie_key(a.1), a.0));
         match weakest {
             Some((i, short)) => {
                 if short < 0.0 {
@@ -393,7 +411,7 @@ pub fn explain<R: Robot<N>, const N: usize>(
                 s[i] = u;
                 (u, crit(pool, &pool.solve(&s)))
             })
-            .min_by(|a, b| a.1.total_cmp(&b.1));
+            .min_by_key(|a| (tie_key(a.1), a.0));
         if let Some((u, c)) = alt {
             let quiet = || {
                 let mut s = set.clone();
@@ -429,7 +447,7 @@ pub fn explain<R: Robot<N>, const N: usize>(
                     (t, crit(pool, &pool.solve(&s)) - full)
                 })
                 .filter(|(_, d)| *d < options.ambiguity_margin)
-                .min_by(|a, b| a.1.total_cmp(&b.1))
+                .min_by_key(|a| (tie_key(a.1), a.0))
                 .map(|(t, _)| t)
         })
         .collect();

@@ -16,6 +16,7 @@ use nalgebra::{DMatrix, DVector, SVector};
 use super::analysis::{Fit, Prepared};
 use super::candidate::Candidate;
 use super::links::{combined, link_basis, LinkBasis};
+use super::prior;
 
 /// One term of the pool: a fitted single candidate and its columns.
 #[derive(Debug, Clone)]
@@ -27,6 +28,9 @@ pub struct Term {
     pub cols: Vec<usize>,
     /// Which free columns must stay >= 0.
     pub nonneg: Vec<bool>,
+    /// Per free column, the largest magnitude its parameter may take
+    /// (infinite: none; an effort scale's [`EFFORT_SCALE_LIMIT`]).
+    pub limit: Vec<f64>,
     /// The fixed column of a motor-side term.
     pub fixed: Option<usize>,
     /// Parameters counted by the information criterion.
@@ -75,6 +79,10 @@ pub struct Pool {
     /// Per joint, the weight of its rows on top of the whitening by the
     /// noise floor (1: the floor alone; `reweight`).
     pub weights: Vec<f64>,
+    /// The prior toward the nominal model (`prior.rs`): `theta^T P theta`
+    /// over the free columns, in parameter units, added to the Gram matrix
+    /// times [`prior::weight`] (0 x 0: none).
+    pub prior: DMatrix<f64>,
 }
 
 /// A joint fit of a subset of terms.
@@ -120,8 +128,15 @@ pub fn fixed_column<const N: usize>(f: &Fit, p: &Prepared<N>) -> Vec<f64> {
 impl Pool {
     /// The pool of `fits` on `p` (every single fit, grid variants too) and
     /// of the link corrections whose whitened regressor columns are `links`
-    /// (`[link][parameter]`, see `links.rs`; empty: none).
-    pub fn new<const N: usize>(fits: &[Fit], links: &[Vec<Vec<f64>>], p: &Prepared<N>) -> Pool {
+    /// (`[link][parameter]`, see `links.rs`; empty: none), with the prior
+    /// toward the links' `nominal` parameters (`prior.rs`; empty: none on
+    /// the links).
+    pub fn new<const N: usize>(
+        fits: &[Fit],
+        links: &[Vec<Vec<f64>>],
+        nominal: &[SVector<f64, 10>],
+        p: &Prepared<N>,
+    ) -> Pool {
         let mut cols: Vec<Vec<f64>> = Vec::new();
         let mut terms = Vec::new();
         for f in fits {
@@ -139,6 +154,7 @@ impl Pool {
                     fit: f.clone(),
                     cols: vec![],
                     nonneg: vec![],
+                    limit: vec![],
                     fixed: Some(cols.len() - 1),
                     k: f.k,
                     link: None,
@@ -154,6 +170,14 @@ impl Pool {
                     fit: f.clone(),
                     cols: (at..cols.len()).collect(),
                     nonneg: c.linear_parameters().iter().map(|p| p.1).collect(),
+                    limit: c
+                        .linear_parameters()
+                        .iter()
+                        .map(|_| match c {
+                            Candidate::EffortScale(_) => prior::EFFORT_SCALE_LIMIT,
+                            _ => f64::INFINITY,
+                        })
+                        .collect(),
                     fixed: None,
                     k: f.k,
                     link: None,
@@ -181,6 +205,7 @@ impl Pool {
                 },
                 cols: (at..cols.len()).collect(),
                 nonneg: vec![false; r],
+                limit: vec![f64::INFINITY; r],
                 fixed: None,
                 k: r,
                 link: Some(basis),
@@ -189,9 +214,10 @@ impl Pool {
         let n = p.n();
         let x = DMatrix::from_fn(n, cols.len(), |r, c| cols[c][r]);
         let y = DVector::from_vec(whitened(p, |k| p.sig.residual[k]));
-        let gram = x.tr_mul(&x);
         let xty = x.tr_mul(&y);
         let yy = y.norm_squared();
+        let prior = prior::matrix(&terms, cols.len(), nominal);
+        let gram = penalised(&x, &prior, yy);
         Pool {
             x,
             y,
@@ -200,6 +226,7 @@ impl Pool {
             yy,
             terms,
             weights: vec![1.0; N],
+            prior,
         }
     }
 
@@ -220,9 +247,9 @@ impl Pool {
         for (i, y) in self.y.iter_mut().enumerate() {
             *y *= s[i % joints];
         }
-        self.gram = self.x.tr_mul(&self.x);
         self.xty = self.x.tr_mul(&self.y);
         self.yy = self.y.norm_squared();
+        self.gram = penalised(&self.x, &self.prior, self.yy);
         self.weights = w.to_vec();
     }
 
@@ -261,32 +288,37 @@ impl Pool {
         self.y.len()
     }
 
-    /// The joint least-squares fit of `set` (term indices), sign
-    /// constraints kept by dropping the most negative constrained
-    /// parameter and solving again.
+    /// The joint least-squares fit of `set` (term indices), penalised by
+    /// the prior toward the nominal model (`prior.rs`); sign constraints
+    /// kept by dropping the most negative constrained parameter and solving
+    /// again, limits by holding the parameter furthest beyond its limit at
+    /// the limit and solving again.
     pub fn solve(&self, set: &[usize]) -> Solution {
-        let mut free: Vec<(usize, usize, bool)> = Vec::new(); // (set pos, column, nonneg)
+        // (set pos, column, nonneg, limit)
+        let mut free: Vec<(usize, usize, bool, f64)> = Vec::new();
         let mut fixed: Vec<usize> = Vec::new();
         let mut k = 0;
         for (i, &t) in set.iter().enumerate() {
             let term = &self.terms[t];
             k += term.k;
-            for (c, nn) in term.cols.iter().zip(&term.nonneg) {
-                free.push((i, *c, *nn));
+            for (m, c) in term.cols.iter().enumerate() {
+                let nn = term.nonneg.get(m).copied().unwrap_or(false);
+                let lim = term.limit.get(m).copied().unwrap_or(f64::INFINITY);
+                free.push((i, *c, nn, lim));
             }
             fixed.extend(term.fixed);
         }
         // y' = y - sum of the fixed columns.
-        let mut yy = self.yy;
+        let mut yy0 = self.yy;
         for &f in &fixed {
-            yy -= 2.0 * self.xty[f];
+            yy0 -= 2.0 * self.xty[f];
             for &g in &fixed {
-                yy += self.gram[(f, g)];
+                yy0 += self.gram[(f, g)];
             }
         }
-        let b: Vec<f64> = free
+        let b0: Vec<f64> = free
             .iter()
-            .map(|&(_, c, _)| self.xty[c] - fixed.iter().map(|&f| self.gram[(c, f)]).sum::<f64>())
+            .map(|&(_, c, ..)| self.xty[c] - fixed.iter().map(|&f| self.gram[(c, f)]).sum::<f64>())
             .collect();
         // Columns that a column before them in the set's order already
         // spans are left out: two links' inertial parameters regroup (a
@@ -296,11 +328,32 @@ impl Pool {
         let mut active = independent(&self.gram, &cols);
         let dependent = active.iter().filter(|a| !**a).count();
         k = k.saturating_sub(dependent);
+        // Parameters held at a limit: (free index, value).
+        let mut held: Vec<(usize, f64)> = Vec::new();
         let (theta, std, sse) = loop {
+            // y'' = y' - the held columns times their values.
+            let mut yy = yy0;
+            for &(i, v) in &held {
+                yy -= 2.0 * v * b0[i];
+                for &(j, w) in &held {
+                    yy += v * w * self.gram[(free[i].1, free[j].1)];
+                }
+            }
+            let b: Vec<f64> = (0..free.len())
+                .map(|i| {
+                    b0[i]
+                        - held
+                            .iter()
+                            .map(|&(j, v)| v * self.gram[(free[i].1, free[j].1)])
+                            .sum::<f64>()
+                })
+                .collect();
             let idx: Vec<usize> = (0..free.len()).filter(|&i| active[i]).collect();
             let m = idx.len();
             if m == 0 {
-                break (vec![], vec![], yy);
+                let at: Vec<(usize, f64)> = held.clone();
+                let zero = held.iter().map(|&(i, _)| (i, 0.0)).collect();
+                break (at, zero, yy.max(0.0));
             }
             let d: Vec<f64> = idx
                 .iter()
@@ -325,15 +378,29 @@ impl Pool {
                 active[i] = false;
                 continue;
             }
+            // The parameter furthest beyond its limit (relative to it).
+            let beyond = idx
+                .iter()
+                .enumerate()
+                .map(|(r, &i)| (i, z[r] / d[r], free[i].3))
+                .filter(|&(_, v, lim)| v.abs() > lim)
+                .max_by(|a, b| (a.1.abs() / a.2).total_cmp(&(b.1.abs() / b.2)))
+                .map(|(i, v, lim)| (i, lim.copysign(v)));
+            if let Some((i, v)) = beyond {
+                active[i] = false;
+                held.push((i, v));
+                continue;
+            }
             let sse = (yy - 2.0 * z.dot(&bv) + (g * &z).dot(&z)).max(1e-12 * self.yy.max(1e-300));
             let dof = (self.n() as f64 - m as f64).max(1.0);
             let inv = ch.inverse();
-            let theta: Vec<(usize, f64, f64)> = (0..m)
+            let mut theta: Vec<(usize, f64, f64)> = (0..m)
                 .map(|r| {
                     let s = (inv[(r, r)] * sse / dof).max(0.0).sqrt() / d[r];
                     (idx[r], z[r] / d[r], s)
                 })
                 .collect();
+            theta.extend(held.iter().map(|&(i, v)| (i, v, 0.0)));
             break (
                 theta.iter().map(|t| (t.0, t.1)).collect::<Vec<_>>(),
                 theta.iter().map(|t| (t.0, t.2)).collect::<Vec<_>>(),
@@ -378,6 +445,16 @@ impl Pool {
         }
         r
     }
+}
+
+/// `X^T X` plus the prior's matrix at its weight for a residual of sum of
+/// squares `yy` (`prior.rs`).
+pub(super) fn penalised(x: &DMatrix<f64>, p: &DMatrix<f64>, yy: f64) -> DMatrix<f64> {
+    let mut g = x.tr_mul(x);
+    if p.shape() == g.shape() {
+        g += p * prior::weight(yy, x.nrows());
+    }
+    g
 }
 
 /// Relative size, in a column's own norm, of the part outside the span of
@@ -440,6 +517,7 @@ pub(crate) fn test_term(
             sse: 0.0,
             k,
         },
+        limit: vec![f64::INFINITY; cols.len()],
         cols,
         nonneg,
         fixed,
@@ -479,6 +557,7 @@ mod tests {
             x,
             y: yv.clone(),
             weights: vec![1.0],
+            prior: DMatrix::zeros(0, 0),
             terms: vec![
                 term(Candidate::Coulomb(0), vec![0], vec![true], None),
                 term(Candidate::Viscous(0), vec![1], vec![true], None),
@@ -528,6 +607,7 @@ mod tests {
             x,
             y: yv,
             weights: vec![1.0],
+            prior: DMatrix::zeros(0, 0),
             terms: vec![
                 term(Candidate::EffortOffset(0), vec![0], vec![false], None),
                 term(Candidate::EffortOffset(1), vec![1], vec![false], None),
@@ -566,6 +646,7 @@ mod tests {
             x,
             y: yv,
             weights: vec![1.0, 1.0],
+            prior: DMatrix::zeros(0, 0),
             terms: vec![term(Candidate::EffortScale(0), vec![0], vec![false], None)],
         };
         let even = pool.solve(&[0]);
