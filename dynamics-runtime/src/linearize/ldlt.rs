@@ -51,7 +51,9 @@ impl<const N: usize> Ldlt<N> {
         let mut inv_d = [0.0; N];
         for j in 0..N {
             let dj = s[j][j];
-            if !(dj > 0.0 && dj.is_finite()) {
+            // Two float compares (NaN fails both); `is_finite` would move
+            // the pivot to an integer register on the critical path.
+            if !(dj > 0.0 && dj < f64::INFINITY) {
                 return None;
             }
             inv_d[j] = 1.0 / dj;
