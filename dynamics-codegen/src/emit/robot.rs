@@ -66,6 +66,7 @@ pub fn emit(model: &Model, d: &Derived) -> TokenStream {
 
     let fused = {
         let p = &d.perturbation;
+        let a_roots: Vec<_> = upper.iter().map(|&(i, j)| d.a_fused[i][j]).collect();
         let mut first = a_roots.clone();
         first.extend(&d.qqt);
         first.extend(&d.q0);
