@@ -27,7 +27,7 @@ pub fn outputs(d: &Derived) -> Vec<(&'static str, Vec<Id>)> {
         .flat_map(|i| (i..n).map(move |j| (i, j)))
         .map(|(i, j)| d.a_fused[i][j])
         .collect();
-    terms_and_jacobians.extend(&qqt);
+    terms_and_jacobians.extend(&d.qqt_fused);
     terms_and_jacobians.extend(&d.q0);
     terms_and_jacobians.extend(d.perturbation.k.iter().chain(&d.perturbation.d).flatten());
     vec![

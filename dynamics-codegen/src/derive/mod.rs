@@ -13,6 +13,7 @@ mod coriolis;
 mod crba;
 mod element_tree;
 mod forces;
+mod fused;
 #[cfg(test)]
 mod golden;
 mod inertia;
@@ -92,6 +93,8 @@ pub struct Derived {
     /// matrix, from the composite inertias of the analytic K, D where that
     /// is cheaper together with them).
     pub a_fused: Vec<Vec<Id>>,
+    /// Qqt1 + Qqt2 as `motion_and_jacobians` computes it (see `a_fused`).
+    pub qqt_fused: Vec<Id>,
     /// Qqt1.
     pub qqt1: Vec<Id>,
     /// Qqt2.
@@ -126,28 +129,6 @@ pub struct Derived {
 
 /// Largest number of monomials an expression may expand to.
 const EXPAND_LIMIT: usize = 256;
-
-/// Of `a` and the analytic pass's own `rigid_a`, the one that costs fewer
-/// operations computed together with K and D.
-fn fused_mass_matrix(
-    a: &[Vec<Id>],
-    rigid_a: Option<Vec<Vec<Id>>>,
-    p: &perturbation::Perturbation,
-    g: &mut Graph,
-) -> Vec<Vec<Id>> {
-    let jacobians = p.k.iter().chain(&p.d).flatten().copied();
-    let with = |m: &[Vec<Id>]| -> Vec<Id> {
-        m.iter()
-            .flatten()
-            .copied()
-            .chain(jacobians.clone())
-            .collect()
-    };
-    match rigid_a {
-        Some(r) if g.count_ops(&with(&r)).total() < g.count_ops(&with(a)).total() => r,
-        _ => a.to_vec(),
-    }
-}
 
 /// `e` as a canonical trigonometric polynomial (products distributed,
 /// `sin^2 = 1 - cos^2`) when that takes fewer operations, else `e`.
@@ -256,20 +237,30 @@ pub fn derive(model: &Model) -> Derived {
         )
     };
     let mut trial = g.clone();
-    let (perturbation, rigid_a) = match rnea_derivatives::jacobians(model, vars, &mut trial) {
+    let (perturbation, rigid) = match rnea_derivatives::jacobians(model, vars, &mut trial) {
         Some(rigid) => {
-            let rigid_a = rigid.a.clone();
+            let terms = (rigid.a.clone(), rigid.bias.clone());
             match jacobians(Some(rigid), &mut trial) {
                 (p, true) => {
                     g = trial;
-                    (p, Some(rigid_a))
+                    (p, Some(terms))
                 }
                 (_, false) => (jacobians(None, &mut g).0, None),
             }
         }
         None => (jacobians(None, &mut g).0, None),
     };
-    let a_fused = fused_mass_matrix(&a, rigid_a, &perturbation, &mut g);
+    let (a_fused, qqt_fused) = fused::terms(
+        fused::Shared {
+            a: &a,
+            qqt: &qqt,
+            q0: &q0,
+            gravity: &gravity,
+        },
+        rigid,
+        &perturbation,
+        &mut g,
+    );
     let mut ke_terms = Vec::new();
     for i in 0..n {
         let qdi = g.var(vars.qd(i));
@@ -299,6 +290,7 @@ pub fn derive(model: &Model) -> Derived {
         regressor,
         a,
         a_fused,
+        qqt_fused,
         qqt1: dyn_terms.qqt1,
         qqt2: dyn_terms.qqt2,
         qqt,

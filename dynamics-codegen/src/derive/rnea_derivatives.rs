@@ -42,6 +42,9 @@ pub struct Rigid {
     /// K and D the inertia matrix costs one dot product with a constant
     /// axis per entry.
     pub a: Vec<Vec<Id>>,
+    /// The rigid-body efforts at `qdd = 0` (velocity products and gravity,
+    /// `S_j . F0_j`): the bias, sharing each body's `v x* I v` with K.
+    pub bias: Vec<Id>,
 }
 
 /// K and D of the rigid body, or `None` when the model is outside
@@ -52,13 +55,16 @@ pub fn jacobians(model: &Model, vars: Vars, g: &mut Graph) -> Option<Rigid> {
     let Tree {
         nodes,
         motion,
+        rest,
         coords,
         held,
     } = tree(model, vars, g)?;
 
-    // Backward: composite inertia, its rate, momentum and force per node.
+    // Backward: composite inertia, its rate, momentum and force per node,
+    // and the force at qdd = 0.
     let empty = (Inertia::zero(g), Inertia::zero(g), Sv::zero(g), Sv::zero(g));
     let mut comp = vec![empty; nodes.len()];
+    let mut comp_rest = vec![Sv::zero(g); nodes.len()];
     for (node, body) in held.iter().enumerate() {
         let Some(body) = *body else {
             continue;
@@ -66,9 +72,12 @@ pub fn jacobians(model: &Model, vars: Vars, g: &mut Graph) -> Option<Rigid> {
         let (v, a) = motion[node];
         let iv = body.apply(g, v);
         let ia = body.apply(g, a);
-        let f = v.cross_force(g, iv).add(g, ia);
+        let vxiv = v.cross_force(g, iv);
+        let f = vxiv.add(g, ia);
         let rate = body.rate(g, v);
         comp[node] = (body, rate, iv, f);
+        let ia_rest = body.apply(g, rest[node]);
+        comp_rest[node] = vxiv.add(g, ia_rest);
     }
     for k in (1..nodes.len()).rev() {
         let p = nodes[k].parent;
@@ -90,7 +99,16 @@ pub fn jacobians(model: &Model, vars: Vars, g: &mut Graph) -> Option<Rigid> {
             c.2.add(g, moved.2),
             c.3.add(g, moved.3),
         );
+        let moved_rest = comp_rest[k].force_back(g, &step);
+        comp_rest[p] = comp_rest[p].add(g, moved_rest);
     }
+    let bias = coords
+        .iter()
+        .map(|c| match c {
+            Some(info) => info.s.dot(g, comp_rest[info.node]),
+            None => zero,
+        })
+        .collect();
 
     // Per coordinate: x, y and the force vectors u, r, G, H.
     let mut coord_at = vec![None; nodes.len()];
@@ -159,7 +177,7 @@ pub fn jacobians(model: &Model, vars: Vars, g: &mut Graph) -> Option<Rigid> {
             node = parent;
         }
     }
-    Some(Rigid { k, d, a })
+    Some(Rigid { k, d, a, bias })
 }
 
 #[cfg(test)]
@@ -203,10 +221,23 @@ mod tests {
             gravity: true,
         };
         let tau = inverse_dynamics(&m, vars, all, &mut g).expect("Newton-Euler applies");
-        let Rigid { k, d, a } = jacobians(&m, vars, &mut g).expect("the analytic form applies");
+        let Rigid { k, d, a, bias } =
+            jacobians(&m, vars, &mut g).expect("the analytic form applies");
         let crba =
             super::super::crba::mass_matrix(&m, vars, &mut g).expect("revolute and prismatic");
         let values = |v: Var| 0.3 + 0.7 * (v.0 as f64 * 1.3).sin();
+        let at_rest = |v: Var| match vars.classify(v) {
+            (2, _) => 0.0,
+            _ => values(v),
+        };
+        let got = g.eval(&bias, &at_rest);
+        let want = g.eval(&tau, &at_rest);
+        for (i, (x, y)) in got.iter().zip(&want).enumerate() {
+            assert!(
+                (x - y).abs() <= 1e-12 * (1.0 + y.abs()),
+                "bias {i}: {x} vs {y}"
+            );
+        }
         for i in 0..4 {
             for j in 0..4 {
                 let dk = g.diff(tau[i], vars.q(j));
