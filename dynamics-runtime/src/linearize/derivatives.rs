@@ -116,7 +116,9 @@ pub fn state_space<R: Robot<N>, const N: usize>(
     Ok(StateSpace { a, b, qdd: d.qdd })
 }
 
-/// The derivatives and the factorisation of A they were solved with.
+/// The derivatives and the factorisation of A they were solved with
+/// (inlined: the caller keeps what it needs without copying the rest).
+#[inline(always)]
 fn solved<R: Robot<N>, const N: usize>(
     robot: &R,
     q: &SVector<f64, N>,
