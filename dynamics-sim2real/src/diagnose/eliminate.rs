@@ -15,6 +15,7 @@
 
 use nalgebra::{DMatrix, DVector};
 
+use super::compound::tie_key;
 use super::fit::aicc;
 use super::pool::{independent, Pool};
 
@@ -91,7 +92,7 @@ pub fn eliminate(pool: &Pool, mut set: Vec<usize>, margin: f64) -> Vec<usize> {
                 block.cholesky().map_or(0.0, |c| zb.dot(&c.solve(&zb)))
             };
             let cost = aicc(sse + rise.max(0.0), n, m - own.len()) - now;
-            if weakest.is_none_or(|w| cost < w.1) {
+            if weakest.is_none_or(|w| tie_key(cost) < tie_key(w.1)) {
                 weakest = Some((i, cost));
             }
         }
@@ -144,6 +145,7 @@ mod tests {
                 .map(|c| term(Candidate::EffortOffset(c), c))
                 .collect(),
             weights: vec![1.0],
+            prior: DMatrix::zeros(0, 0),
         };
         // One at a time, neither a nor b earns 40 against nothing.
         let none = aicc(pool.yy, n, 0);

@@ -47,6 +47,7 @@ mod motor_sim;
 mod noise;
 mod parallel;
 mod pool;
+mod prior;
 mod rank;
 mod refine;
 mod report;
@@ -281,7 +282,11 @@ pub fn diagnose<R: Robot<N> + Clone + Sync, const N: usize>(
     } else {
         (vec![], vec![])
     };
-    let mut pool = pool::Pool::new(&fits, &plinks, &p);
+    let mut nominal = vec![SVector::<f64, 10>::zeros(); R::LINK_NAMES.len()];
+    if robot.inertial_parameters(&mut nominal).is_err() {
+        nominal.clear();
+    }
+    let mut pool = pool::Pool::new(&fits, &plinks, &nominal, &p);
     window::limit_pool(&mut pool, &limited, &p);
     let explanation = compound::explain::<R, N>(&mut pool, &p, options);
 
@@ -340,10 +345,6 @@ pub fn diagnose<R: Robot<N> + Clone + Sync, const N: usize>(
     // data).
     let mut hold = explain::Holdout::new(&h, &hlinks, &pool, &explanation);
     window::limit_holdout(&mut hold, &h, &pool, &explanation, &limited);
-    let mut nominal = vec![SVector::<f64, 10>::zeros(); R::LINK_NAMES.len()];
-    if robot.inertial_parameters(&mut nominal).is_err() {
-        nominal.clear();
-    }
     let (mut effects, steps) =
         explain::entries::<R, N>(&pool, &explanation, &hold, &tip_name, aicc0, &nominal);
     window::annotate(&mut effects, &pool, &explanation, &limited);

@@ -58,6 +58,7 @@ impl Folds {
                     yy: pool.yy - yy,
                     terms: pool.terms.clone(),
                     weights: pool.weights.clone(),
+                    prior: pool.prior.clone(),
                 };
                 Block {
                     gram,
@@ -149,6 +150,7 @@ mod tests {
             y: yv.clone(),
             terms,
             weights: vec![1.0],
+            prior: DMatrix::zeros(0, 0),
         };
         let folds = Folds::new(&pool, 1).expect("enough rows");
         let none = folds.deviance(&pool, &[]);

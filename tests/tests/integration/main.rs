@@ -2,6 +2,7 @@
 
 mod clearance;
 mod compound;
+mod determinism;
 mod diagnosis;
 mod effects;
 mod elastic_grip;
