@@ -111,11 +111,14 @@ pub fn state_space<R: Robot<N>, const N: usize>(
     a.blocks[1][0] = d.ddq_dq;
     a.blocks[1][1] = d.ddq_dv;
     let mut b = BlockMatrix::zeros();
-    b.blocks[1][0] = finite("ddq_dtau", ldlt.solve_matrix(&SMatrix::identity(), 1.0))?;
+    b.blocks[1][0] = ldlt.solve_matrix(&SMatrix::identity(), 1.0);
+    finite("ddq_dtau", &b.blocks[1][0])?;
     Ok(StateSpace { a, b, qdd: d.qdd })
 }
 
-/// The derivatives and the factorisation of A they were solved with.
+/// The derivatives and the factorisation of A they were solved with
+/// (inlined: the caller keeps what it needs without copying the rest).
+#[inline(always)]
 fn solved<R: Robot<N>, const N: usize>(
     robot: &R,
     q: &SVector<f64, N>,
@@ -133,7 +136,9 @@ fn solved<R: Robot<N>, const N: usize>(
     let solved = robot.motion_and_jacobians(q, qd, |terms| {
         let ldlt = Ldlt::new(&terms.a)?;
         factors = Some(ldlt);
-        finite("qdd", ldlt.solve(&(terms.bias() + tau)))
+        let qdd = ldlt.solve(&(terms.bias() + tau));
+        finite("qdd", &qdd)
+            .map(|()| qdd)
             .map_err(|e| failure = Some(e))
             .ok()
     });
@@ -142,8 +147,13 @@ fn solved<R: Robot<N>, const N: usize>(
             q: crate::Coordinates::new(q.as_slice()),
         }));
     };
-    let ddq_dq = finite("ddq_dq", ldlt.solve_matrix(&pj.k, -1.0))?;
-    let ddq_dv = finite("ddq_dv", ldlt.solve_matrix(&pj.d, -1.0))?;
+    // Both solves before either check: the check reads a solution in wide
+    // loads, which stall on the narrow stores that wrote it while they are
+    // still in flight.
+    let ddq_dq = ldlt.solve_matrix(&pj.k, -1.0);
+    let ddq_dv = ldlt.solve_matrix(&pj.d, -1.0);
+    finite("ddq_dq", &ddq_dq)?;
+    finite("ddq_dv", &ddq_dv)?;
     Ok((
         ForwardDerivatives {
             qdd,
@@ -154,14 +164,14 @@ fn solved<R: Robot<N>, const N: usize>(
     ))
 }
 
-/// `x`, or [`DynamicsError::Diverged`] naming its first non-finite entry
-/// (column-major index).
+/// [`DynamicsError::Diverged`] naming the first non-finite entry of `x`
+/// (column-major index), if any.
 fn finite<const R: usize, const C: usize>(
     quantity: &'static str,
-    x: SMatrix<f64, R, C>,
-) -> Result<SMatrix<f64, R, C>, DynamicsError> {
+    x: &SMatrix<f64, R, C>,
+) -> Result<(), DynamicsError> {
     match crate::check::first_non_finite(x.as_slice()) {
         Some(index) => Err(DynamicsError::Diverged { quantity, index }),
-        None => Ok(x),
+        None => Ok(()),
     }
 }

@@ -51,7 +51,9 @@ impl<const N: usize> Ldlt<N> {
         let mut inv_d = [0.0; N];
         for j in 0..N {
             let dj = s[j][j];
-            if !(dj > 0.0 && dj.is_finite()) {
+            // Two float compares (NaN fails both); `is_finite` would move
+            // the pivot to an integer register on the critical path.
+            if !(dj > 0.0 && dj < f64::INFINITY) {
                 return None;
             }
             inv_d[j] = 1.0 / dj;
@@ -69,13 +71,15 @@ impl<const N: usize> Ldlt<N> {
         Some(Self { l, inv_d })
     }
 
-    /// `A^-1 B` in place of `B`'s rows.
-    fn solve_rows<const M: usize>(&self, rows: &mut Rows<N, M>) {
+    /// `s A^-1 B` in place of `B`'s rows (`s` rides on the scaling by
+    /// `1 / D`).
+    fn solve_rows<const M: usize>(&self, rows: &mut Rows<N, M>, s: f64) {
         for i in 0..N {
             eliminate(rows, i, 0..i, |k| self.l[(i, k)]);
         }
         for (row, inv_d) in rows.iter_mut().zip(self.inv_d) {
-            row.iter_mut().for_each(|x| *x *= inv_d);
+            let f = inv_d * s;
+            row.iter_mut().for_each(|x| *x *= f);
         }
         for i in (0..N).rev() {
             eliminate(rows, i, i + 1..N, |k| self.l[(k, i)]);
@@ -85,15 +89,14 @@ impl<const N: usize> Ldlt<N> {
     /// `A^-1 b`.
     pub(crate) fn solve(&self, b: &SVector<f64, N>) -> SVector<f64, N> {
         let mut rows: Rows<N, 1> = core::array::from_fn(|i| [b[i]]);
-        self.solve_rows(&mut rows);
+        self.solve_rows(&mut rows, 1.0);
         SVector::from_fn(|i, _| rows[i][0])
     }
 
     /// `s A^-1 B` for a square `B`.
     pub(crate) fn solve_matrix(&self, b: &SMatrix<f64, N, N>, s: f64) -> SMatrix<f64, N, N> {
-        let mut rows: Rows<N, N> =
-            core::array::from_fn(|i| core::array::from_fn(|j| b[(i, j)] * s));
-        self.solve_rows(&mut rows);
+        let mut rows: Rows<N, N> = core::array::from_fn(|i| core::array::from_fn(|j| b[(i, j)]));
+        self.solve_rows(&mut rows, s);
         SMatrix::from_fn(|i, j| rows[i][j])
     }
 }
