@@ -23,6 +23,13 @@ pub fn outputs(d: &Derived) -> Vec<(&'static str, Vec<Id>)> {
     let mut terms = upper.clone();
     terms.extend(&qqt);
     terms.extend(&d.q0);
+    let mut terms_and_jacobians: Vec<Id> = (0..n)
+        .flat_map(|i| (i..n).map(move |j| (i, j)))
+        .map(|(i, j)| d.a_fused[i][j])
+        .collect();
+    terms_and_jacobians.extend(&d.qqt_fused);
+    terms_and_jacobians.extend(&d.q0);
+    terms_and_jacobians.extend(d.perturbation.k.iter().chain(&d.perturbation.d).flatten());
     vec![
         ("mass_matrix (upper triangle)", upper),
         ("qqt1 + qqt2", qqt),
@@ -40,6 +47,10 @@ pub fn outputs(d: &Derived) -> Vec<(&'static str, Vec<Id>)> {
                 .flatten()
                 .copied()
                 .collect(),
+        ),
+        (
+            "motion_and_jacobians (motion terms, K, D)",
+            terms_and_jacobians,
         ),
         (
             "  K = dF/dq alone",

@@ -5,7 +5,8 @@
 //! (`rnea_derivatives.rs`).
 //!
 //! Through an element with twist S (qd the rate of its coordinate):
-//! `v = X v_p + S qd`, `a = X a_p + S qdd + (v x S) qd`. Only chains whose
+//! `v = X v_p + S qd`, `a = X a_p + S qdd + (v x S) qd`, and the same
+//! acceleration at `qdd = 0` for the bias forces. Only chains whose
 //! moving elements each follow one coordinate at a rate that does not vary
 //! with q (revolute and prismatic joints, gear ratios) are accepted.
 
@@ -46,6 +47,9 @@ pub struct Tree {
     pub nodes: Vec<Node>,
     /// (velocity, acceleration) of each node.
     pub motion: Vec<(Sv, Sv)>,
+    /// The acceleration of each node at `qdd = 0` (gravity and the
+    /// velocity products only), for the bias forces.
+    pub rest: Vec<Sv>,
     /// Per coordinate (`None` if no element follows it).
     pub coords: Vec<Option<Coord>>,
     /// The bodies, summed per moving node.
@@ -71,6 +75,7 @@ pub fn tree(model: &Model, vars: Vars, g: &mut Graph) -> Option<Tree> {
             v: gravity,
         },
     )];
+    let mut rest = vec![motion[0].1];
     let mut link_node = vec![0; model.links.len()];
     let mut coords: Vec<Option<Coord>> = (0..n).map(|_| None).collect();
     for (l, link) in model.links.iter().enumerate() {
@@ -121,14 +126,15 @@ pub fn tree(model: &Model, vars: Vars, g: &mut Graph) -> Option<Tree> {
                 let (v0, a0) = motion[node];
                 let vp = v0.motion_forward(g, &step);
                 let ap = a0.motion_forward(g, &step);
+                let rest_p = rest[node].motion_forward(g, &step);
                 nodes.push(Node {
                     parent: node,
                     step,
                     moving: s.is_some(),
                 });
                 node = nodes.len() - 1;
-                let (v, a) = match s {
-                    None => (vp, ap),
+                let (v, a, a_rest) = match s {
+                    None => (vp, ap, rest_p),
                     Some((c, s)) => {
                         if coords[c].is_some() {
                             return None;
@@ -141,10 +147,11 @@ pub fn tree(model: &Model, vars: Vars, g: &mut Graph) -> Option<Tree> {
                         let vxs = v.cross_motion(g, s).scale(g, qd);
                         let a = ap.add(g, sqdd).add(g, vxs);
                         coords[c] = Some(Coord { node, s, vp, ap });
-                        (v, a)
+                        (v, a, rest_p.add(g, vxs))
                     }
                 };
                 motion.push((v, a));
+                rest.push(a_rest);
             }
         }
         link_node[l] = node;
@@ -173,6 +180,7 @@ pub fn tree(model: &Model, vars: Vars, g: &mut Graph) -> Option<Tree> {
     Some(Tree {
         nodes,
         motion,
+        rest,
         coords,
         held,
     })

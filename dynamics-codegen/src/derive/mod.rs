@@ -13,6 +13,7 @@ mod coriolis;
 mod crba;
 mod element_tree;
 mod forces;
+mod fused;
 #[cfg(test)]
 mod golden;
 mod inertia;
@@ -88,6 +89,12 @@ pub struct Derived {
     pub vars: Vars,
     /// A(q), full n x n (symmetric: `a[i][j] == a[j][i]`).
     pub a: Vec<Vec<Id>>,
+    /// A as `motion_and_jacobians` computes it beside K and D (the same
+    /// matrix, from the composite inertias of the analytic K, D where that
+    /// is cheaper together with them).
+    pub a_fused: Vec<Vec<Id>>,
+    /// Qqt1 + Qqt2 as `motion_and_jacobians` computes it (see `a_fused`).
+    pub qqt_fused: Vec<Id>,
     /// Qqt1.
     pub qqt1: Vec<Id>,
     /// Qqt2.
@@ -230,16 +237,30 @@ pub fn derive(model: &Model) -> Derived {
         )
     };
     let mut trial = g.clone();
-    let perturbation = match rnea_derivatives::jacobians(model, vars, &mut trial) {
-        Some(rigid) => match jacobians(Some(rigid), &mut trial) {
-            (p, true) => {
-                g = trial;
-                p
+    let (perturbation, rigid) = match rnea_derivatives::jacobians(model, vars, &mut trial) {
+        Some(rigid) => {
+            let terms = (rigid.a.clone(), rigid.bias.clone());
+            match jacobians(Some(rigid), &mut trial) {
+                (p, true) => {
+                    g = trial;
+                    (p, Some(terms))
+                }
+                (_, false) => (jacobians(None, &mut g).0, None),
             }
-            (_, false) => jacobians(None, &mut g).0,
-        },
-        None => jacobians(None, &mut g).0,
+        }
+        None => (jacobians(None, &mut g).0, None),
     };
+    let (a_fused, qqt_fused) = fused::terms(
+        fused::Shared {
+            a: &a,
+            qqt: &qqt,
+            q0: &q0,
+            gravity: &gravity,
+        },
+        rigid,
+        &perturbation,
+        &mut g,
+    );
     let mut ke_terms = Vec::new();
     for i in 0..n {
         let qdi = g.var(vars.qd(i));
@@ -268,6 +289,8 @@ pub fn derive(model: &Model) -> Derived {
         vars,
         regressor,
         a,
+        a_fused,
+        qqt_fused,
         qqt1: dyn_terms.qqt1,
         qqt2: dyn_terms.qqt2,
         qqt,

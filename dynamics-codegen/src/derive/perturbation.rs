@@ -65,7 +65,7 @@ pub fn jacobians(
         .collect();
     let mut ks = vec![k];
     let mut ds = vec![by_diff, by_coriolis];
-    if let Some(Rigid { k: ka, d: da }) = analytic {
+    if let Some(Rigid { k: ka, d: da, .. }) = analytic {
         let minus_extras = |g: &mut Graph, m: Vec<Vec<Id>>, var: &dyn Fn(usize) -> Var| {
             m.into_iter()
                 .enumerate()

@@ -30,12 +30,21 @@ use super::spatial::{Inertia, Sv};
 use super::Vars;
 use crate::model::Model;
 
-/// K and D of the rigid body (no damping, friction or springs).
+/// K and D of the rigid body (no damping, friction or springs), and the
+/// inertia matrix from the same composite inertias.
 pub struct Rigid {
     /// `k[i][j] = dtau_i/dq_j`.
     pub k: Vec<Vec<Id>>,
     /// `d[i][j] = dtau_i/dqd_j`.
     pub d: Vec<Vec<Id>>,
+    /// `a[i][j] = S_i . I^C_j S_j` (j in the subtree of i, else mirrored or
+    /// zero): the momentum `u_j` carried up for K is A's column, so beside
+    /// K and D the inertia matrix costs one dot product with a constant
+    /// axis per entry.
+    pub a: Vec<Vec<Id>>,
+    /// The rigid-body efforts at `qdd = 0` (velocity products and gravity,
+    /// `S_j . F0_j`): the bias, sharing each body's `v x* I v` with K.
+    pub bias: Vec<Id>,
 }
 
 /// K and D of the rigid body, or `None` when the model is outside
@@ -46,13 +55,16 @@ pub fn jacobians(model: &Model, vars: Vars, g: &mut Graph) -> Option<Rigid> {
     let Tree {
         nodes,
         motion,
+        rest,
         coords,
         held,
     } = tree(model, vars, g)?;
 
-    // Backward: composite inertia, its rate, momentum and force per node.
+    // Backward: composite inertia, its rate, momentum and force per node,
+    // and the force at qdd = 0.
     let empty = (Inertia::zero(g), Inertia::zero(g), Sv::zero(g), Sv::zero(g));
     let mut comp = vec![empty; nodes.len()];
+    let mut comp_rest = vec![Sv::zero(g); nodes.len()];
     for (node, body) in held.iter().enumerate() {
         let Some(body) = *body else {
             continue;
@@ -60,9 +72,12 @@ pub fn jacobians(model: &Model, vars: Vars, g: &mut Graph) -> Option<Rigid> {
         let (v, a) = motion[node];
         let iv = body.apply(g, v);
         let ia = body.apply(g, a);
-        let f = v.cross_force(g, iv).add(g, ia);
+        let vxiv = v.cross_force(g, iv);
+        let f = vxiv.add(g, ia);
         let rate = body.rate(g, v);
         comp[node] = (body, rate, iv, f);
+        let ia_rest = body.apply(g, rest[node]);
+        comp_rest[node] = vxiv.add(g, ia_rest);
     }
     for k in (1..nodes.len()).rev() {
         let p = nodes[k].parent;
@@ -84,7 +99,16 @@ pub fn jacobians(model: &Model, vars: Vars, g: &mut Graph) -> Option<Rigid> {
             c.2.add(g, moved.2),
             c.3.add(g, moved.3),
         );
+        let moved_rest = comp_rest[k].force_back(g, &step);
+        comp_rest[p] = comp_rest[p].add(g, moved_rest);
     }
+    let bias = coords
+        .iter()
+        .map(|c| match c {
+            Some(info) => info.s.dot(g, comp_rest[info.node]),
+            None => zero,
+        })
+        .collect();
 
     // Per coordinate: x, y and the force vectors u, r, G, H.
     let mut coord_at = vec![None; nodes.len()];
@@ -118,6 +142,7 @@ pub fn jacobians(model: &Model, vars: Vars, g: &mut Graph) -> Option<Rigid> {
 
     let mut k = vec![vec![zero; n]; n];
     let mut d = vec![vec![zero; n]; n];
+    let mut a = vec![vec![zero; n]; n];
     for (lo, info) in coords.iter().enumerate() {
         let (Some(info), Some((_, _, _, vecs))) = (info, per[lo]) else {
             continue;
@@ -128,6 +153,8 @@ pub fn jacobians(model: &Model, vars: Vars, g: &mut Graph) -> Option<Rigid> {
             if let Some(hi) = coord_at[node] {
                 let (s, x, y, _) = per[hi]?;
                 let [u, r, gk, hk] = vecs;
+                a[hi][lo] = s.dot(g, u);
+                a[lo][hi] = a[hi][lo];
                 let uy = u.dot(g, y);
                 let rx = r.dot(g, x);
                 let sum = g.add(uy, rx);
@@ -150,7 +177,7 @@ pub fn jacobians(model: &Model, vars: Vars, g: &mut Graph) -> Option<Rigid> {
             node = parent;
         }
     }
-    Some(Rigid { k, d })
+    Some(Rigid { k, d, a, bias })
 }
 
 #[cfg(test)]
@@ -163,7 +190,8 @@ mod tests {
     use crate::ctxt::Ctxt;
     use crate::{model, parse};
 
-    /// Against the exact derivatives of the Newton-Euler DAG, on a branched
+    /// Against the exact derivatives of the Newton-Euler DAG (and A against
+    /// the composite-rigid-body pass), on a branched
     /// tree with a tilted axis, rpy offsets, a prismatic joint, a moving
     /// element followed by a constant one, a point mass and tilted gravity.
     #[test]
@@ -193,14 +221,29 @@ mod tests {
             gravity: true,
         };
         let tau = inverse_dynamics(&m, vars, all, &mut g).expect("Newton-Euler applies");
-        let Rigid { k, d } = jacobians(&m, vars, &mut g).expect("the analytic form applies");
+        let Rigid { k, d, a, bias } =
+            jacobians(&m, vars, &mut g).expect("the analytic form applies");
+        let crba =
+            super::super::crba::mass_matrix(&m, vars, &mut g).expect("revolute and prismatic");
         let values = |v: Var| 0.3 + 0.7 * (v.0 as f64 * 1.3).sin();
+        let at_rest = |v: Var| match vars.classify(v) {
+            (2, _) => 0.0,
+            _ => values(v),
+        };
+        let got = g.eval(&bias, &at_rest);
+        let want = g.eval(&tau, &at_rest);
+        for (i, (x, y)) in got.iter().zip(&want).enumerate() {
+            assert!(
+                (x - y).abs() <= 1e-12 * (1.0 + y.abs()),
+                "bias {i}: {x} vs {y}"
+            );
+        }
         for i in 0..4 {
             for j in 0..4 {
                 let dk = g.diff(tau[i], vars.q(j));
                 let dd = g.diff(tau[i], vars.qd(j));
-                let got = g.eval(&[k[i][j], d[i][j]], &values);
-                let want = g.eval(&[dk, dd], &values);
+                let got = g.eval(&[k[i][j], d[i][j], a[i][j]], &values);
+                let want = g.eval(&[dk, dd, crba[i][j]], &values);
                 for (x, y) in got.iter().zip(&want) {
                     assert!(
                         (x - y).abs() <= 1e-12 * (1.0 + y.abs()),

@@ -66,8 +66,9 @@ pub fn emit(model: &Model, d: &Derived) -> TokenStream {
 
     let fused = {
         let p = &d.perturbation;
+        let a_roots: Vec<_> = upper.iter().map(|&(i, j)| d.a_fused[i][j]).collect();
         let mut first = a_roots.clone();
-        first.extend(&d.qqt);
+        first.extend(&d.qqt_fused);
         first.extend(&d.q0);
         let mut second: Vec<_> = p.k.iter().flatten().copied().collect();
         second.extend(p.d.iter().flatten());
@@ -76,7 +77,7 @@ pub fn emit(model: &Model, d: &Derived) -> TokenStream {
         let (lets2, vals2) = &stages[1];
         let nn = n * n;
         let a_set = body::assign_matrix(g, &a_roots, &vals1[..nn], n, quote!(a));
-        let qqt_set = body::assign_vector(g, &d.qqt, &vals1[nn..nn + n], quote!(qqt));
+        let qqt_set = body::assign_vector(g, &d.qqt_fused, &vals1[nn..nn + n], quote!(qqt));
         let q0_set = body::assign_vector(g, &d.q0, &vals1[nn + n..], quote!(q0));
         let k_set = body::assign_matrix(g, &second[..nn], &vals2[..nn], n, quote!(k));
         let d_set = body::assign_matrix(g, &second[nn..], &vals2[nn..], n, quote!(d));
