@@ -151,6 +151,33 @@ fn a_late_effort_stream_is_named_as_such() {
 }
 
 #[test]
+fn the_motion_delay_drawn_is_the_delay_found() {
+    // Generator round trip for the whole motion late (channel `all`):
+    // delays of 5 to 25 ms, other noise draws each; found within three of
+    // its standard deviations (its column built from the model's effort
+    // read the 15 ms one 13.5 +- 0.4 ms).
+    for (i, delay) in [0.005, 0.01, 0.015, 0.025].into_iter().enumerate() {
+        let r = diagnosed_with(
+            &[Effect::TimeDelay { delay }],
+            Damage::default(),
+            60 + 2 * i as u64,
+            true,
+        );
+        let (channel, d, std) = explained_delay(&r).expect("a delay explained");
+        eprintln!(
+            "motion {:.1} ms late: found {:.3} +- {:.3} ms ({:.1} std off)",
+            delay * 1e3,
+            d * 1e3,
+            std * 1e3,
+            (d - delay) / std
+        );
+        assert_eq!(channel, "all");
+        assert!(std > 0.0 && std < 5e-4, "std {std}");
+        assert!((d - delay).abs() < 3.0 * std, "{d} +- {std} for {delay}");
+    }
+}
+
+#[test]
 fn the_effort_delay_drawn_is_the_delay_found() {
     // Generator round trip: delays of 5 to 25 ms, other noise draws each;
     // found within three of its standard deviations, which are under half

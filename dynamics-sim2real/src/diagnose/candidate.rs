@@ -7,7 +7,7 @@
 use nalgebra::SVector;
 
 use super::basis::Basis;
-use super::shift::late_effort_column;
+use super::shift::{late_effort_column, late_motion_column};
 use super::signals::Signals;
 use crate::effects::{Effect, EffectKind};
 
@@ -192,11 +192,8 @@ impl Candidate {
                 }
             }
             Candidate::EncoderOffset(j) => c[0] = -basis.k[k].column(j),
-            Candidate::TimeDelay => {
-                if sig.model_rate[k].iter().all(|x| x.is_finite()) {
-                    c[0] = sig.model_rate[k];
-                }
-            }
+            // The motion d late: the model misses d times the effort's rate.
+            Candidate::TimeDelay => c[0] = late_motion_column(sig, k),
             // Positions d late: the model is evaluated at q - d qd, and
             // misses d K qd.
             Candidate::LatePositions => c[0] = basis.k[k] * qd,

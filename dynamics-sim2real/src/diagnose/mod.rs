@@ -12,7 +12,7 @@
 //! data) pushed through the same smoothing and inverse dynamics.
 //! Effects linear in their parameters (friction, rotor inertia, payload,
 //! resistance, encoder offset through the emitted perturbation Jacobian K,
-//! delay through the model effort's rate) are fitted by sign-constrained
+//! delay through the measured effort's rate) are fitted by sign-constrained
 //! least squares on columns filtered like the efforts: friction laws are
 //! evaluated on a lightly smoothed velocity and then smoothed (the sign of
 //! a smoothed velocity switches sharply where the smoothed effort does

@@ -160,7 +160,7 @@ pub fn motor_transmitted<const N: usize>(
 }
 
 /// [`motor_transmitted`] before smoothing (NaN outside the range, and
-/// everywhere when the simulation diverged); `motor_sim.rs` integrates it.
+/// everywhere when the simulation diverged); `motor_sim/` integrates it.
 pub fn motor_transmitted_raw<const N: usize>(
     sig: &Signals<N>,
     j: usize,
