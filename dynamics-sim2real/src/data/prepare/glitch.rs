@@ -80,7 +80,8 @@ pub(super) fn glitches(t: &[f64], x: &[f64]) -> Vec<(usize, f64)> {
         .fold(f64::INFINITY, f64::min);
     let floor = if quantum.is_finite() { quantum } else { 0.0 };
     let scale = |k: usize| (1.4826 * mad.max(local(k))).max(floor).max(1e-300);
-    dev.iter()
+    let flagged: Vec<(usize, f64)> = dev
+        .iter()
         .enumerate()
         .filter_map(|(k, d)| {
             let s = if d.is_nan() {
@@ -90,8 +91,28 @@ pub(super) fn glitches(t: &[f64], x: &[f64]) -> Vec<(usize, f64)> {
             };
             (s > THRESHOLD).then_some((k, s))
         })
+        .collect();
+    // A glitch is a lone sample (or two): where three or more within two
+    // rows of each other depart, the signal turns faster than the blocks'
+    // scale follows (a joint starting from rest, sampled at 100 Hz), and
+    // that is its course. Departures no turn of a signal reaches
+    // ([`BEYOND_ANY_TURN`] thresholds, or not finite) stay glitches.
+    let near = |k: usize| {
+        flagged
+            .iter()
+            .filter(|(j, _)| *j != k && j.abs_diff(k) <= 2)
+            .count()
+    };
+    flagged
+        .iter()
+        .copied()
+        .filter(|&(k, s)| near(k) < 2 || !(s < BEYOND_ANY_TURN * THRESHOLD))
         .collect()
 }
+
+/// Departure, in thresholds, beyond which a sample is a glitch even among
+/// others (a burst of garbage rows, not a fast turn of the signal).
+const BEYOND_ANY_TURN: f64 = 1000.0;
 
 #[cfg(test)]
 mod tests {
@@ -118,5 +139,28 @@ mod tests {
         x[2001] += 1e300;
         let found: Vec<usize> = glitches(&t, &x).iter().map(|g| g.0).collect();
         assert_eq!(found, vec![100, 1500, 2000, 2001]);
+    }
+
+    #[test]
+    fn a_quick_move_at_100_hz_is_its_course_and_a_burst_of_garbage_is_not() {
+        // At rest (noise 1e-6), then a quick move of 0.02 over 80 ms (a
+        // cosine profile) and at rest again, sampled at 100 Hz: 8 samples
+        // of motion in quiet blocks, whose scale is far below the move's
+        // curvature.
+        let t: Vec<f64> = (0..600).map(|k| k as f64 * 0.01).collect();
+        let mut rng = Rng::new(3);
+        let mut x: Vec<f64> = t
+            .iter()
+            .map(|&t| {
+                let u = ((t - 2.0) / 0.08).clamp(0.0, 1.0);
+                0.3 - 0.01 * (1.0 - (std::f64::consts::PI * u).cos()) + 1e-6 * rng.normal()
+            })
+            .collect();
+        assert!(glitches(&t, &x).len() < 2, "{:?}", glitches(&t, &x));
+        for k in 300..303 {
+            x[k] = 1e300;
+        }
+        let found: Vec<usize> = glitches(&t, &x).iter().map(|g| g.0).collect();
+        assert!(found.contains(&300) && found.contains(&302), "{found:?}");
     }
 }
