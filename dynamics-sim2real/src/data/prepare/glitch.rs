@@ -96,7 +96,8 @@ pub(super) fn glitches(t: &[f64], x: &[f64]) -> Vec<(usize, f64)> {
     // rows of each other depart, the signal turns faster than the blocks'
     // scale follows (a joint starting from rest, sampled at 100 Hz), and
     // that is its course. Departures no turn of a signal reaches
-    // ([`BEYOND_ANY_TURN`] thresholds, or not finite) stay glitches.
+    // ([`BEYOND_ANY_TURN`] thresholds; a non-finite one reads infinite)
+    // stay glitches.
     let near = |k: usize| {
         flagged
             .iter()
@@ -106,7 +107,7 @@ pub(super) fn glitches(t: &[f64], x: &[f64]) -> Vec<(usize, f64)> {
     flagged
         .iter()
         .copied()
-        .filter(|&(k, s)| near(k) < 2 || !(s < BEYOND_ANY_TURN * THRESHOLD))
+        .filter(|&(k, s)| near(k) < 2 || s >= BEYOND_ANY_TURN * THRESHOLD)
         .collect()
 }
 
