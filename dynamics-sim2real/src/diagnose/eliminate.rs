@@ -109,7 +109,7 @@ pub fn eliminate(pool: &Pool, mut set: Vec<usize>, margin: f64) -> Vec<usize> {
 mod tests {
     use super::*;
     use crate::diagnose::candidate::Candidate;
-    use crate::diagnose::pool::{test_term, Term};
+    use crate::diagnose::pool::{test_pool, test_term, Term};
 
     fn term(c: Candidate, col: usize) -> Term {
         test_term(c, vec![col], vec![false], None)
@@ -135,18 +135,10 @@ mod tests {
         }
         let x = DMatrix::from_fn(n, cols.len(), |r, c| cols[c][r]);
         let yv = DVector::from_vec(y);
-        let pool = Pool {
-            gram: x.tr_mul(&x),
-            xty: x.tr_mul(&yv),
-            yy: yv.norm_squared(),
-            x,
-            y: yv,
-            terms: (0..cols.len())
-                .map(|c| term(Candidate::EffortOffset(c), c))
-                .collect(),
-            weights: vec![1.0],
-            prior: DMatrix::zeros(0, 0),
-        };
+        let terms = (0..cols.len())
+            .map(|c| term(Candidate::EffortOffset(c), c))
+            .collect();
+        let pool = test_pool(x, yv, terms, 1);
         // One at a time, neither a nor b earns 40 against nothing.
         let none = aicc(pool.yy, n, 0);
         for t in [0, 1] {

@@ -117,7 +117,7 @@ impl Folds {
 mod tests {
     use super::*;
     use crate::diagnose::candidate::Candidate;
-    use crate::diagnose::pool::{test_term, Term};
+    use crate::diagnose::pool::{test_pool, test_term, Term};
 
     fn term(c: Candidate, col: usize) -> Term {
         test_term(c, vec![col], vec![false], None)
@@ -142,16 +142,7 @@ mod tests {
         let yv = DVector::from_vec(y.clone());
         let mut terms = vec![term(Candidate::Coulomb(0), 0)];
         terms.extend((1..cols.len()).map(|c| term(Candidate::EffortOffset(0), c)));
-        let pool = Pool {
-            gram: x.tr_mul(&x),
-            xty: x.tr_mul(&yv),
-            yy: yv.norm_squared(),
-            x: x.clone(),
-            y: yv.clone(),
-            terms,
-            weights: vec![1.0],
-            prior: DMatrix::zeros(0, 0),
-        };
+        let pool = test_pool(x.clone(), yv.clone(), terms, 1);
         let folds = Folds::new(&pool, 1).expect("enough rows");
         let none = folds.deviance(&pool, &[]);
         let sig = folds.deviance(&pool, &[0]);

@@ -218,5 +218,21 @@ pub(crate) fn test_term(
     }
 }
 
+/// The pool of columns `x` against `y` for unit tests: no prior, `joints`
+/// joints of weight 1.
+#[cfg(test)]
+pub(crate) fn test_pool(x: DMatrix<f64>, y: DVector<f64>, terms: Vec<Term>, joints: usize) -> Pool {
+    Pool {
+        gram: x.tr_mul(&x),
+        xty: x.tr_mul(&y),
+        yy: y.norm_squared(),
+        x,
+        y,
+        terms,
+        weights: vec![1.0; joints],
+        prior: DMatrix::zeros(0, 0),
+    }
+}
+
 #[cfg(test)]
 mod tests;

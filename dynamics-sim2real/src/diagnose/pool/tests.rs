@@ -1,3 +1,4 @@
+use super::test_pool;
 use super::test_term as term;
 use super::*;
 use crate::diagnose::fit::constrained_least_squares;
@@ -20,21 +21,13 @@ fn joint_fits_from_the_gram_match_direct_least_squares() {
     let cols = [c0.clone(), c1.clone(), c2.clone(), fixed.clone()];
     let x = DMatrix::from_fn(n, 4, |r, c| cols[c][r]);
     let yv = DVector::from_vec(y.clone());
-    let pool = Pool {
-        gram: x.tr_mul(&x),
-        xty: x.tr_mul(&yv),
-        yy: yv.norm_squared(),
-        x,
-        y: yv.clone(),
-        weights: vec![1.0],
-        prior: DMatrix::zeros(0, 0),
-        terms: vec![
-            term(Candidate::Coulomb(0), vec![0], vec![true], None),
-            term(Candidate::Viscous(0), vec![1], vec![true], None),
-            term(Candidate::EffortOffset(0), vec![2], vec![false], None),
-            term(Candidate::Elasticity(1), vec![], vec![], Some(3)),
-        ],
-    };
+    let terms = vec![
+        term(Candidate::Coulomb(0), vec![0], vec![true], None),
+        term(Candidate::Viscous(0), vec![1], vec![true], None),
+        term(Candidate::EffortOffset(0), vec![2], vec![false], None),
+        term(Candidate::Elasticity(1), vec![], vec![], Some(3)),
+    ];
+    let pool = test_pool(x, yv.clone(), terms, 1);
     // All four: the viscous coefficient wants -0.7, is held at 0.
     let sol = pool.solve(&[0, 1, 2, 3]);
     let y_minus_fixed = DVector::from_fn(n, |r, _| y[r] - fixed[r]);
@@ -70,20 +63,12 @@ fn a_dependent_column_does_not_hide_the_terms_after_it() {
     let cols = [c0.clone(), c0.clone(), c1.clone()];
     let x = DMatrix::from_fn(n, 3, |r, c| cols[c][r]);
     let yv = DVector::from_vec(y);
-    let pool = Pool {
-        gram: x.tr_mul(&x),
-        xty: x.tr_mul(&yv),
-        yy: yv.norm_squared(),
-        x,
-        y: yv,
-        weights: vec![1.0],
-        prior: DMatrix::zeros(0, 0),
-        terms: vec![
-            term(Candidate::EffortOffset(0), vec![0], vec![false], None),
-            term(Candidate::EffortOffset(1), vec![1], vec![false], None),
-            term(Candidate::EffortOffset(2), vec![2], vec![false], None),
-        ],
-    };
+    let terms = vec![
+        term(Candidate::EffortOffset(0), vec![0], vec![false], None),
+        term(Candidate::EffortOffset(1), vec![1], vec![false], None),
+        term(Candidate::EffortOffset(2), vec![2], vec![false], None),
+    ];
+    let pool = test_pool(x, yv, terms, 1);
     let sol = pool.solve(&[0, 1, 2]);
     assert!((sol.theta[0][0] - 2.0).abs() < 1e-9, "{:?}", sol.theta);
     assert_eq!(sol.theta[1][0], 0.0);
@@ -109,16 +94,8 @@ fn reweighting_the_joints_rows_is_weighted_least_squares() {
         .collect();
     let x = DMatrix::from_column_slice(2 * rows, 1, &c0);
     let yv = DVector::from_vec(y.clone());
-    let mut pool = Pool {
-        gram: x.tr_mul(&x),
-        xty: x.tr_mul(&yv),
-        yy: yv.norm_squared(),
-        x,
-        y: yv,
-        weights: vec![1.0, 1.0],
-        prior: DMatrix::zeros(0, 0),
-        terms: vec![term(Candidate::EffortScale(0), vec![0], vec![false], None)],
-    };
+    let terms = vec![term(Candidate::EffortScale(0), vec![0], vec![false], None)];
+    let mut pool = test_pool(x, yv, terms, 2);
     let even = pool.solve(&[0]);
     assert!((even.theta[0][0] - 2.5).abs() < 1e-9, "{:?}", even.theta);
     let before = pool.floor_rms(&pool.residual(&[0], &even));
