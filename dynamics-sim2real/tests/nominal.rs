@@ -35,8 +35,8 @@ fn options(seed: u64) -> SynthOptions<2> {
 
 /// The data come from the arm without friction; the nominal model says
 /// j1 has 0.8 N m s/rad of damping. The diagnosis takes it away with a
-/// viscous correction of about -0.8 (no more: the total stays >= 0), and
-/// the held-out gap closes.
+/// viscous correction of about -0.8 (no more: the total stays >= 0), says
+/// so against the nominal value, and the held-out gap closes.
 #[test]
 fn made_up_nominal_damping_is_taken_away() {
     let truth = Arm2Friction::default();
@@ -55,6 +55,14 @@ fn made_up_nominal_damping_is_taken_away() {
         .sum();
     assert!((fv + 0.8).abs() < 0.08, "{fv} {:#?}", r.which.effects);
     assert!(fv >= -0.8 - 1e-12, "{fv}");
+    // Said in words, against the nominal value.
+    let said = r
+        .which
+        .effects
+        .iter()
+        .filter_map(|e| e.description.as_deref())
+        .find(|d| d.starts_with("j1: the nominal model's viscous coefficient 0.800 corrected by"));
+    assert!(said.is_some(), "{:#?}", r.which.effects);
     assert!(r.shrink.rms_fraction > 0.5, "{:?}", r.shrink);
 }
 
