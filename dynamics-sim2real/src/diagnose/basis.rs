@@ -5,7 +5,7 @@
 
 use nalgebra::{SMatrix, SVector, Vector3};
 
-use super::candidate::STRIBECK_GRID;
+use super::candidate::{COULOMB_WIDTHS, STRIBECK_GRID};
 use super::nominal_friction::nominal_friction;
 use super::signals::Signals;
 use crate::effects::{smooth_sign, Tip};
@@ -32,8 +32,12 @@ pub struct Basis<const N: usize> {
     /// residual already carries, is not added a second time by a column.
     pub qdd: Vec<SVector<f64, N>>,
     /// Per joint, the smoothed sign of the (lightly smoothed) velocity:
-    /// the Coulomb column, smoothed like the efforts it is compared with.
+    /// the sharp Coulomb column and Stribeck's, smoothed like the efforts
+    /// they are compared with.
     pub sign: Vec<SVector<f64, N>>,
+    /// The same for `tanh(v / vw)`, one per width of [`COULOMB_WIDTHS`]
+    /// (the first, the sharp one, is `sign`).
+    pub coulomb: Vec<Vec<SVector<f64, N>>>,
     /// The same for the Stribeck term `exp(-(v/vs)^2) sign(v)`, one per
     /// velocity of [`STRIBECK_GRID`].
     pub stribeck: Vec<Vec<SVector<f64, N>>>,
@@ -93,6 +97,10 @@ impl<const N: usize> Basis<N> {
             tip,
             qdd: sig.qdd.clone(),
             sign: smoothed_column(sig, smooth_sign),
+            coulomb: COULOMB_WIDTHS
+                .iter()
+                .map(|&w| smoothed_column(sig, |v| (v / w).tanh()))
+                .collect(),
             stribeck: STRIBECK_GRID
                 .iter()
                 .map(|&vs| smoothed_column(sig, |v| (-(v / vs).powi(2)).exp() * smooth_sign(v)))

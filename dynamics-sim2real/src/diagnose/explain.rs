@@ -202,7 +202,7 @@ fn within_nominal<const N: usize>(e: &Effect, friction: &Friction<N>) -> bool {
         nominal.is_some_and(|n| x.is_finite() && x >= -n * (1.0 + 1e-9))
     };
     match *e {
-        Effect::CoulombFriction { joint, fc } => ok(fc, coulomb.get(joint)),
+        Effect::CoulombFriction { joint, fc, .. } => ok(fc, coulomb.get(joint)),
         Effect::ViscousFriction { joint, fv } => ok(fv, viscous.get(joint)),
         Effect::StribeckFriction { joint, fc, fs, vs } => {
             ok(fc, coulomb.get(joint)) && ok(fs, coulomb.get(joint)) && vs > 0.0
@@ -220,7 +220,9 @@ fn nominal_words<const N: usize>(
     friction: &Friction<N>,
 ) -> Option<String> {
     let (what, nominal) = match c {
-        Candidate::Coulomb(j) | Candidate::Stribeck(j, _) => ("Coulomb level", friction.0.get(j)),
+        Candidate::Coulomb(j, _) | Candidate::Stribeck(j, _) => {
+            ("Coulomb level", friction.0.get(j))
+        }
         Candidate::Viscous(j) => ("viscous coefficient", friction.1.get(j)),
         _ => return None,
     };

@@ -49,7 +49,7 @@ fn lower_bounds<const N: usize>(c: Candidate, p: &Prepared<N>) -> Vec<f64> {
         .enumerate()
         .map(|(i, &(_, nonneg))| match (c, i) {
             _ if !nonneg => f64::NEG_INFINITY,
-            (Candidate::Coulomb(j) | Candidate::Stribeck(j, _), 0) => -coulomb[j],
+            (Candidate::Coulomb(j, _) | Candidate::Stribeck(j, _), 0) => -coulomb[j],
             (Candidate::Viscous(j), 0) => -viscous[j],
             _ => 0.0,
         })

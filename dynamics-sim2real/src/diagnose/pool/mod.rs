@@ -54,7 +54,7 @@ impl Term {
     pub fn family(&self) -> (u8, Option<usize>) {
         let c = self.fit.candidate;
         let f = match c {
-            Candidate::Coulomb(_) | Candidate::Stribeck(..) => 0,
+            Candidate::Coulomb(..) | Candidate::Stribeck(..) => 0,
             Candidate::Armature(_) | Candidate::Elasticity(_) | Candidate::Backlash(_) => 1,
             Candidate::Viscous(_) => 2,
             Candidate::Payload => 3,
