@@ -2,64 +2,52 @@
 //! another robot), and the diagnosis the program runs: the report's
 //! traces, a friction whose velocity never reverses.
 
-use crate::{dynamics, tmp};
+use crate::{dynamics, fails_with, read_json, succeeds, tmp};
 
 #[test]
 fn synth_then_diagnose_from_files_writes_the_json_report() {
     let train = tmp("synth.csv");
     let truth = tmp("truth.json");
-    let out = dynamics()
-        .args([
-            "synth",
-            "--robot",
-            "arm3r",
-            "--effect",
-            "viscous_friction",
-            "--joint",
-            "j3",
-            "--magnitude",
-            "0.3",
-            "--duration",
-            "4",
-            "--seed",
-            "5",
-            "--out",
-        ])
-        .arg(&train)
-        .arg("--truth")
-        .arg(&truth)
-        .output()
-        .expect("runs");
-    assert!(
-        out.status.success(),
-        "{}",
-        String::from_utf8_lossy(&out.stderr)
+    succeeds(
+        dynamics()
+            .args([
+                "synth",
+                "--robot",
+                "arm3r",
+                "--effect",
+                "viscous_friction",
+                "--joint",
+                "j3",
+                "--magnitude",
+                "0.3",
+                "--duration",
+                "4",
+                "--seed",
+                "5",
+                "--out",
+            ])
+            .arg(&train)
+            .arg("--truth")
+            .arg(&truth),
     );
     let holdout = train.with_file_name("synth-holdout.csv");
     let json = tmp("report.json");
-    let out = dynamics()
-        .args(["diagnose", "--robot", "arm3r", "--train"])
-        .arg(&train)
-        .arg("--holdout")
-        .arg(&holdout)
-        .arg("--json")
-        .arg(&json)
-        .output()
-        .expect("runs");
-    assert!(
-        out.status.success(),
-        "{}",
-        String::from_utf8_lossy(&out.stderr)
+    succeeds(
+        dynamics()
+            .args(["diagnose", "--robot", "arm3r", "--train"])
+            .arg(&train)
+            .arg("--holdout")
+            .arg(&holdout)
+            .arg("--json")
+            .arg(&json),
     );
-    let report: serde_json::Value =
-        serde_json::from_str(&std::fs::read_to_string(&json).expect("report")).expect("json");
+    let report = read_json(&json);
     assert_eq!(report["which"]["verdict"]["kind"], "viscous_friction");
     assert_eq!(report["which"]["verdict"]["joint"], "j3");
     assert!(report["shrink"]["fraction"].as_f64().expect("number") > 0.8);
     // Stated sensor noise: the truth file's effort noise (per joint) is
     // accepted and gives the same verdict; a wrong count is refused.
-    let truth_json: serde_json::Value =
-        serde_json::from_str(&std::fs::read_to_string(&truth).expect("truth")).expect("json");
+    let truth_json = read_json(&truth);
     let noise_tau: Vec<String> = truth_json["noise_tau"]
         .as_array()
         .expect("noise_tau")
@@ -98,18 +86,13 @@ fn synth_then_diagnose_from_files_writes_the_json_report() {
         String::from_utf8_lossy(&out.stderr)
     );
     // A file for another robot is refused with the column named.
-    let out = dynamics()
-        .args(["diagnose", "--robot", "rrp", "--train"])
-        .arg(&train)
-        .arg("--holdout")
-        .arg(&holdout)
-        .output()
-        .expect("runs");
-    assert!(!out.status.success());
-    assert!(
-        String::from_utf8_lossy(&out.stderr).contains("q_q1"),
-        "{}",
-        String::from_utf8_lossy(&out.stderr)
+    fails_with(
+        dynamics()
+            .args(["diagnose", "--robot", "rrp", "--train"])
+            .arg(&train)
+            .arg("--holdout")
+            .arg(&holdout),
+        "q_q1",
     );
 }
 

@@ -1,17 +1,11 @@
 //! `dynamics check` and `dynamics eval`: the seed robots against their
 //! reference values, every field at the states of a file, bad input named.
 
-use crate::{dynamics, tmp};
+use crate::{dynamics, read_json, succeeds, tmp};
 
 #[test]
 fn check_compares_every_seed_robot() {
-    let out = dynamics().arg("check").output().expect("runs");
-    let text = String::from_utf8_lossy(&out.stdout);
-    assert!(
-        out.status.success(),
-        "{text}{}",
-        String::from_utf8_lossy(&out.stderr)
-    );
+    let text = succeeds(dynamics().arg("check"));
     for name in ["arm3r", "rrp-rigid", "mar"] {
         assert!(text.contains(&format!("{name} (20 states): ok")), "{text}");
     }
@@ -26,21 +20,15 @@ fn eval_writes_every_field_for_a_states_file() {
     )
     .expect("write");
     let out_file = tmp("out.json");
-    let out = dynamics()
-        .args(["eval", "--robot", "arm3r", "--states"])
-        .arg(&states)
-        .arg("--out")
-        .arg(&out_file)
-        .args(["--set", "m=0"])
-        .output()
-        .expect("runs");
-    assert!(
-        out.status.success(),
-        "{}",
-        String::from_utf8_lossy(&out.stderr)
+    succeeds(
+        dynamics()
+            .args(["eval", "--robot", "arm3r", "--states"])
+            .arg(&states)
+            .arg("--out")
+            .arg(&out_file)
+            .args(["--set", "m=0"]),
     );
-    let doc: serde_json::Value =
-        serde_json::from_str(&std::fs::read_to_string(&out_file).expect("read")).expect("json");
+    let doc = read_json(&out_file);
     let s = &doc["states"][0];
     for field in [
         "tau",

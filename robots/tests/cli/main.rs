@@ -23,15 +23,36 @@ pub(crate) fn tmp(name: &str) -> std::path::PathBuf {
     dir.join(name)
 }
 
-#[test]
-fn default_command_diagnoses_the_built_in_case() {
-    let out = dynamics().output().expect("runs");
-    let text = String::from_utf8_lossy(&out.stdout);
+/// Runs `cmd`, asserts that it succeeded (its output in the message if
+/// not) and returns what it printed.
+pub(crate) fn succeeds(cmd: &mut Command) -> String {
+    let out = cmd.output().expect("runs");
+    let text = String::from_utf8_lossy(&out.stdout).into_owned();
     assert!(
         out.status.success(),
         "{text}{}",
         String::from_utf8_lossy(&out.stderr)
     );
+    text
+}
+
+/// Runs `cmd` and asserts that it failed with `expect` in its error
+/// output.
+pub(crate) fn fails_with(cmd: &mut Command, expect: &str) {
+    let out = cmd.output().expect("runs");
+    let err = String::from_utf8_lossy(&out.stderr);
+    assert!(!out.status.success() && err.contains(expect), "{err}");
+}
+
+/// The JSON document in the file at `path`.
+pub(crate) fn read_json(path: &std::path::Path) -> serde_json::Value {
+    let text = std::fs::read_to_string(path).expect("a JSON file");
+    serde_json::from_str(&text).expect("JSON")
+}
+
+#[test]
+fn default_command_diagnoses_the_built_in_case() {
+    let text = succeeds(&mut dynamics());
     assert!(text.contains("verdict: coulomb_friction j2"), "{text}");
     assert!(
         text.contains(

@@ -1,7 +1,7 @@
 //! `dynamics diagnose --report`: the readable report, its plots checked
 //! as well-formed SVG with the lines and bands the JSON report implies.
 
-use crate::{dynamics, tmp};
+use crate::{dynamics, succeeds, tmp};
 
 /// A minimal well-formedness check of an SVG document: it is one `<svg>`
 /// element, every tag opened is closed in order, every polyline's points
@@ -81,19 +81,14 @@ fn diagnose_writes_a_readable_report() {
         );
         std::fs::write(&train, &data.train).expect("write");
         std::fs::write(&holdout, &data.holdout).expect("write");
-        let out = dynamics()
-            .args(["diagnose", "--robot", "arm3r", "--train"])
-            .arg(&train)
-            .arg("--holdout")
-            .arg(&holdout)
-            .arg("--report")
-            .arg(&dir)
-            .output()
-            .expect("runs");
-        assert!(
-            out.status.success(),
-            "{}",
-            String::from_utf8_lossy(&out.stderr)
+        succeeds(
+            dynamics()
+                .args(["diagnose", "--robot", "arm3r", "--train"])
+                .arg(&train)
+                .arg("--holdout")
+                .arg(&holdout)
+                .arg("--report")
+                .arg(&dir),
         );
         let read = |f: &str| std::fs::read_to_string(dir.join(f)).expect(f);
         let report: serde_json::Value = serde_json::from_str(&read("report.json")).expect("json");

@@ -1,22 +1,12 @@
 //! `dynamics scenario`: the scenarios by name, their CSV and SVG files,
 //! and every controller following the circle.
 
-use crate::{dynamics, tmp};
+use crate::{dynamics, fails_with, succeeds, tmp};
 
 #[test]
 fn scenarios_run_by_name_and_write_csv_and_svg() {
     let dir = tmp("rrp-line");
-    let out = dynamics()
-        .args(["scenario", "rrp-line", "--out"])
-        .arg(&dir)
-        .output()
-        .expect("runs");
-    let text = String::from_utf8_lossy(&out.stdout);
-    assert!(
-        out.status.success(),
-        "{text}{}",
-        String::from_utf8_lossy(&out.stderr)
-    );
+    let text = succeeds(dynamics().args(["scenario", "rrp-line", "--out"]).arg(&dir));
     for f in [
         "rrp-line.csv",
         "q.svg",
@@ -40,13 +30,7 @@ fn scenarios_run_by_name_and_write_csv_and_svg() {
     assert!(v < 1e-8, "{line}");
     let list = dynamics().args(["scenario"]).output().expect("runs");
     assert!(String::from_utf8_lossy(&list.stdout).contains("arm3r-free"));
-    let bad = dynamics()
-        .args(["scenario", "nope"])
-        .output()
-        .expect("runs");
-    assert!(
-        !bad.status.success() && String::from_utf8_lossy(&bad.stderr).contains("unknown scenario")
-    );
+    fails_with(dynamics().args(["scenario", "nope"]), "unknown scenario");
 }
 
 #[test]

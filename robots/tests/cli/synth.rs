@@ -1,7 +1,7 @@
 //! `dynamics synth` of what real logs carry, found again by `dynamics
 //! diagnose`: an effect that starts and stops, a late effort stream.
 
-use crate::{dynamics, tmp};
+use crate::{dynamics, fails_with, read_json, succeeds, tmp};
 
 /// An effect that starts and stops, from the command line to the JSON
 /// report: `synth --window` limits the payload to [2, 4.5) s in training
@@ -12,54 +12,45 @@ use crate::{dynamics, tmp};
 fn a_windowed_effect_is_generated_and_found_with_its_window() {
     let train = tmp("window.csv");
     let truth = tmp("window-truth.json");
-    let out = dynamics()
-        .args([
-            "synth",
-            "--robot",
-            "arm3r",
-            "--effect",
-            "payload_mass",
-            "--magnitude",
-            "0.5",
-            "--duration",
-            "6",
-            "--seed",
-            "7",
-            "--window",
-            "2:4.5",
-            "--out",
-        ])
-        .arg(&train)
-        .arg("--truth")
-        .arg(&truth)
-        .output()
-        .expect("runs");
-    assert!(
-        out.status.success(),
-        "{}",
-        String::from_utf8_lossy(&out.stderr)
+    succeeds(
+        dynamics()
+            .args([
+                "synth",
+                "--robot",
+                "arm3r",
+                "--effect",
+                "payload_mass",
+                "--magnitude",
+                "0.5",
+                "--duration",
+                "6",
+                "--seed",
+                "7",
+                "--window",
+                "2:4.5",
+                "--out",
+            ])
+            .arg(&train)
+            .arg("--truth")
+            .arg(&truth),
     );
-    let t: serde_json::Value =
-        serde_json::from_str(&std::fs::read_to_string(&truth).expect("truth")).expect("json");
+    let t = read_json(&truth);
     assert_eq!(t["window"], serde_json::json!({"start": 2.0, "end": 4.5}));
     assert_eq!(
         t["holdout_window"],
         serde_json::json!({"start": 1.5, "end": 4.0})
     );
     let json = tmp("window-report.json");
-    let out = dynamics()
-        .args(["diagnose", "--robot", "arm3r", "--train"])
-        .arg(&train)
-        .arg("--holdout")
-        .arg(train.with_file_name("window-holdout.csv"))
-        .arg("--json")
-        .arg(&json)
-        .output()
-        .expect("runs");
-    let text = String::from_utf8_lossy(&out.stdout);
-    assert!(out.status.success(), "{text}");
-    let report: serde_json::Value =
-        serde_json::from_str(&std::fs::read_to_string(&json).expect("report")).expect("json");
+    let text = succeeds(
+        dynamics()
+            .args(["diagnose", "--robot", "arm3r", "--train"])
+            .arg(&train)
+            .arg("--holdout")
+            .arg(train.with_file_name("window-holdout.csv"))
+            .arg("--json")
+            .arg(&json),
+    );
+    let report = read_json(&json);
     let e = &report["which"]["effects"][0];
     assert_eq!(e["kind"], "payload_mass", "{report}");
     let (start, end) = (
@@ -75,27 +66,18 @@ fn a_windowed_effect_is_generated_and_found_with_its_window() {
         "{text}"
     );
     // A window on nothing, or on a motor side, is refused.
-    let out = dynamics()
-        .args(["synth", "--robot", "arm3r", "--effect", "none"])
-        .args(["--window", "1:2", "--out"])
-        .arg(tmp("none.csv"))
-        .output()
-        .expect("runs");
-    assert!(!out.status.success());
-    assert!(
-        String::from_utf8_lossy(&out.stderr).contains("a window needs an effect"),
-        "{}",
-        String::from_utf8_lossy(&out.stderr)
+    fails_with(
+        dynamics()
+            .args(["synth", "--robot", "arm3r", "--effect", "none"])
+            .args(["--window", "1:2", "--out"])
+            .arg(tmp("none.csv")),
+        "a window needs an effect",
     );
-    let out = dynamics()
-        .args(["synth", "--robot", "arm3r", "--window", "2", "--out"])
-        .arg(tmp("bad.csv"))
-        .output()
-        .expect("runs");
-    assert!(
-        String::from_utf8_lossy(&out.stderr).contains("--window: window `2`: expected START:END"),
-        "{}",
-        String::from_utf8_lossy(&out.stderr)
+    fails_with(
+        dynamics()
+            .args(["synth", "--robot", "arm3r", "--window", "2", "--out"])
+            .arg(tmp("bad.csv")),
+        "--window: window `2`: expected START:END",
     );
 }
 
@@ -107,44 +89,35 @@ fn a_windowed_effect_is_generated_and_found_with_its_window() {
 fn a_late_effort_stream_is_generated_and_named() {
     let train = tmp("tau-late.csv");
     let truth = tmp("tau-late-truth.json");
-    let out = dynamics()
-        .args(["synth", "--robot", "arm3r", "--effect", "none"])
-        .args([
-            "--duration",
-            "6",
-            "--seed",
-            "3",
-            "--tau-late",
-            "0.012",
-            "--out",
-        ])
-        .arg(&train)
-        .arg("--truth")
-        .arg(&truth)
-        .output()
-        .expect("runs");
-    assert!(
-        out.status.success(),
-        "{}",
-        String::from_utf8_lossy(&out.stderr)
+    succeeds(
+        dynamics()
+            .args(["synth", "--robot", "arm3r", "--effect", "none"])
+            .args([
+                "--duration",
+                "6",
+                "--seed",
+                "3",
+                "--tau-late",
+                "0.012",
+                "--out",
+            ])
+            .arg(&train)
+            .arg("--truth")
+            .arg(&truth),
     );
-    let t: serde_json::Value =
-        serde_json::from_str(&std::fs::read_to_string(&truth).expect("truth")).expect("json");
+    let t = read_json(&truth);
     assert_eq!(t["late"], "effort");
     let json = tmp("tau-late-report.json");
-    let out = dynamics()
-        .args(["diagnose", "--robot", "arm3r", "--train"])
-        .arg(&train)
-        .arg("--holdout")
-        .arg(train.with_file_name("tau-late-holdout.csv"))
-        .arg("--json")
-        .arg(&json)
-        .output()
-        .expect("runs");
-    let text = String::from_utf8_lossy(&out.stdout);
-    assert!(out.status.success(), "{text}");
-    let report: serde_json::Value =
-        serde_json::from_str(&std::fs::read_to_string(&json).expect("report")).expect("json");
+    let text = succeeds(
+        dynamics()
+            .args(["diagnose", "--robot", "arm3r", "--train"])
+            .arg(&train)
+            .arg("--holdout")
+            .arg(train.with_file_name("tau-late-holdout.csv"))
+            .arg("--json")
+            .arg(&json),
+    );
+    let report = read_json(&json);
     let v = &report["which"]["verdict"];
     assert_eq!(
         (&v["kind"], &v["channel"]),
@@ -163,25 +136,18 @@ fn a_late_effort_stream_is_generated_and_named() {
             .any(|w| w["kind"] == "late_effort"),
         "{report}"
     );
-    let out = dynamics()
-        .args([
-            "synth",
-            "--robot",
-            "arm3r",
-            "--effect",
-            "none",
-            "--tau-late=-0.01",
-            "--out",
-        ])
-        .arg(tmp("bad-late.csv"))
-        .output()
-        .expect("runs");
-    assert!(!out.status.success());
-    assert!(
-        String::from_utf8_lossy(&out.stderr).contains(
-            "tau-late must be a delay of at least 0 s, shorter than the record (8 s), got -0.01"
-        ),
-        "{}",
-        String::from_utf8_lossy(&out.stderr)
+    fails_with(
+        dynamics()
+            .args([
+                "synth",
+                "--robot",
+                "arm3r",
+                "--effect",
+                "none",
+                "--tau-late=-0.01",
+                "--out",
+            ])
+            .arg(tmp("bad-late.csv")),
+        "tau-late must be a delay of at least 0 s, shorter than the record (8 s), got -0.01",
     );
 }
