@@ -1,14 +1,21 @@
-//! The `dynamics` program as a user runs it, one module a command:
-//! `check` and `eval` (`eval.rs`), `scenario` (`scenario.rs`), `synth`
-//! (`synth.rs`), `diagnose` (`diagnose.rs`) and its readable report
-//! (`report.rs`); the default command here.
+//! The `dynamics` program as a user runs it, one module a command or
+//! option: `check` and `eval` (`eval.rs`), `scenario` (`scenario.rs`),
+//! `simulate` (`simulate.rs`), `synth` (`synth.rs`), `diagnose`
+//! (`diagnose.rs`) and its readable report (`report.rs`), `new` (`new.rs`:
+//! a scaffolded crate built and run), `--set` (`set.rs`) and `--baseline`
+//! (`baseline.rs`); the default command here.
 
+mod baseline;
 mod diagnose;
 mod eval;
+mod new;
 mod report;
 mod scenario;
+mod set;
+mod simulate;
 mod synth;
 
+use std::path::{Path, PathBuf};
 use std::process::Command;
 
 /// The `dynamics` program of this crate, ready for arguments.
@@ -17,10 +24,26 @@ pub(crate) fn dynamics() -> Command {
 }
 
 /// `name` in a temporary directory of this test run.
-pub(crate) fn tmp(name: &str) -> std::path::PathBuf {
+pub(crate) fn tmp(name: &str) -> PathBuf {
     let dir = std::env::temp_dir().join(format!("dynamics-cli-{}", std::process::id()));
     std::fs::create_dir_all(&dir).expect("temp dir");
     dir.join(name)
+}
+
+/// A fresh, empty directory for `name` in this test run.
+pub(crate) fn fresh_dir(name: &str) -> PathBuf {
+    let dir = std::env::temp_dir().join(format!("dynamics-any-{}-{name}", std::process::id()));
+    let _ = std::fs::remove_dir_all(&dir);
+    std::fs::create_dir_all(&dir).expect("temp dir");
+    dir
+}
+
+/// The workspace this crate is in.
+pub(crate) fn workspace() -> PathBuf {
+    Path::new(env!("CARGO_MANIFEST_DIR"))
+        .parent()
+        .expect("workspace")
+        .to_path_buf()
 }
 
 /// Runs `cmd`, asserts that it succeeded (its output in the message if
@@ -30,22 +53,28 @@ pub(crate) fn succeeds(cmd: &mut Command) -> String {
     let text = String::from_utf8_lossy(&out.stdout).into_owned();
     assert!(
         out.status.success(),
-        "{text}{}",
+        "{cmd:?} failed:\n{text}\n{}",
         String::from_utf8_lossy(&out.stderr)
     );
     text
 }
 
+/// Runs `cmd`, asserts that it failed and returns its error output.
+pub(crate) fn fails(cmd: &mut Command) -> String {
+    let out = cmd.output().expect("runs");
+    assert!(!out.status.success(), "{cmd:?} should fail");
+    String::from_utf8_lossy(&out.stderr).into_owned()
+}
+
 /// Runs `cmd` and asserts that it failed with `expect` in its error
 /// output.
 pub(crate) fn fails_with(cmd: &mut Command, expect: &str) {
-    let out = cmd.output().expect("runs");
-    let err = String::from_utf8_lossy(&out.stderr);
-    assert!(!out.status.success() && err.contains(expect), "{err}");
+    let err = fails(cmd);
+    assert!(err.contains(expect), "{err}");
 }
 
 /// The JSON document in the file at `path`.
-pub(crate) fn read_json(path: &std::path::Path) -> serde_json::Value {
+pub(crate) fn read_json(path: &Path) -> serde_json::Value {
     let text = std::fs::read_to_string(path).expect("a JSON file");
     serde_json::from_str(&text).expect("JSON")
 }
