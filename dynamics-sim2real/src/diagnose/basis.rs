@@ -6,6 +6,7 @@
 use nalgebra::{SMatrix, SVector, Vector3};
 
 use super::candidate::STRIBECK_GRID;
+use super::nominal_friction::nominal_friction;
 use super::signals::Signals;
 use crate::effects::{smooth_sign, Tip};
 use dynamics_runtime::Robot;
@@ -36,6 +37,10 @@ pub struct Basis<const N: usize> {
     /// The same for the Stribeck term `exp(-(v/vs)^2) sign(v)`, one per
     /// velocity of [`STRIBECK_GRID`].
     pub stribeck: Vec<Vec<SVector<f64, N>>>,
+    /// Per joint, the nominal model's own Coulomb level and viscous
+    /// coefficient (`nominal_friction.rs`): how far a friction correction
+    /// may go below zero.
+    pub friction: (SVector<f64, N>, SVector<f64, N>),
 }
 
 /// `f` of the lightly smoothed velocity, then smoothed like the efforts.
@@ -92,8 +97,12 @@ impl<const N: usize> Basis<N> {
                 .iter()
                 .map(|&vs| smoothed_column(sig, |v| (-(v / vs).powi(2)).exp() * smooth_sign(v)))
                 .collect(),
+            friction: (SVector::zeros(), SVector::zeros()),
         };
         let (a, z) = sig.range;
+        if let Some(q) = sig.q.get(a) {
+            b.friction = nominal_friction(robot, q);
+        }
         for k in a..z {
             let (q, qd, qdd) = (&sig.q[k], &sig.qd[k], &sig.qdd[k]);
             b.k[k] = robot.perturbation_jacobians(q, qd, qdd).k;

@@ -59,6 +59,7 @@ impl Folds {
                     terms: pool.terms.clone(),
                     weights: pool.weights.clone(),
                     prior: pool.prior.clone(),
+                    strength: pool.strength,
                 };
                 Block {
                     gram,
