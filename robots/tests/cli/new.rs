@@ -2,7 +2,7 @@
 //! build, built and run through the whole program (issue 16), and the
 //! inputs refused before anything is written.
 
-use std::path::PathBuf;
+use std::path::{Path, PathBuf};
 use std::process::Command;
 
 use crate::{dynamics, fails, fresh_dir, read_json, succeeds, workspace};
@@ -145,53 +145,37 @@ fn a_scaffolded_crate_builds_and_runs_the_whole_program() {
 fn new_refuses_bad_input_with_the_cause() {
     let dir = fresh_dir("newbad");
     let urdf = workspace().join("robots/data/urdf/ur5.urdf");
-    let err = fails(
-        dynamics()
-            .arg("new")
-            .arg(dir.join("a"))
-            .arg("--urdf")
-            .arg(dir.join("none.urdf")),
-    );
+    let new = |target: &Path, urdf: &Path, extra: &[&str]| {
+        fails(
+            dynamics()
+                .arg("new")
+                .arg(target)
+                .arg("--urdf")
+                .arg(urdf)
+                .args(extra),
+        )
+    };
+    let err = new(&dir.join("a"), &dir.join("none.urdf"), &[]);
     assert!(
         err.contains("none.urdf") && err.contains("No such file"),
         "{err}"
     );
-    let err = fails(
-        dynamics()
-            .arg("new")
-            .arg(dir.join("a"))
-            .arg("--urdf")
-            .arg(&urdf)
-            .args(["--name", "my_arm"]),
-    );
+    let err = new(&dir.join("a"), &urdf, &["--name", "my_arm"]);
     assert!(
         err.contains("--name `my_arm`: not a Rust type name"),
         "{err}"
     );
-    let err = fails(
-        dynamics()
-            .arg("new")
-            .arg(dir.join("a"))
-            .arg("--urdf")
-            .arg(&urdf)
-            .args(["--gravity", "0,-9.81"]),
-    );
+    let err = new(&dir.join("a"), &urdf, &["--gravity", "0,-9.81"]);
     assert!(
         err.contains("--gravity `0,-9.81`: expected three finite numbers"),
         "{err}"
     );
     std::fs::write(dir.join("full.txt"), "x").expect("writes");
-    let err = fails(dynamics().arg("new").arg(&dir).arg("--urdf").arg(&urdf));
+    let err = new(&dir, &urdf, &[]);
     assert!(err.contains("exists and is not an empty folder"), "{err}");
     let broken = dir.join("broken.urdf");
     std::fs::write(&broken, r#"<robot name="b"><link name="a"/><joint name="j" type="revolute"><parent link="a"/><child link="zz"/></joint></robot>"#).expect("writes");
-    let err = fails(
-        dynamics()
-            .arg("new")
-            .arg(dir.join("b"))
-            .arg("--urdf")
-            .arg(&broken),
-    );
+    let err = new(&dir.join("b"), &broken, &[]);
     assert!(
         err.contains("joint `j`") && err.contains("unknown link"),
         "{err}"
