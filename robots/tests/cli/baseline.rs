@@ -3,7 +3,7 @@
 
 use std::path::Path;
 
-use crate::{dynamics, fails, fresh_dir, read_json, succeeds};
+use crate::{diagnose_arm3r, dynamics, fails, fresh_dir, read_json, succeeds};
 
 /// The calibrated baseline: arm3r with friction on every joint; a
 /// diagnosis of its reference run is kept; the same arm then picks up a
@@ -43,13 +43,11 @@ fn a_baseline_leaves_only_what_changed() {
         );
     };
     let diagnose = |data: &str, baseline: Option<&Path>, out: &Path| -> serde_json::Value {
-        let mut cmd = dynamics();
-        cmd.args(["diagnose", "--robot", "arm3r", "--train"])
-            .arg(dir.join(format!("{data}.csv")))
-            .arg("--holdout")
-            .arg(dir.join(format!("{data}-holdout.csv")))
-            .arg("--json")
-            .arg(out);
+        let mut cmd = diagnose_arm3r(
+            &dir.join(format!("{data}.csv")),
+            &dir.join(format!("{data}-holdout.csv")),
+        );
+        cmd.arg("--json").arg(out);
         if let Some(b) = baseline {
             cmd.arg("--baseline").arg(b);
         }

@@ -2,7 +2,7 @@
 //! another robot), and the diagnosis the program runs: the report's
 //! traces, a friction whose velocity never reverses.
 
-use crate::{dynamics, fails_with, read_json, succeeds, tmp};
+use crate::{diagnose_arm3r, dynamics, fails_with, read_json, succeeds, tmp};
 
 #[test]
 fn synth_then_diagnose_from_files_writes_the_json_report() {
@@ -32,15 +32,7 @@ fn synth_then_diagnose_from_files_writes_the_json_report() {
     );
     let holdout = train.with_file_name("synth-holdout.csv");
     let json = tmp("report.json");
-    succeeds(
-        dynamics()
-            .args(["diagnose", "--robot", "arm3r", "--train"])
-            .arg(&train)
-            .arg("--holdout")
-            .arg(&holdout)
-            .arg("--json")
-            .arg(&json),
-    );
+    succeeds(diagnose_arm3r(&train, &holdout).arg("--json").arg(&json));
     let report = read_json(&json);
     assert_eq!(report["which"]["verdict"]["kind"], "viscous_friction");
     assert_eq!(report["which"]["verdict"]["joint"], "j3");
@@ -56,11 +48,7 @@ fn synth_then_diagnose_from_files_writes_the_json_report() {
         .collect();
     assert_eq!(noise_tau.len(), 3);
     let stated = |tau: &str| {
-        dynamics()
-            .args(["diagnose", "--robot", "arm3r", "--train"])
-            .arg(&train)
-            .arg("--holdout")
-            .arg(&holdout)
+        diagnose_arm3r(&train, &holdout)
             .args([
                 "--noise-q",
                 "2e-5",

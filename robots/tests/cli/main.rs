@@ -46,6 +46,17 @@ pub(crate) fn workspace() -> PathBuf {
         .to_path_buf()
 }
 
+/// `dynamics diagnose --robot arm3r` of the files `train` and `holdout`,
+/// ready for more arguments.
+pub(crate) fn diagnose_arm3r(train: &Path, holdout: &Path) -> Command {
+    let mut cmd = dynamics();
+    cmd.args(["diagnose", "--robot", "arm3r", "--train"])
+        .arg(train)
+        .arg("--holdout")
+        .arg(holdout);
+    cmd
+}
+
 /// Runs `cmd`, asserts that it succeeded (its output in the message if
 /// not) and returns what it printed.
 pub(crate) fn succeeds(cmd: &mut Command) -> String {

@@ -1,7 +1,7 @@
 //! `dynamics diagnose --report`: the readable report, its plots checked
 //! as well-formed SVG with the lines and bands the JSON report implies.
 
-use crate::{dynamics, succeeds, tmp};
+use crate::{diagnose_arm3r, succeeds, tmp};
 
 /// A minimal well-formedness check of an SVG document: it is one `<svg>`
 /// element, every tag opened is closed in order, every polyline's points
@@ -81,15 +81,7 @@ fn diagnose_writes_a_readable_report() {
         );
         std::fs::write(&train, &data.train).expect("write");
         std::fs::write(&holdout, &data.holdout).expect("write");
-        succeeds(
-            dynamics()
-                .args(["diagnose", "--robot", "arm3r", "--train"])
-                .arg(&train)
-                .arg("--holdout")
-                .arg(&holdout)
-                .arg("--report")
-                .arg(&dir),
-        );
+        succeeds(diagnose_arm3r(&train, &holdout).arg("--report").arg(&dir));
         let read = |f: &str| std::fs::read_to_string(dir.join(f)).expect(f);
         let report: serde_json::Value = serde_json::from_str(&read("report.json")).expect("json");
         let verdict = &report["which"]["verdict"];

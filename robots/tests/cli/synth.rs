@@ -1,7 +1,7 @@
 //! `dynamics synth` of what real logs carry, found again by `dynamics
 //! diagnose`: an effect that starts and stops, a late effort stream.
 
-use crate::{dynamics, fails_with, read_json, succeeds, tmp};
+use crate::{diagnose_arm3r, dynamics, fails_with, read_json, succeeds, tmp};
 
 /// An effect that starts and stops, from the command line to the JSON
 /// report: `synth --window` limits the payload to [2, 4.5) s in training
@@ -42,11 +42,7 @@ fn a_windowed_effect_is_generated_and_found_with_its_window() {
     );
     let json = tmp("window-report.json");
     let text = succeeds(
-        dynamics()
-            .args(["diagnose", "--robot", "arm3r", "--train"])
-            .arg(&train)
-            .arg("--holdout")
-            .arg(train.with_file_name("window-holdout.csv"))
+        diagnose_arm3r(&train, &train.with_file_name("window-holdout.csv"))
             .arg("--json")
             .arg(&json),
     );
@@ -109,11 +105,7 @@ fn a_late_effort_stream_is_generated_and_named() {
     assert_eq!(t["late"], "effort");
     let json = tmp("tau-late-report.json");
     let text = succeeds(
-        dynamics()
-            .args(["diagnose", "--robot", "arm3r", "--train"])
-            .arg(&train)
-            .arg("--holdout")
-            .arg(train.with_file_name("tau-late-holdout.csv"))
+        diagnose_arm3r(&train, &train.with_file_name("tau-late-holdout.csv"))
             .arg("--json")
             .arg(&json),
     );
