@@ -25,7 +25,9 @@
 //! strength is chosen per diagnosis among [`STRENGTHS`] by
 //! cross-validation on the training data (`strength.rs`).
 
-use nalgebra::{DMatrix, SVector, Vector3};
+use nalgebra::{DMatrix, SVector};
+
+use crate::inertial::units;
 
 use super::candidate::Candidate;
 use super::pool::Term;
@@ -47,13 +49,6 @@ pub const EFFORT_SCALE_SIGMA: f64 = 0.2;
 /// squared.
 pub const INERTIAL_SIGMA: f64 = 0.3;
 
-/// The smallest mass (kg) a link's spread is computed from: a link the
-/// CAD model leaves massless may still carry something.
-pub const LIGHTEST: f64 = 0.1;
-
-/// The smallest size (m) a link's spread is computed from.
-pub const SMALLEST: f64 = 0.05;
-
 /// How many rows of the nominal gap one prior spread may be worth, the
 /// strongest first: the diagnosis starts at the first and moves to a
 /// weaker one only where blocks of the training data, each predicted by
@@ -64,20 +59,10 @@ pub const SMALLEST: f64 = 0.05;
 pub const STRENGTHS: [f64; 5] = [1.0, 0.3, 0.1, 0.03, 0.01];
 
 /// The prior's spreads of a link's ten parameters (Pinocchio's order)
-/// around its nominal ones.
+/// around its nominal ones: [`INERTIAL_SIGMA`] of its units
+/// (`inertial::units`).
 pub fn link_sigmas(nominal: &SVector<f64, 10>) -> SVector<f64, 10> {
-    let m = nominal[0].max(LIGHTEST);
-    let c = Vector3::new(nominal[1], nominal[2], nominal[3]) / m;
-    // Radius of gyration about the frame origin: tr(I) = 2 m r^2.
-    let trace = nominal[4] + nominal[6] + nominal[9];
-    let r = (trace.max(0.0) / (2.0 * m)).sqrt();
-    let size = c.norm().max(r).max(SMALLEST);
-    let (sm, sh, si) = (
-        INERTIAL_SIGMA * m,
-        INERTIAL_SIGMA * m * size,
-        INERTIAL_SIGMA * m * size * size,
-    );
-    SVector::from([sm, sh, sh, sh, si, si, si, si, si, si])
+    units(nominal) * INERTIAL_SIGMA
 }
 
 /// The strength (rows of the nominal gap per spread) of the effort
@@ -179,6 +164,7 @@ pub fn weight(yy: f64, n: usize, strength: f64) -> f64 {
 mod tests {
     use super::*;
     use crate::diagnose::pool::{test_term, Pool};
+    use crate::inertial::{LIGHTEST, SMALLEST};
     use nalgebra::DVector;
 
     fn pool(cols: &[Vec<f64>], y: Vec<f64>, terms: Vec<Term>, prior: Prior) -> Pool {
