@@ -1,5 +1,5 @@
 //! Sim-to-real gap work on one robot: synthetic measured data with a
-//! withheld effect (`dynamics synth`, `synth.rs`) and the diagnosis of
+//! withheld effect (`dynamics synth`, `synth/`) and the diagnosis of
 //! data files (`dynamics diagnose`, `files.rs`).
 
 mod files;

@@ -4,7 +4,9 @@
 //! `let` chain (no heap, no loops, no symbolic work at run time).
 
 mod body;
+mod constraints;
 mod params;
+mod regressor;
 mod robot;
 mod urdf;
 

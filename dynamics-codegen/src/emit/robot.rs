@@ -1,9 +1,12 @@
-//! The robot struct and its `Robot<N>` implementation.
+//! The robot struct and its `Robot<N>` implementation (the regressor
+//! bodies from `regressor.rs`, a constrained robot's impl from
+//! `constraints.rs`).
 
 use proc_macro2::{Literal, TokenStream};
 use quote::{format_ident, quote};
 
 use super::body::{self, Spelling};
+use super::{constraints, regressor};
 use crate::derive::Derived;
 use crate::model::{JointKind, Model};
 
@@ -155,8 +158,8 @@ pub fn emit(model: &Model, d: &Derived) -> TokenStream {
         .links
         .iter()
         .map(|&l| model.links[l].name.to_string());
-    let (regressor, parameters) = regressor(d, &sp);
-    let constrained = constraints(model, d, &sp);
+    let (regressor, parameters) = regressor::bodies(d, &sp);
+    let constrained = constraints::emit(model, d, &sp);
     let doc_n = format!(" Number of joint coordinates of [`{name}`].");
     quote! {
         #(#attrs)*
@@ -270,101 +273,5 @@ pub fn emit(model: &Model, d: &Derived) -> TokenStream {
         }
 
         #constrained
-    }
-}
-
-/// The bodies of `inertial_regressor` and `inertial_parameters`: the
-/// output slice destructured into one binding per link (a wrong length
-/// returns the error before anything is written), one `let` chain, then
-/// the non-zero entries.
-fn regressor(d: &Derived, sp: &Spelling) -> (TokenStream, TokenStream) {
-    let g = &d.graph;
-    let n = d.vars.n;
-    let r = &d.regressor;
-    let count = r.links.len();
-    let names: Vec<_> = (0..count).map(|k| format_ident!("out_{}", k)).collect();
-    let destructure = |quantity: &str| {
-        quote! {
-            let [#(#names),*] = out else {
-                return ::core::result::Result::Err(::dynamics_runtime::DynamicsError::Length {
-                    quantity: #quantity,
-                    expected: #count,
-                    found: out.len(),
-                });
-            };
-        }
-    };
-    let body = |roots_of: &dyn Fn(usize) -> Vec<dynamics_symbolic::Id>,
-                ty: TokenStream,
-                cols: usize,
-                quantity: &str| {
-        let roots: Vec<_> = (0..count).flat_map(roots_of).collect();
-        let (lets, vals) = body::chain(g, &roots, sp);
-        let per = roots.len() / count.max(1);
-        let sets = names.iter().enumerate().map(|(k, name)| {
-            let range = k * per..(k + 1) * per;
-            let set = body::assign_matrix(
-                g,
-                &roots[range.clone()],
-                &vals[range],
-                cols,
-                quote!((*#name)),
-            );
-            quote! { *#name = #ty::zeros(); #set }
-        });
-        let head = destructure(quantity);
-        quote! {
-            #head
-            #lets
-            #(#sets)*
-            ::core::result::Result::Ok(())
-        }
-    };
-    let y = body(
-        &|k| r.y[k].clone(),
-        quote!(::dynamics_runtime::nalgebra::SMatrix::<f64, #n, 10>),
-        10,
-        "inertial_regressor",
-    );
-    let pi = body(
-        &|k| r.pi[k].to_vec(),
-        quote!(::dynamics_runtime::nalgebra::SVector::<f64, 10>),
-        1,
-        "inertial_parameters",
-    );
-    (y, pi)
-}
-
-/// `impl Constrained<N, M>` when the robot has program constraints.
-fn constraints(model: &Model, d: &Derived, sp: &Spelling) -> TokenStream {
-    if d.constraints.is_empty() {
-        return TokenStream::new();
-    }
-    let g = &d.graph;
-    let (n, m) = (d.vars.n, d.constraints.len());
-    let name = &model.name;
-    let names = model.constraints.iter().map(|c| c.name.to_string());
-    let f: Vec<_> = d.constraints.iter().map(|c| c.f).collect();
-    let jac: Vec<_> = d
-        .constraints
-        .iter()
-        .flat_map(|c| c.jacobian.iter().copied())
-        .collect();
-    let bias: Vec<_> = d.constraints.iter().map(|c| c.bias).collect();
-    let f_body = body::vector(g, &f, sp);
-    let jac_body = body::matrix(g, &jac, m, n, sp);
-    let bias_body = body::vector(g, &bias, sp);
-    quote! {
-        #[allow(unused_variables, clippy::all, clippy::pedantic)]
-        impl ::dynamics_runtime::Constrained<#n, #m> for #name {
-            const CONSTRAINT_NAMES: [&'static str; #m] = [#(#names),*];
-            fn constraint_residual(&self, t: f64, q: &::dynamics_runtime::nalgebra::SVector<f64, #n>)
-                -> ::dynamics_runtime::nalgebra::SVector<f64, #m> { #f_body }
-            fn constraint_jacobian(&self, t: f64, q: &::dynamics_runtime::nalgebra::SVector<f64, #n>)
-                -> ::dynamics_runtime::nalgebra::SMatrix<f64, #m, #n> { #jac_body }
-            fn constraint_bias(&self, t: f64, q: &::dynamics_runtime::nalgebra::SVector<f64, #n>,
-                qd: &::dynamics_runtime::nalgebra::SVector<f64, #n>)
-                -> ::dynamics_runtime::nalgebra::SVector<f64, #m> { #bias_body }
-        }
     }
 }

@@ -13,18 +13,25 @@
 //! Sums are `k + a - 2.5 * b`, products
 //! `-3.0 * a * b * b / (c * d.powi(4))` (powers 2 and 3 as repeated
 //! multiplies, `x^-1` as `1.0 / x`), no allocation anywhere.
+//!
+//! Here: the entry points and what they share; the one emission pass in
+//! `staged.rs`, its parts in `schedule.rs` (levels, tuple bindings),
+//! `arith.rs` (sums, products), `trig.rs` (sines and cosines) and
+//! `contract.rs` (products folded into fused multiply-adds).
 
 mod arith;
 mod contract;
 mod schedule;
+mod staged;
 mod trig;
 
 use proc_macro2::{Ident, Literal, Span, TokenStream};
 use quote::quote;
 
 use crate::graph::Graph;
-use crate::node::{Id, Node, Var};
+use crate::node::{Id, Var};
 use schedule::{by_ready, Item};
+use staged::emit_staged;
 
 /// The emitted code: the `let` chain, and the expression of each root.
 #[derive(Debug, Clone)]
@@ -231,121 +238,6 @@ fn emit_impl(
     emit_staged(graph, roots, var, trig_fn, fast, &[]).emitted
 }
 
-/// The emission, and the nodes it wrote into their users unbound.
-struct Staged {
-    emitted: Emitted,
-    folded: Vec<Id>,
-}
-
-/// The emission of what `roots` need beyond the nodes marked in `bound`
-/// (read by name).
-fn emit_staged(
-    graph: &Graph,
-    roots: &[Id],
-    var: &dyn Fn(Var) -> TokenStream,
-    trig_fn: Trig<'_>,
-    fast: Option<&Calls>,
-    bound: &[bool],
-) -> Staged {
-    let mul_add = fast.map(|f| f.mul_add);
-    let math = fast.map(|f| f.math);
-    let mut reach = graph.reachable(roots);
-    reach.retain(|id| !bound.get(id.index()).copied().unwrap_or(false));
-    let pairs = trig::pairs(graph, &reach);
-    let operand = |id: Id| -> TokenStream {
-        match graph.node(id) {
-            Node::Const(c) => float(c.get()),
-            Node::Var(v) => var(*v),
-            _ => {
-                let i = ident(id);
-                quote!(#i)
-            }
-        }
-    };
-    let level = schedule::levels(graph, &reach);
-    let ready = schedule::ready_times(graph, &reach);
-    let contracted = match fast {
-        Some(_) => contract::products(graph, roots, &reach, &ready),
-        None => Default::default(),
-    };
-    let mut items: Vec<Item> = Vec::new();
-    let batch = trig::Batch::new(graph, roots, &reach, &pairs, fast.is_some());
-    if let Some(calls) = fast {
-        items.extend(batch.item(graph, &pairs, &operand, calls.sin_cos_n));
-    }
-    let mut folded = Vec::new();
-    for &id in &reach {
-        let name = ident(id);
-        if batch.folded(id) || contracted.contains_key(&id) {
-            folded.push(id);
-            continue;
-        }
-        let expr = match graph.node(id) {
-            Node::Const(_) | Node::Var(_) => continue,
-            Node::Sum { constant, terms } => {
-                let terms = by_ready(terms.iter().map(|(t, c)| (*t, c.get())), &ready);
-                match mul_add {
-                    Some(f) => arith::fused_sum(
-                        constant.get(),
-                        &terms,
-                        &operand,
-                        &|t| contracted.get(&t).copied(),
-                        f,
-                    ),
-                    None => arith::plain_sum(constant.get(), &terms, &operand),
-                }
-            }
-            Node::Product { coef, factors } => {
-                arith::product(coef.get(), factors, &ready, &operand, math)
-            }
-            Node::Sin(a) | Node::Cos(a) if batch.has(*a) => continue,
-            node @ (Node::Sin(a) | Node::Cos(a)) => {
-                let is_sin = matches!(node, Node::Sin(_));
-                items.extend(trig::binding(
-                    id,
-                    is_sin,
-                    operand(*a),
-                    pairs[a],
-                    trig_fn,
-                    &level,
-                ));
-                continue;
-            }
-            Node::Tanh(a) => {
-                let x = operand(*a);
-                match math {
-                    Some(m) => quote!(#m::tanh(#x)),
-                    None => quote!(#x.tanh()),
-                }
-            }
-            Node::Sqrt(a) => {
-                let x = operand(*a);
-                match math {
-                    Some(m) => quote!(#m::sqrt(#x)),
-                    None => quote!(#x.sqrt()),
-                }
-            }
-            Node::Abs(a) => {
-                let x = operand(*a);
-                quote!(#x.abs())
-            }
-        };
-        items.push(Item {
-            level: level[id.index()],
-            pat: quote!(#name),
-            ty: quote!(f64),
-            expr,
-        });
-    }
-    Staged {
-        emitted: Emitted {
-            lets: schedule::bind(items),
-            roots: roots.iter().map(|r| operand(*r)).collect(),
-        },
-        folded,
-    }
-}
-
 /// The test names of variables 0, 1, 2: `x`, `y`, `z`.
 #[cfg(test)]
 fn names(v: Var) -> TokenStream {
@@ -354,49 +246,4 @@ fn names(v: Var) -> TokenStream {
 }
 
 #[cfg(test)]
-mod tests {
-    use super::*;
-
-    #[test]
-    fn golden_small_emission() {
-        let mut g = Graph::new();
-        let (x, y) = (g.var(Var(0)), g.var(Var(1)));
-        let (s, c) = (g.sin(x), g.cos(x));
-        let k = g.constant(-0.5);
-        let ks = g.mul(k, s);
-        let c2 = g.powi(c, 2);
-        let y3 = g.powi(y, -3);
-        let p = g.product(&[ks, c2, y3]);
-        let one = g.constant(1.0);
-        let e = g.sum(&[p, y, one]);
-        let t = g.tanh(y);
-        let out = emit(&g, &[e, t, x, k], &names);
-        assert_eq!(
-            out.lets.to_string(),
-            // Each value as late as its first use allows: tanh(y) beside
-            // the last sum.
-            "let (t2 , t3) : (f64 , f64) = x . sin_cos () ; \
-             let t10 : f64 = t2 * t3 * t3 / (y * y * y) ; \
-             let (t11 , t12) : (f64 , f64) = (1f64 + y - 0.5f64 * t10 , y . tanh ()) ;"
-        );
-        let roots: Vec<String> = out.roots.iter().map(|r| r.to_string()).collect();
-        assert_eq!(roots, ["t11", "t12", "x", "(- 0.5f64)"]);
-    }
-
-    #[test]
-    fn floats() {
-        assert_eq!(float(2.0).to_string(), "2f64");
-        assert_eq!(float(-0.25).to_string(), "(- 0.25f64)");
-        assert_eq!(float(f64::NAN).to_string(), "f64 :: NAN");
-        assert_eq!(float(f64::NEG_INFINITY).to_string(), "(- f64 :: INFINITY)");
-    }
-
-    #[test]
-    fn leaves_only_emit_nothing() {
-        let mut g = Graph::new();
-        let x = g.var(Var(2));
-        let out = emit(&g, &[x], &names);
-        assert!(out.lets.is_empty());
-        assert_eq!(out.roots[0].to_string(), "z");
-    }
-}
+mod tests;

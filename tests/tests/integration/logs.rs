@@ -33,7 +33,7 @@ const CYCLED_CASES: usize = 12;
 /// How near the truth's edges a window found must lie, s (a few widths of
 /// the 40 ms smoothing filter).
 const WINDOW_TOLERANCE: f64 = 0.2;
-/// As in the clean scoring (`diagnosis.rs`): the effect's effort, and the
+/// As in the clean scoring (`diagnosis/`): the effect's effort, and the
 /// part that tells it from the simpler effect it contains, at least this
 /// many times one sample's effort noise, on a 1 kHz record; on a record of
 /// rate `r`, the ratio times `sqrt(r / 1 kHz)` (see [`rate_snr`]).

@@ -4,11 +4,22 @@
 //! ([`crate::run`]). The inputs are checked first, the URDF by the macro's
 //! own pipeline (`dynamics_codegen::expand`), so that a crate that is
 //! written also builds.
+//!
+//! Here: the command's arguments, errors and steps; the names in
+//! `names.rs`, the files written in `template.rs`.
+
+mod names;
+mod template;
+
+pub use names::{gravity, type_name_ok};
 
 use std::path::{Path, PathBuf};
 
 use clap::Args;
 use thiserror::Error;
+
+use names::{camel, package_name, urdf_robot_name};
+use template::{check_model, files, robot_body};
 
 /// `new`.
 #[derive(Args, Debug, Clone)]
@@ -91,182 +102,6 @@ fn built_from() -> PathBuf {
         .parent()
         .map(Path::to_path_buf)
         .unwrap_or_default()
-}
-
-/// Parses `x,y,z`.
-///
-/// ```
-/// use dynamics_cli::scaffold::gravity;
-/// assert_eq!(gravity("0, 0, -9.81").unwrap(), [0.0, 0.0, -9.81]);
-/// assert!(gravity("0,-9.81").is_err());
-/// assert!(gravity("0,0,nan").is_err());
-/// ```
-pub fn gravity(text: &str) -> Result<[f64; 3], NewError> {
-    let v: Vec<f64> = text
-        .split(',')
-        .map(|s| s.trim().parse::<f64>())
-        .collect::<Result<_, _>>()
-        .map_err(|_| NewError::Gravity(text.into()))?;
-    match v.as_slice() {
-        [x, y, z] if v.iter().all(|c| c.is_finite()) => Ok([*x, *y, *z]),
-        _ => Err(NewError::Gravity(text.into())),
-    }
-}
-
-/// Whether `name` is an UpperCamelCase Rust type name.
-///
-/// ```
-/// use dynamics_cli::scaffold::type_name_ok;
-/// assert!(type_name_ok("MyUr5"));
-/// assert!(!type_name_ok("my_ur5") && !type_name_ok("5Axis") && !type_name_ok("Self"));
-/// ```
-pub fn type_name_ok(name: &str) -> bool {
-    let mut chars = name.chars();
-    chars.next().is_some_and(|c| c.is_ascii_uppercase())
-        && chars.all(|c| c.is_ascii_alphanumeric())
-        && name != "Self"
-}
-
-/// UpperCamelCase of a URDF robot name (`ur5_arm` -> `Ur5Arm`).
-fn camel(name: &str) -> String {
-    let out: String = name
-        .split(|c: char| !c.is_ascii_alphanumeric())
-        .filter(|w| !w.is_empty())
-        .map(|w| {
-            let mut c = w.chars();
-            c.next()
-                .map(|f| f.to_ascii_uppercase().to_string() + c.as_str())
-                .unwrap_or_default()
-        })
-        .collect();
-    if out.starts_with(|c: char| c.is_ascii_uppercase()) {
-        out
-    } else {
-        format!("Robot{out}")
-    }
-}
-
-/// The `name` attribute of the URDF's `<robot>` element.
-fn urdf_robot_name(text: &str) -> Option<String> {
-    let start = text.find("<robot")?;
-    let tag = &text[start..start + text[start..].find('>')?];
-    let at = tag.find("name")?;
-    let rest = tag[at + 4..].trim_start().strip_prefix('=')?.trim_start();
-    let quote = rest.chars().next().filter(|c| *c == '"' || *c == '\'')?;
-    let rest = &rest[1..];
-    Some(rest[..rest.find(quote)?].to_string())
-}
-
-/// A package name from the folder's name.
-fn package_name(dir: &Path) -> String {
-    let raw = dir
-        .file_name()
-        .map(|f| f.to_string_lossy().to_lowercase())
-        .unwrap_or_default();
-    let name: String = raw
-        .chars()
-        .map(|c| if c.is_ascii_alphanumeric() { c } else { '-' })
-        .collect();
-    let name = name.trim_matches('-').to_string();
-    if name.starts_with(|c: char| c.is_ascii_lowercase()) {
-        name
-    } else {
-        format!("robot-{name}").trim_end_matches('-').to_string()
-    }
-}
-
-/// The `robot!` body the crate gets.
-fn robot_body(name: &str, g: [f64; 3], urdf: &str) -> String {
-    format!(
-        "pub robot {name};\n    gravity = [{:?}, {:?}, {:?}];\n    urdf = {urdf:?};",
-        g[0], g[1], g[2]
-    )
-}
-
-/// The macro's own verdict on the robot: its `compile_error!` messages.
-fn check_model(body: &str, base_dir: &Path) -> Result<(), String> {
-    let tokens: proc_macro2::TokenStream = body.parse().map_err(|e| format!("{e}"))?;
-    let options = dynamics_codegen::Options {
-        base_dir: base_dir.to_path_buf(),
-        ir_dir: None,
-    };
-    let out = dynamics_codegen::expand(tokens, &options).to_string();
-    let mut messages = Vec::new();
-    let mut rest = out.as_str();
-    while let Some(at) = rest.find("compile_error") {
-        rest = &rest[at..];
-        let Some(open) = rest.find('"') else { break };
-        let mut msg = String::new();
-        let mut chars = rest[open + 1..].char_indices();
-        let mut end = rest.len();
-        while let Some((i, c)) = chars.next() {
-            match c {
-                '\\' => {
-                    if let Some((_, e)) = chars.next() {
-                        msg.push(if e == 'n' { '\n' } else { e });
-                    }
-                }
-                '"' => {
-                    end = open + 1 + i;
-                    break;
-                }
-                c => msg.push(c),
-            }
-        }
-        messages.push(msg);
-        rest = &rest[end.min(rest.len())..];
-    }
-    if messages.is_empty() {
-        Ok(())
-    } else {
-        Err(messages.join("; "))
-    }
-}
-
-/// What `new` writes: (relative path, content).
-fn files(
-    package: &str,
-    name: &str,
-    body: &str,
-    urdf_file: &str,
-    deps: &str,
-) -> Vec<(String, String)> {
-    let cargo = format!(
-        r#"[package]
-name = "{package}"
-version = "0.1.0"
-edition = "2021"
-publish = false
-
-[dependencies]
-{deps}
-# Its own workspace: builds outside the dynamics workspace.
-[workspace]
-
-[profile.release]
-debug = false
-"#
-    );
-    let main = format!(
-        r#"//! The `dynamics` program for the robot of `{urdf_file}` (written by
-//! `dynamics new`): `eval`, `check --reference`, `simulate`, `synth` and
-//! `diagnose`, with `--set NAME=VALUE` and `--baseline FILE.json`; see `--help`.
-
-dynamics_macros::robot! {{
-    /// The robot of `{urdf_file}`.
-    {body}
-}}
-
-fn main() -> std::process::ExitCode {{
-    dynamics_cli::run({name}::default())
-}}
-"#
-    );
-    vec![
-        ("Cargo.toml".into(), cargo),
-        ("src/main.rs".into(), main),
-        (".gitignore".into(), "/target\n".into()),
-    ]
 }
 
 /// Runs `dynamics new`.

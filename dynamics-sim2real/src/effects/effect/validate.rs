@@ -1,0 +1,110 @@
+//! The check that an effect's parameters are physical
+//! ([`Effect::validate`]), naming the offending one.
+
+use super::Effect;
+
+impl Effect {
+    /// Checks that the parameters are physical (finite, non-negative where
+    /// they must be), naming the offending one.
+    pub fn validate(&self) -> Result<(), String> {
+        let check = |name: &str, v: f64, positive: bool| -> Result<(), String> {
+            if !v.is_finite() || v < 0.0 || (positive && v == 0.0) {
+                Err(format!(
+                    "{}: {name} must be {} and finite, got {v}",
+                    self.kind(),
+                    if positive { "> 0" } else { ">= 0" }
+                ))
+            } else {
+                Ok(())
+            }
+        };
+        match *self {
+            Effect::CoulombFriction { fc, vw, .. } => {
+                check("fc", fc, false)?;
+                check("vw", vw, true)
+            }
+            Effect::ViscousFriction { fv, .. } => check("fv", fv, false),
+            Effect::StribeckFriction { fc, fs, vs, .. } => {
+                check("fc", fc, false)?;
+                check("fs", fs, false)?;
+                check("vs", vs, true)
+            }
+            Effect::Armature { inertia, .. } => check("inertia", inertia, false),
+            Effect::InertialParameters { ref delta, .. } => {
+                match delta.iter().position(|v| !v.is_finite()) {
+                    Some(k) => Err(format!(
+                        "inertial_parameters: {} must be finite",
+                        crate::inertial::PARAMETER_NAMES[k]
+                    )),
+                    None => Ok(()),
+                }
+            }
+            Effect::PayloadMass { mass } => check("mass", mass, false),
+            Effect::JointElasticity {
+                stiffness,
+                damping,
+                motor_inertia,
+                ..
+            } => {
+                check("stiffness", stiffness, true)?;
+                check("damping", damping, false)?;
+                check("motor_inertia", motor_inertia, true)
+            }
+            Effect::Backlash {
+                half_width,
+                motor_inertia,
+                contact_stiffness,
+                contact_damping,
+                ..
+            } => {
+                check("half_width", half_width, false)?;
+                check("motor_inertia", motor_inertia, true)?;
+                check("contact_stiffness", contact_stiffness, true)?;
+                check("contact_damping", contact_damping, false)
+            }
+            Effect::EnvironmentResistance { mu, alpha } => {
+                check("mu", mu, false)?;
+                if alpha.is_finite() && alpha >= 1.0 {
+                    Ok(())
+                } else {
+                    Err(format!(
+                        "environment_resistance: alpha must be >= 1, got {alpha}"
+                    ))
+                }
+            }
+            Effect::EncoderOffset { offset, .. } => {
+                if offset.is_finite() {
+                    Ok(())
+                } else {
+                    Err("encoder_offset: offset must be finite".into())
+                }
+            }
+            Effect::TimeDelay { delay } => check("delay", delay, false),
+            Effect::EffortScale { scale, .. } => check("scale", scale, true),
+            Effect::EffortOffset { offset, .. } => {
+                if offset.is_finite() {
+                    Ok(())
+                } else {
+                    Err("effort_offset: offset must be finite".into())
+                }
+            }
+        }
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn validation_names_the_parameter() {
+        let e = Effect::JointElasticity {
+            joint: 0,
+            stiffness: -1.0,
+            damping: 0.0,
+            motor_inertia: 1.0,
+        };
+        assert!(e.validate().unwrap_err().contains("stiffness"));
+        assert!(Effect::TimeDelay { delay: f64::NAN }.validate().is_err());
+    }
+}
