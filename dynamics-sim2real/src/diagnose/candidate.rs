@@ -60,8 +60,11 @@ pub enum Candidate {
 /// sign of every friction law, [`SIGN_SMOOTHING`]) to the tenths of a
 /// rad/s over which real joints' friction turns (the Panda's published
 /// sigmoids `1 / (1 + exp(-phi2 v))`, Gaz et al. 2019, are `tanh(v / vw)`
-/// with `vw = 2 / phi2` = 0.12-0.39 rad/s).
-pub const COULOMB_WIDTHS: [f64; 4] = [SIGN_SMOOTHING, 0.05, 0.15, 0.4];
+/// with `vw = 2 / phi2` = 0.12-0.39 rad/s). Not wider: a width of 0.4
+/// rad/s is nearly linear over a joint's usual speeds and took the place of
+/// viscous friction in the compound scoring (its recall of viscous
+/// friction fell from 122 to 113 of 135 at base 0).
+pub const COULOMB_WIDTHS: [f64; 3] = [SIGN_SMOOTHING, 0.05, 0.15];
 /// Stribeck velocities searched, rad/s.
 pub const STRIBECK_GRID: [f64; 4] = [0.01, 0.03, 0.1, 0.3];
 /// Resistance exponents searched.
@@ -132,6 +135,13 @@ impl Candidate {
             Candidate::EffortOffset(_) => EffectKind::EffortOffset,
             Candidate::Inertial(_) => EffectKind::InertialParameters,
         }
+    }
+
+    /// Whether it is a Coulomb friction wider than the sharp one: its width
+    /// is one more (grid) parameter, which it must earn against the sharp
+    /// one by the nesting margin (`rank.rs`, `compound/select.rs`).
+    pub fn widened(&self) -> bool {
+        matches!(*self, Candidate::Coulomb(_, w) if w > SIGN_SMOOTHING)
     }
 
     /// Its joint, for joint effects.

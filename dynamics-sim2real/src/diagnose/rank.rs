@@ -23,13 +23,22 @@ pub fn best_per_place(
     quiet: &dyn Fn(&Fit) -> bool,
 ) -> Vec<Fit> {
     let mut best: Vec<Fit> = Vec::new();
+    // A wider Coulomb friction than the sharp one must beat it clearly.
+    let cost = |f: &Fit| {
+        f.aicc(n)
+            + if f.candidate.widened() {
+                nesting_margin
+            } else {
+                0.0
+            }
+    };
     for f in fits {
         let key = (f.candidate.kind(), f.candidate.joint());
         match best
             .iter_mut()
             .find(|b| (b.candidate.kind(), b.candidate.joint()) == key)
         {
-            Some(b) if b.aicc(n) <= f.aicc(n) => {}
+            Some(b) if cost(b) <= cost(&f) => {}
             Some(b) => *b = f,
             None => best.push(f),
         }

@@ -43,6 +43,8 @@ pub(super) fn explicit_crit(pool: &Pool, set: &[usize]) -> f64 {
 pub(super) fn simpler(c: Candidate) -> Option<fn(&Candidate) -> bool> {
     match c {
         Candidate::Stribeck(..) => Some(|s| matches!(s, Candidate::Coulomb(..))),
+        // A width is one more parameter than the sharp law.
+        c if c.widened() => Some(|s| matches!(s, Candidate::Coulomb(..)) && !s.widened()),
         Candidate::Elasticity(_) | Candidate::Backlash(_) => {
             Some(|s| matches!(s, Candidate::Armature(_)))
         }
