@@ -109,7 +109,7 @@ fn a_baseline_leaves_only_what_changed() {
         ),
         (
             r#"{"kind": "coulomb_friction", "joint": "j1", "parameters": [{"name": "fv", "value": 1}]}"#,
-            &["unknown parameter `fv` (it takes: fc)"][..],
+            &["unknown parameter `fv` (it takes: fc, vw)"][..],
         ),
     ] {
         std::fs::write(&bad, format!(r#"{{"effects": [{effect}]}}"#)).expect("writes");
