@@ -5,6 +5,7 @@
 //! back as the model the diagnosis corrected with.
 
 use crate::diagnose::{Candidate, Parameter};
+use crate::effects::SIGN_SMOOTHING;
 use crate::effects::{Effect, EffectKind};
 use dynamics_runtime::Robot;
 
@@ -60,7 +61,7 @@ pub enum BaselineError {
 /// The parameter names of a kind, as the diagnosis reports them.
 pub fn parameter_names(kind: EffectKind) -> &'static [&'static str] {
     match kind {
-        EffectKind::CoulombFriction => &["fc"],
+        EffectKind::CoulombFriction => &["fc", "vw"],
         EffectKind::ViscousFriction => &["fv"],
         EffectKind::StribeckFriction => &["fc", "fs_minus_fc", "vs"],
         EffectKind::Armature => &["inertia"],
@@ -90,7 +91,7 @@ pub fn parameter_names(kind: EffectKind) -> &'static [&'static str] {
 ///     kind: "coulomb_friction".into(), joint: Some("j".into()),
 ///     parameters: vec![Parameter { name: "fc".into(), value: 0.3, std: 0.01 }],
 /// };
-/// assert_eq!(effect::<Pendulum, 1>(&entry).unwrap(), Effect::CoulombFriction { joint: 0, fc: 0.3 });
+/// assert_eq!(effect::<Pendulum, 1>(&entry).unwrap(), Effect::coulomb(0, 0.3));
 /// let bad = Entry { joint: Some("elbow".into()), ..entry };
 /// assert!(effect::<Pendulum, 1>(&bad).unwrap_err().to_string().contains("elbow"));
 /// ```
@@ -142,7 +143,10 @@ pub fn effect<R: Robot<N>, const N: usize>(entry: &Entry) -> Result<Effect, Base
         EffectKind::None | EffectKind::InertialParameters => {
             return Err(BaselineError::Kind(entry.kind.clone()))
         }
-        EffectKind::CoulombFriction => Candidate::Coulomb(joint()?),
+        // (Reports before the width was searched have none: sharp.)
+        EffectKind::CoulombFriction => {
+            Candidate::Coulomb(joint()?, get("vw").unwrap_or(SIGN_SMOOTHING))
+        }
         EffectKind::ViscousFriction => Candidate::Viscous(joint()?),
         EffectKind::StribeckFriction => Candidate::Stribeck(joint()?, get("vs")?),
         EffectKind::Armature => Candidate::Armature(joint()?),

@@ -329,10 +329,7 @@ fn still(seed: u64) -> String {
     let arm = Arm2::default();
     let mut o = opts(seed, 1000.0, Damage::default());
     o.amplitude = [0.0, 0.0].into();
-    text(
-        &synthesize(&arm, &[Effect::CoulombFriction { joint: 0, fc: 0.5 }], &o)
-            .expect("synthesizes"),
-    )
+    text(&synthesize(&arm, &[Effect::coulomb(0, 0.5)], &o).expect("synthesizes"))
 }
 
 #[test]

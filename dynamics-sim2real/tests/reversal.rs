@@ -13,7 +13,7 @@ use common::Arm2;
 #[test]
 fn coulomb_friction_where_the_velocity_never_reverses_is_ambiguous_with_an_offset() {
     let arm = Arm2::default();
-    let fc = [Effect::CoulombFriction { joint: 1, fc: 0.3 }];
+    let fc = [Effect::coulomb(1, 0.3)];
     let o = SynthOptions::<2> {
         duration: 1.0,
         home: [0.0, 0.4].into(),

@@ -268,7 +268,7 @@ fn effect_for<R: Robot<N>, const N: usize>(
         )));
     }
     Ok(drawn.map(|e| match e {
-        Effect::CoulombFriction { joint, .. } => Effect::CoulombFriction { joint, fc: m },
+        Effect::CoulombFriction { joint, vw, .. } => Effect::CoulombFriction { joint, fc: m, vw },
         Effect::ViscousFriction { joint, .. } => Effect::ViscousFriction { joint, fv: m },
         Effect::StribeckFriction { joint, .. } => Effect::StribeckFriction {
             joint,

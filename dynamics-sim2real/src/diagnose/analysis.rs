@@ -9,6 +9,7 @@ use super::fit::{aicc, constrained_least_squares};
 use super::motor::{motor_transmitted, MotorGuess};
 use super::motor_fit;
 use super::noise::{known_floor, sensor_levels};
+use super::prior::EFFORT_SCALE_LIMIT;
 use super::signals::Signals;
 use crate::data::Measured;
 use crate::effects::Effect;
@@ -172,7 +173,17 @@ pub fn fit<R: Robot<N>, const N: usize>(c: Candidate, p: &Prepared<N>) -> Fit {
         }
     }
     let nonneg: Vec<bool> = params.iter().map(|p| p.1).collect();
-    let f = constrained_least_squares(&x, &y, &nonneg);
+    let mut f = constrained_least_squares(&x, &y, &nonneg);
+    // An effort scale beyond its limit is held there, as in the compound
+    // explanation (`prior::EFFORT_SCALE_LIMIT`).
+    if let (Candidate::EffortScale(_), [s]) = (c, f.theta.as_slice()) {
+        if s.abs() > EFFORT_SCALE_LIMIT {
+            let held = EFFORT_SCALE_LIMIT.copysign(*s);
+            f.sse = (&y - x.column(0) * held).norm_squared();
+            f.theta = vec![held];
+            f.std = vec![0.0];
+        }
+    }
     let linear = Fit {
         candidate: c,
         theta: f.theta,

@@ -5,7 +5,8 @@
 
 use nalgebra::{SMatrix, SVector, Vector3};
 
-use super::candidate::STRIBECK_GRID;
+use super::candidate::{COULOMB_WIDTHS, STRIBECK_GRID};
+use super::nominal_friction::nominal_friction;
 use super::signals::Signals;
 use crate::effects::{smooth_sign, Tip, SIGN_SMOOTHING};
 use dynamics_runtime::Robot;
@@ -37,11 +38,19 @@ pub struct Basis<const N: usize> {
     /// residual already carries, is not added a second time by a column.
     pub qdd: Vec<SVector<f64, N>>,
     /// Per joint, the smoothed sign of the (lightly smoothed) velocity:
-    /// the Coulomb column, smoothed like the efforts it is compared with.
+    /// the sharp Coulomb column and Stribeck's, smoothed like the efforts
+    /// they are compared with.
     pub sign: Vec<SVector<f64, N>>,
+    /// The same for `tanh(v / vw)`, one per width of [`COULOMB_WIDTHS`]
+    /// (the first, the sharp one, is `sign`).
+    pub coulomb: Vec<Vec<SVector<f64, N>>>,
     /// The same for the Stribeck term `exp(-(v/vs)^2) sign(v)`, one per
     /// velocity of [`STRIBECK_GRID`].
     pub stribeck: Vec<Vec<SVector<f64, N>>>,
+    /// Per joint, the nominal model's own Coulomb level and viscous
+    /// coefficient (`nominal_friction.rs`): how far a friction correction
+    /// may go below zero.
+    pub friction: (SVector<f64, N>, SVector<f64, N>),
 }
 
 /// Velocity step of the quadrature in [`interval_mean`], rad/s or m/s: an
@@ -132,12 +141,20 @@ impl<const N: usize> Basis<N> {
             tip,
             qdd: sig.qdd.clone(),
             sign: smoothed_column(sig, smooth_sign),
+            coulomb: COULOMB_WIDTHS
+                .iter()
+                .map(|&w| smoothed_column(sig, |v| (v / w).tanh()))
+                .collect(),
             stribeck: STRIBECK_GRID
                 .iter()
                 .map(|&vs| smoothed_column(sig, |v| (-(v / vs).powi(2)).exp() * smooth_sign(v)))
                 .collect(),
+            friction: (SVector::zeros(), SVector::zeros()),
         };
         let (a, z) = sig.range;
+        if let Some(q) = sig.q.get(a) {
+            b.friction = nominal_friction(robot, q);
+        }
         for k in a..z {
             let (q, qd, qdd) = (&sig.q[k], &sig.qd[k], &sig.qdd[k]);
             b.k[k] = robot.perturbation_jacobians(q, qd, qdd).k;

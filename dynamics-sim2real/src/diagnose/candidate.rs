@@ -9,14 +9,15 @@ use nalgebra::SVector;
 use super::basis::Basis;
 use super::shift::{late_effort_column, late_motion_column};
 use super::signals::Signals;
-use crate::effects::{Effect, EffectKind};
+use crate::effects::{Effect, EffectKind, SIGN_SMOOTHING};
 
 /// A candidate: kind, place, and the fixed value of a nonlinear parameter
 /// searched on a grid (Stribeck velocity, resistance exponent).
 #[derive(Debug, Clone, Copy, PartialEq)]
 pub enum Candidate {
-    /// Coulomb friction at a joint.
-    Coulomb(usize),
+    /// Coulomb friction at a joint whose sign turns over velocity width
+    /// vw (`tanh(v / vw)`).
+    Coulomb(usize, f64),
     /// Viscous friction at a joint.
     Viscous(usize),
     /// Stribeck friction at a joint with Stribeck velocity vs.
@@ -55,6 +56,12 @@ pub enum Candidate {
     Inertial(usize),
 }
 
+/// Coulomb friction's velocity widths searched, rad/s: sharp (the smooth
+/// sign of every friction law, [`SIGN_SMOOTHING`]) to the tenths of a
+/// rad/s over which real joints' friction turns (the Panda's published
+/// sigmoids `1 / (1 + exp(-phi2 v))`, Gaz et al. 2019, are `tanh(v / vw)`
+/// with `vw = 2 / phi2` = 0.12-0.39 rad/s).
+pub const COULOMB_WIDTHS: [f64; 4] = [SIGN_SMOOTHING, 0.05, 0.15, 0.4];
 /// Stribeck velocities searched, rad/s.
 pub const STRIBECK_GRID: [f64; 4] = [0.01, 0.03, 0.1, 0.3];
 /// Resistance exponents searched.
@@ -67,7 +74,7 @@ impl Candidate {
         let want = |k: EffectKind| kinds.is_empty() || kinds.contains(&k);
         for j in 0..N {
             if want(EffectKind::CoulombFriction) {
-                out.push(Candidate::Coulomb(j));
+                out.extend(COULOMB_WIDTHS.iter().map(|&w| Candidate::Coulomb(j, w)));
             }
             if want(EffectKind::ViscousFriction) {
                 out.push(Candidate::Viscous(j));
@@ -109,7 +116,7 @@ impl Candidate {
     /// Its kind.
     pub fn kind(&self) -> EffectKind {
         match self {
-            Candidate::Coulomb(_) => EffectKind::CoulombFriction,
+            Candidate::Coulomb(..) => EffectKind::CoulombFriction,
             Candidate::Viscous(_) => EffectKind::ViscousFriction,
             Candidate::Stribeck(..) => EffectKind::StribeckFriction,
             Candidate::Armature(_) => EffectKind::Armature,
@@ -130,7 +137,7 @@ impl Candidate {
     /// Its joint, for joint effects.
     pub fn joint(&self) -> Option<usize> {
         match *self {
-            Candidate::Coulomb(j)
+            Candidate::Coulomb(j, _)
             | Candidate::Viscous(j)
             | Candidate::Stribeck(j, _)
             | Candidate::Armature(j)
@@ -146,7 +153,7 @@ impl Candidate {
     /// Names of its linear parameters and whether each must be >= 0.
     pub fn linear_parameters(&self) -> &'static [(&'static str, bool)] {
         match self {
-            Candidate::Coulomb(_) => &[("fc", true)],
+            Candidate::Coulomb(..) => &[("fc", true)],
             Candidate::Viscous(_) => &[("fv", true)],
             Candidate::Stribeck(..) => &[("fc", true), ("fs_minus_fc", true)],
             Candidate::Armature(_) => &[("inertia", true)],
@@ -173,7 +180,10 @@ impl Candidate {
         let mut c = [SVector::zeros(); 2];
         let qd = &sig.qd[k];
         match *self {
-            Candidate::Coulomb(j) => c[0][j] = basis.sign[k][j],
+            Candidate::Coulomb(j, w) => {
+                let i = COULOMB_WIDTHS.iter().position(|&g| g == w).unwrap_or(0);
+                c[0][j] = basis.coulomb[i][k][j];
+            }
             Candidate::Viscous(j) => c[0][j] = qd[j],
             Candidate::Stribeck(j, vs) => {
                 c[0][j] = basis.sign[k][j];
@@ -211,7 +221,11 @@ impl Candidate {
     pub fn effect(&self, theta: &[f64]) -> Option<Effect> {
         let p = |i: usize| theta.get(i).copied().unwrap_or(0.0);
         Some(match *self {
-            Candidate::Coulomb(joint) => Effect::CoulombFriction { joint, fc: p(0) },
+            Candidate::Coulomb(joint, vw) => Effect::CoulombFriction {
+                joint,
+                fc: p(0),
+                vw,
+            },
             Candidate::Viscous(joint) => Effect::ViscousFriction { joint, fv: p(0) },
             Candidate::Stribeck(joint, vs) => Effect::StribeckFriction {
                 joint,

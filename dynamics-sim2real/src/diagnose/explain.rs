@@ -169,17 +169,73 @@ pub fn joint_fit(pool: &Pool, t: usize, theta: &[f64], std: &[f64]) -> Fit {
     f
 }
 
-/// The effects of the set with their fitted parameters.
-pub fn effects(pool: &Pool, e: &Explanation) -> Vec<Effect> {
+/// The effects of the set with their fitted parameters (a friction
+/// correction may take away the nominal model's own `friction`, its
+/// Coulomb levels and viscous coefficients per joint).
+pub fn effects<const N: usize>(
+    pool: &Pool,
+    e: &Explanation,
+    friction: &Friction<N>,
+) -> Vec<Effect> {
     e.set
         .iter()
         .enumerate()
         .filter_map(|(i, &t)| joint_fit(pool, t, &e.sol.theta[i], &e.sol.std[i]).effect())
         // (A late effort is a negative delay here, `candidate.rs`.)
         .filter(|e| {
-            e.validate().is_ok() || matches!(e, Effect::TimeDelay { delay } if delay.is_finite())
+            e.validate().is_ok()
+                || within_nominal(e, friction)
+                || matches!(e, Effect::TimeDelay { delay } if delay.is_finite())
         })
         .collect()
+}
+
+/// Per joint, the nominal model's Coulomb levels and viscous coefficients
+/// (`nominal_friction.rs`).
+pub type Friction<const N: usize> = (SVector<f64, N>, SVector<f64, N>);
+
+/// Whether `e` is a friction correction that takes away no more of the
+/// nominal model's `friction` than there is.
+fn within_nominal<const N: usize>(e: &Effect, friction: &Friction<N>) -> bool {
+    let (coulomb, viscous) = friction;
+    let ok = |x: f64, nominal: Option<&f64>| {
+        nominal.is_some_and(|n| x.is_finite() && x >= -n * (1.0 + 1e-9))
+    };
+    match *e {
+        Effect::CoulombFriction { joint, fc, .. } => ok(fc, coulomb.get(joint)),
+        Effect::ViscousFriction { joint, fv } => ok(fv, viscous.get(joint)),
+        Effect::StribeckFriction { joint, fc, fs, vs } => {
+            ok(fc, coulomb.get(joint)) && ok(fs, coulomb.get(joint)) && vs > 0.0
+        }
+        _ => false,
+    }
+}
+
+/// In words, a friction correction `value` of parameter `name` at joint
+/// `j` (named `joint`) where the nominal model has friction of its own.
+fn nominal_words<const N: usize>(
+    c: Candidate,
+    value: f64,
+    joint: &str,
+    friction: &Friction<N>,
+) -> Option<String> {
+    let (what, nominal) = match c {
+        Candidate::Coulomb(j, _) | Candidate::Stribeck(j, _) => {
+            ("Coulomb level", friction.0.get(j))
+        }
+        Candidate::Viscous(j) => ("viscous coefficient", friction.1.get(j)),
+        _ => return None,
+    };
+    let n = *nominal.filter(|n| **n > 0.0)?;
+    let total = (n + value).max(0.0);
+    let gone = if total <= 1e-9 * n {
+        " (all of it taken away: the data show none)"
+    } else {
+        ""
+    };
+    Some(format!(
+        "{joint}: the nominal model's {what} {n:.3} corrected by {value:+.3} to {total:.3}{gone}"
+    ))
 }
 
 /// The report's entries and the held-out steps.
@@ -190,6 +246,7 @@ pub fn entries<R: Robot<N>, const N: usize>(
     tip: &str,
     aicc0: f64,
     nominal: &[SVector<f64, 10>],
+    friction: &Friction<N>,
 ) -> (Vec<Explained>, Vec<ShrinkStep>) {
     let n = pool.n();
     let sse0 = pool.yy;
@@ -253,10 +310,14 @@ pub fn entries<R: Robot<N>, const N: usize>(
                     point.as_deref().unwrap_or("?"),
                     nominal.get(b.link),
                 ),
-                None => (
-                    ranked_entry::<R, N>(&f, tip, aicc0, n, shares[i], 0.0).parameters,
-                    None,
-                ),
+                None => {
+                    let parameters =
+                        ranked_entry::<R, N>(&f, tip, aicc0, n, shares[i], 0.0).parameters;
+                    let words = parameters.first().and_then(|p| {
+                        nominal_words(f.candidate, p.value, joint.as_deref()?, friction)
+                    });
+                    (parameters, words)
+                }
             };
             // No NaN in a report: a parameter the fit could not make says so.
             for p in parameters.iter_mut() {

@@ -45,6 +45,7 @@ mod motor;
 mod motor_fit;
 mod motor_sim;
 mod noise;
+mod nominal_friction;
 mod parallel;
 mod pool;
 mod prior;
@@ -57,6 +58,7 @@ mod shift;
 mod shrink;
 mod signals;
 mod spread;
+mod strength;
 pub mod traces;
 mod validate;
 mod verdict;
@@ -345,8 +347,15 @@ pub fn diagnose<R: Robot<N> + Clone + Sync, const N: usize>(
     // data).
     let mut hold = explain::Holdout::new(&h, &hlinks, &pool, &explanation);
     window::limit_holdout(&mut hold, &h, &pool, &explanation, &limited);
-    let (mut effects, steps) =
-        explain::entries::<R, N>(&pool, &explanation, &hold, &tip_name, aicc0, &nominal);
+    let (mut effects, steps) = explain::entries::<R, N>(
+        &pool,
+        &explanation,
+        &hold,
+        &tip_name,
+        aicc0,
+        &nominal,
+        &p.basis.friction,
+    );
     window::annotate(&mut effects, &pool, &explanation, &limited);
     // A late effort stream, or a late motion whose channel is unresolved.
     late::warn(
@@ -381,7 +390,7 @@ pub fn diagnose<R: Robot<N> + Clone + Sync, const N: usize>(
         holdout,
         &h,
         after,
-        &explain::effects(&pool, &explanation),
+        &explain::effects(&pool, &explanation, &p.basis.friction),
         rms_fraction,
         steps,
     );

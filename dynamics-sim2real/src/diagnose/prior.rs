@@ -18,12 +18,16 @@
 //! - an effort scale's `s - 1` ([`EFFORT_SCALE_SIGMA`]), which is besides
 //!   held within [`EFFORT_SCALE_LIMIT`] (`Pool::solve`).
 //!
-//! The weight is [`STRENGTH`] times the nominal residual's mean square per
+//! The weight is a strength times the nominal residual's mean square per
 //! row in the pool's current weights: the prior is worth as many rows of
-//! the gap as [`STRENGTH`] says, so it bites only along directions the
-//! data do not determine, whatever the units and the weighting.
+//! the gap as the strength says, so it bites only along directions the
+//! data do not determine, whatever the units and the weighting. The
+//! strength is chosen per diagnosis among [`STRENGTHS`] by
+//! cross-validation on the training data (`strength.rs`).
 
-use nalgebra::{DMatrix, SVector, Vector3};
+use nalgebra::{DMatrix, SVector};
+
+use crate::inertial::units;
 
 use super::candidate::Candidate;
 use super::pool::Term;
@@ -45,72 +49,110 @@ pub const EFFORT_SCALE_SIGMA: f64 = 0.2;
 /// squared.
 pub const INERTIAL_SIGMA: f64 = 0.3;
 
-/// The smallest mass (kg) a link's spread is computed from: a link the
-/// CAD model leaves massless may still carry something.
-pub const LIGHTEST: f64 = 0.1;
-
-/// The smallest size (m) a link's spread is computed from.
-pub const SMALLEST: f64 = 0.05;
-
-/// How many rows of the nominal gap one prior spread is worth.
-pub const STRENGTH: f64 = 1.0;
+/// How many rows of the nominal gap one prior spread may be worth, the
+/// strongest first: the diagnosis starts at the first and moves to a
+/// weaker one only where blocks of the training data, each predicted by
+/// the fit on the others, say so (`strength.rs`). One row is the prior of
+/// a CAD model trusted to some ten per cent; a hundredth of a row lets
+/// data that determine a parameter move it freely while still holding the
+/// directions they do not determine.
+pub const STRENGTHS: [f64; 5] = [1.0, 0.3, 0.1, 0.03, 0.01];
 
 /// The prior's spreads of a link's ten parameters (Pinocchio's order)
-/// around its nominal ones.
+/// around its nominal ones: [`INERTIAL_SIGMA`] of its units
+/// (`inertial::units`).
 pub fn link_sigmas(nominal: &SVector<f64, 10>) -> SVector<f64, 10> {
-    let m = nominal[0].max(LIGHTEST);
-    let c = Vector3::new(nominal[1], nominal[2], nominal[3]) / m;
-    // Radius of gyration about the frame origin: tr(I) = 2 m r^2.
-    let trace = nominal[4] + nominal[6] + nominal[9];
-    let r = (trace.max(0.0) / (2.0 * m)).sqrt();
-    let size = c.norm().max(r).max(SMALLEST);
-    let (sm, sh, si) = (
-        INERTIAL_SIGMA * m,
-        INERTIAL_SIGMA * m * size,
-        INERTIAL_SIGMA * m * size * size,
-    );
-    SVector::from([sm, sh, sh, sh, si, si, si, si, si, si])
+    units(nominal) * INERTIAL_SIGMA
 }
 
-/// The prior's matrix over the pool's `columns` free columns, in parameter
-/// units, for `terms` (a link correction's combinations through its basis;
-/// `nominal[link]` its nominal parameters, none: no prior on it).
-pub fn matrix(terms: &[Term], columns: usize, nominal: &[SVector<f64, 10>]) -> DMatrix<f64> {
-    let mut p = DMatrix::<f64>::zeros(columns, columns);
-    for term in terms {
-        match (term.fit.candidate, &term.link) {
-            (Candidate::EffortScale(_), _) => {
-                for &c in &term.cols {
-                    p[(c, c)] += 1.0 / (EFFORT_SCALE_SIGMA * EFFORT_SCALE_SIGMA);
-                }
-            }
-            (Candidate::Inertial(l), Some(b)) => {
-                let Some(nom) = nominal.get(l) else { continue };
-                let s = link_sigmas(nom);
-                // theta^T V^T S^-2 V theta.
-                let mut v = b.v.clone();
-                for r in 0..10 {
-                    for c in 0..v.ncols() {
-                        v[(r, c)] /= s[r];
-                    }
-                }
-                let q = v.tr_mul(&v);
-                for (a, &ca) in term.cols.iter().enumerate() {
-                    for (bb, &cb) in term.cols.iter().enumerate() {
-                        p[(ca, cb)] += q[(a, bb)];
-                    }
-                }
-            }
-            _ => {}
+/// The strength (rows of the nominal gap per spread) of the effort
+/// scales' prior, whatever the links' strength: a common effort scale on
+/// every joint and a common scaling of every link's parameters change the
+/// rigid-body effort alike, and only this prior says which of the two the
+/// data are to be read as (a torque constant trusted to its spread, the
+/// rest of the change in the links).
+pub const SCALE_STRENGTH: f64 = 1.0;
+
+/// The prior's matrices over the pool's free columns, in parameter units:
+/// `theta^T P theta`, each part at its own strength (0 x 0: none).
+#[derive(Debug, Clone)]
+pub struct Prior {
+    /// The link corrections' part, at the pool's strength.
+    pub links: DMatrix<f64>,
+    /// The effort scales' part, at [`SCALE_STRENGTH`].
+    pub scales: DMatrix<f64>,
+}
+
+impl Prior {
+    /// No prior.
+    #[cfg(test)]
+    pub fn none() -> Prior {
+        Prior {
+            links: DMatrix::zeros(0, 0),
+            scales: DMatrix::zeros(0, 0),
         }
     }
-    p
+
+    /// The prior over the pool's `columns` free columns for `terms` (a
+    /// link correction's combinations through its basis; `nominal[link]`
+    /// its nominal parameters, none: no prior on it).
+    pub fn new(terms: &[Term], columns: usize, nominal: &[SVector<f64, 10>]) -> Prior {
+        let mut links = DMatrix::<f64>::zeros(columns, columns);
+        let mut scales = DMatrix::<f64>::zeros(columns, columns);
+        for term in terms {
+            match (term.fit.candidate, &term.link) {
+                (Candidate::EffortScale(_), _) => {
+                    for &c in &term.cols {
+                        scales[(c, c)] += 1.0 / (EFFORT_SCALE_SIGMA * EFFORT_SCALE_SIGMA);
+                    }
+                }
+                (Candidate::Inertial(l), Some(b)) => {
+                    let Some(nom) = nominal.get(l) else { continue };
+                    let s = link_sigmas(nom);
+                    // theta^T V^T S^-2 V theta.
+                    let mut v = b.v.clone();
+                    for r in 0..10 {
+                        for c in 0..v.ncols() {
+                            v[(r, c)] /= s[r];
+                        }
+                    }
+                    let q = v.tr_mul(&v);
+                    for (a, &ca) in term.cols.iter().enumerate() {
+                        for (bb, &cb) in term.cols.iter().enumerate() {
+                            links[(ca, cb)] += q[(a, bb)];
+                        }
+                    }
+                }
+                _ => {}
+            }
+        }
+        Prior { links, scales }
+    }
+
+    /// Whether the links' part holds any of `cols`: the only part the
+    /// strength changes.
+    pub fn holds_links(&self, cols: &[usize]) -> bool {
+        cols.iter()
+            .any(|&c| c < self.links.nrows() && self.links[(c, c)] != 0.0)
+    }
+
+    /// Adds the prior to `gram` (`X^T X` of `n` rows against a residual of
+    /// sum of squares `yy`), the links' part at `strength`.
+    pub fn add_to(&self, gram: &mut DMatrix<f64>, yy: f64, n: usize, strength: f64) {
+        if self.links.shape() == gram.shape() {
+            *gram += &self.links * weight(yy, n, strength);
+        }
+        if self.scales.shape() == gram.shape() {
+            *gram += &self.scales * weight(yy, n, SCALE_STRENGTH);
+        }
+    }
 }
 
 /// The prior's weight for a pool whose (weighted, whitened) nominal
-/// residual has sum of squares `yy` over `n` rows.
-pub fn weight(yy: f64, n: usize) -> f64 {
-    let w = STRENGTH * yy / n.max(1) as f64;
+/// residual has sum of squares `yy` over `n` rows, at `strength` rows of
+/// the gap per spread.
+pub fn weight(yy: f64, n: usize, strength: f64) -> f64 {
+    let w = strength * yy / n.max(1) as f64;
     if w.is_finite() {
         w
     } else {
@@ -122,15 +164,16 @@ pub fn weight(yy: f64, n: usize) -> f64 {
 mod tests {
     use super::*;
     use crate::diagnose::pool::{test_term, Pool};
+    use crate::inertial::{LIGHTEST, SMALLEST};
     use nalgebra::DVector;
 
-    fn pool(cols: &[Vec<f64>], y: Vec<f64>, terms: Vec<Term>, prior: DMatrix<f64>) -> Pool {
+    fn pool(cols: &[Vec<f64>], y: Vec<f64>, terms: Vec<Term>, prior: Prior) -> Pool {
         let n = y.len();
         let x = DMatrix::from_fn(n, cols.len(), |r, c| cols[c][r]);
         let yv = DVector::from_vec(y);
         let yy = yv.norm_squared();
         Pool {
-            gram: crate::diagnose::pool::penalised(&x, &prior, yy),
+            gram: crate::diagnose::pool::penalised(&x, &prior, yy, STRENGTHS[0]),
             xty: x.tr_mul(&yv),
             yy,
             x,
@@ -138,6 +181,7 @@ mod tests {
             terms,
             weights: vec![1.0],
             prior,
+            strength: STRENGTHS[0],
         }
     }
 
@@ -157,7 +201,7 @@ mod tests {
             &[c0.clone(), c1.clone()],
             y.clone(),
             vec![scale, offset],
-            DMatrix::zeros(0, 0),
+            Prior::none(),
         );
         let sol = p.solve(&[0, 1]);
         assert_eq!(sol.theta[0][0], EFFORT_SCALE_LIMIT);
@@ -175,7 +219,7 @@ mod tests {
         let mut scale = test_term(Candidate::EffortScale(0), vec![0], vec![false], None);
         scale.limit = vec![EFFORT_SCALE_LIMIT];
         let offset = test_term(Candidate::Viscous(0), vec![1], vec![true], None);
-        let q = pool(&[c0, c1], inside, vec![scale, offset], DMatrix::zeros(0, 0));
+        let q = pool(&[c0, c1], inside, vec![scale, offset], Prior::none());
         let free = q.solve(&[0, 1]);
         assert!((free.theta[0][0] - 0.3).abs() < 1e-9 && (free.theta[1][0] - 0.7).abs() < 1e-9);
     }
@@ -195,14 +239,11 @@ mod tests {
                 test_term(Candidate::EffortOffset(0), vec![1], vec![false], None),
             ]
         };
-        let probe = pool(
-            &[c.clone(), c.clone()],
-            y.clone(),
-            terms(),
-            DMatrix::zeros(0, 0),
-        );
-        let mut prior = DMatrix::zeros(2, 2);
-        prior[(0, 0)] = 1.0 / (EFFORT_SCALE_SIGMA * EFFORT_SCALE_SIGMA);
+        let probe = pool(&[c.clone(), c.clone()], y.clone(), terms(), Prior::none());
+        let mut prior = Prior::none();
+        prior.links = DMatrix::zeros(2, 2);
+        prior.scales = DMatrix::zeros(2, 2);
+        prior.scales[(0, 0)] = 1.0 / (EFFORT_SCALE_SIGMA * EFFORT_SCALE_SIGMA);
         let p = pool(&[c.clone(), c], y, terms(), prior);
         let sol = p.solve(&[0, 1]);
         assert!(sol.theta[0][0].abs() < 1e-3, "{:?}", sol.theta);

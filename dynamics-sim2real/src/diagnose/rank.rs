@@ -5,6 +5,7 @@ use super::analysis::{Fit, Prepared};
 use super::candidate::Candidate;
 use super::motor::MotorGuess;
 use super::report::{Parameter, Ranked};
+use crate::effects::SIGN_SMOOTHING;
 use dynamics_runtime::Robot;
 
 /// The best variant of each (kind, place), best AICc first; a richer model
@@ -40,12 +41,14 @@ pub fn best_per_place(
     if best.len() > 1 {
         let top = best[0].candidate;
         let simpler = match top {
-            Candidate::Stribeck(j, _) => Some(Candidate::Coulomb(j)),
+            Candidate::Stribeck(j, _) => Some(Candidate::Coulomb(j, SIGN_SMOOTHING)),
             Candidate::Elasticity(j) | Candidate::Backlash(j) => Some(Candidate::Armature(j)),
             _ => None,
         };
         if let Some(s) = simpler {
-            if let Some(i) = best.iter().position(|f| f.candidate == s) {
+            // (Any grid variant of the simpler kind: one per place here.)
+            let same = |c: Candidate| c.kind() == s.kind() && c.joint() == s.joint();
+            if let Some(i) = best.iter().position(|f| same(f.candidate)) {
                 let gain = best[i].aicc(n) - best[0].aicc(n);
                 let motor_side = matches!(s, Candidate::Armature(_));
                 if gain < nesting_margin || (motor_side && quiet(&best[i])) {
@@ -113,6 +116,12 @@ pub fn ranked_entry<R: Robot<N>, const N: usize>(
         })
         .collect();
     match c {
+        // (A grid value: its spread is the grid's step.)
+        Candidate::Coulomb(_, vw) => parameters.push(Parameter {
+            name: "vw".into(),
+            value: vw,
+            std: vw * 0.5,
+        }),
         Candidate::Stribeck(_, vs) => parameters.push(Parameter {
             name: "vs".into(),
             value: vs,
@@ -205,7 +214,7 @@ mod tests {
         assert_eq!(quiet[1].candidate, Candidate::Elasticity(1));
         // Stribeck 30 ahead of Coulomb stays first whatever `quiet` says.
         let friction = vec![
-            fit(Candidate::Coulomb(0), 1034.0, 1),
+            fit(Candidate::Coulomb(0, SIGN_SMOOTHING), 1034.0, 1),
             fit(Candidate::Stribeck(0, 0.03), 1000.0, 3),
         ];
         let s = best_per_place(friction, n, 10.0, &|_| true);

@@ -7,6 +7,7 @@
 //! [`diagnose`](super::diagnose) made, and then applied unchanged to the
 //! held-out data.
 
+use crate::effects::SIGN_SMOOTHING;
 use thiserror::Error;
 
 use super::analysis::{fit, Prepared};
@@ -175,7 +176,7 @@ fn candidate<R: Robot<N>, const N: usize>(r: &Ranked) -> Result<Candidate, Trace
             .ok_or_else(|| err(format!("no parameter `{name}`")))
     };
     Ok(match kind {
-        EffectKind::CoulombFriction => Candidate::Coulomb(joint()?),
+        EffectKind::CoulombFriction => Candidate::Coulomb(joint()?, SIGN_SMOOTHING),
         EffectKind::ViscousFriction => Candidate::Viscous(joint()?),
         EffectKind::StribeckFriction => Candidate::Stribeck(joint()?, parameter("vs")?),
         EffectKind::Armature => Candidate::Armature(joint()?),

@@ -59,6 +59,7 @@ impl Folds {
                     terms: pool.terms.clone(),
                     weights: pool.weights.clone(),
                     prior: pool.prior.clone(),
+                    strength: pool.strength,
                 };
                 Block {
                     gram,
@@ -140,7 +141,10 @@ mod tests {
         cols.extend(noise_cols);
         let x = DMatrix::from_fn(n, cols.len(), |r, c| cols[c][r]);
         let yv = DVector::from_vec(y.clone());
-        let mut terms = vec![term(Candidate::Coulomb(0), 0)];
+        let mut terms = vec![term(
+            Candidate::Coulomb(0, crate::effects::SIGN_SMOOTHING),
+            0,
+        )];
         terms.extend((1..cols.len()).map(|c| term(Candidate::EffortOffset(0), c)));
         let pool = test_pool(x.clone(), yv.clone(), terms, 1);
         let folds = Folds::new(&pool, 1).expect("enough rows");

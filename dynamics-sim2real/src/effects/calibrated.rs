@@ -395,7 +395,7 @@ mod tests {
     #[test]
     fn friction_and_armature_add_what_the_plant_adds() {
         let effects = vec![
-            Effect::CoulombFriction { joint: 0, fc: 0.4 },
+            Effect::coulomb(0, 0.4),
             Effect::ViscousFriction { joint: 1, fv: 0.3 },
             Effect::Armature {
                 joint: 2,

@@ -32,12 +32,17 @@ pub fn smooth_sign(v: f64) -> f64 {
 /// ```
 #[derive(Debug, Clone, Copy, PartialEq)]
 pub enum Effect {
-    /// `Q_j = -fc sign(qd_j)` (N m or N).
+    /// `Q_j = -fc tanh(qd_j / vw)` (N m or N): Coulomb friction whose
+    /// sign turns over the velocity width `vw` ([`SIGN_SMOOTHING`] for a
+    /// sharp one; real joints' friction often turns over tenths of a rad/s,
+    /// e.g. the Panda's published sigmoid model).
     CoulombFriction {
         /// Joint index.
         joint: usize,
         /// Coulomb level Fc.
         fc: f64,
+        /// Velocity width vw > 0 (rad/s or m/s).
+        vw: f64,
     },
     /// `Q_j = -fv qd_j`.
     ViscousFriction {
@@ -206,6 +211,23 @@ impl Effect {
         }
     }
 
+    /// Sharp Coulomb friction `fc` at `joint` (velocity width
+    /// [`SIGN_SMOOTHING`]).
+    ///
+    /// ```
+    /// use dynamics_sim2real::effects::{Effect, SIGN_SMOOTHING};
+    /// let e = Effect::coulomb(1, 0.3);
+    /// assert_eq!(e, Effect::CoulombFriction { joint: 1, fc: 0.3, vw: SIGN_SMOOTHING });
+    /// assert!((e.joint_force(1.0) + 0.3).abs() < 1e-12);
+    /// ```
+    pub fn coulomb(joint: usize, fc: f64) -> Effect {
+        Effect::CoulombFriction {
+            joint,
+            fc,
+            vw: SIGN_SMOOTHING,
+        }
+    }
+
     /// The joint it sits at, for joint effects.
     pub fn joint(&self) -> Option<usize> {
         match *self {
@@ -234,7 +256,7 @@ impl Effect {
     /// effects that are not joint friction).
     pub fn joint_force(&self, v: f64) -> f64 {
         match *self {
-            Effect::CoulombFriction { fc, .. } => -fc * smooth_sign(v),
+            Effect::CoulombFriction { fc, vw, .. } => -fc * (v / vw).tanh(),
             Effect::ViscousFriction { fv, .. } => -fv * v,
             Effect::StribeckFriction { fc, fs, vs, .. } => {
                 -(fc + (fs - fc) * (-(v / vs).powi(2)).exp()) * smooth_sign(v)
@@ -295,7 +317,10 @@ impl Effect {
             }
         };
         match *self {
-            Effect::CoulombFriction { fc, .. } => check("fc", fc, false),
+            Effect::CoulombFriction { fc, vw, .. } => {
+                check("fc", fc, false)?;
+                check("vw", vw, true)
+            }
             Effect::ViscousFriction { fv, .. } => check("fv", fv, false),
             Effect::StribeckFriction { fc, fs, vs, .. } => {
                 check("fc", fc, false)?;
@@ -371,7 +396,11 @@ mod tests {
 
     #[test]
     fn friction_laws_oppose_motion_and_have_their_levels() {
-        let c = Effect::CoulombFriction { joint: 0, fc: 2.0 };
+        let c = Effect::CoulombFriction {
+            joint: 0,
+            fc: 2.0,
+            vw: SIGN_SMOOTHING,
+        };
         assert!((c.joint_force(1.0) + 2.0).abs() < 1e-12);
         assert!((c.joint_force(-1.0) - 2.0).abs() < 1e-12);
         let s = Effect::StribeckFriction {

@@ -9,9 +9,12 @@
 use nalgebra::{Matrix3, SVector, Vector3};
 use thiserror::Error;
 
+mod barrier;
 mod consistent;
+mod size;
 
 pub use consistent::{complete, margin, nearest_physical, pseudo_inertia, Completed};
+pub use size::{units, LIGHTEST, SMALLEST};
 
 /// Names of the ten parameters, in order.
 pub const PARAMETER_NAMES: [&str; 10] = [

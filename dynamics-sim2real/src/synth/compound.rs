@@ -99,10 +99,7 @@ pub fn draw_compound<R: Robot<N>, const N: usize>(
         CompoundCase::RealisticArm => {
             for j in 0..N {
                 let peak = scales.peak_effort[j].max(1e-6);
-                out.push(Effect::CoulombFriction {
-                    joint: j,
-                    fc: peak * rng.uniform(0.02, 0.08),
-                });
+                out.push(Effect::coulomb(j, peak * rng.uniform(0.02, 0.08)));
                 out.push(Effect::ViscousFriction {
                     joint: j,
                     fv: peak * rng.uniform(0.02, 0.08) / scales.peak_speed[j].max(1e-3),

@@ -119,10 +119,7 @@ pub fn draw_effect<const N: usize>(
     Some(match kind {
         // Drawn by the compound generator, which knows the robot's links.
         EffectKind::None | EffectKind::InertialParameters => return None,
-        EffectKind::CoulombFriction => Effect::CoulombFriction {
-            joint: j,
-            fc: peak * rng.uniform(0.005, 0.03),
-        },
+        EffectKind::CoulombFriction => Effect::coulomb(j, peak * rng.uniform(0.005, 0.03)),
         EffectKind::ViscousFriction => Effect::ViscousFriction {
             joint: j,
             fv: peak * rng.uniform(0.005, 0.03) / scales.peak_speed[j].max(1e-3),

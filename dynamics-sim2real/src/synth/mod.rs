@@ -137,7 +137,7 @@ pub enum SynthError {
 ///     joint j = revolute(base -> rod) { transfer = [rot_z(q)]; }
 /// }
 /// let opts = SynthOptions::<1> { duration: 1.0, ..Default::default() };
-/// let data = synthesize(&Pendulum::default(), &[Effect::CoulombFriction { joint: 0, fc: 0.1 }], &opts).unwrap();
+/// let data = synthesize(&Pendulum::default(), &[Effect::coulomb(0, 0.1)], &opts).unwrap();
 /// assert_eq!(data.len(), 1001);
 /// ```
 pub fn synthesize<R: Robot<N> + Clone, const N: usize>(
@@ -218,7 +218,7 @@ impl<const N: usize> Synthesized<N> {
 /// let opts = SynthOptions::<1> { duration: 1.0, ..Default::default() };
 /// let robot = Pendulum::default();
 /// let none = synthesize_with_size(&robot, &[], &opts).unwrap();
-/// let fc = synthesize_with_size(&robot, &[Effect::CoulombFriction { joint: 0, fc: 0.1 }], &opts).unwrap();
+/// let fc = synthesize_with_size(&robot, &[Effect::coulomb(0, 0.1)], &opts).unwrap();
 /// assert!(none.snr() < 1e-3 && fc.effect_rms[0] > 0.05 && fc.effect_rms[0] <= 0.1);
 /// ```
 pub fn synthesize_with_size<R: Robot<N> + Clone, const N: usize>(

@@ -53,7 +53,7 @@ fn conservative_add_ons_conserve_energy() {
 #[test]
 fn friction_damping_and_resistance_never_create_energy() {
     for e in [
-        Effect::CoulombFriction { joint: 0, fc: 0.5 },
+        Effect::coulomb(0, 0.5),
         Effect::ViscousFriction { joint: 1, fv: 0.2 },
         Effect::StribeckFriction {
             joint: 2,

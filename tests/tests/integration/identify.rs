@@ -25,10 +25,7 @@ fn friction_and_rotor_inertia_of_every_joint_are_recovered() {
     let (fc, fv, ia) = ([0.6, 0.3, 0.08], [0.5, 0.2, 0.05], [0.03, 0.01, 0.004]);
     let mut truth = Vec::new();
     for j in 0..3 {
-        truth.push(Effect::CoulombFriction {
-            joint: j,
-            fc: fc[j],
-        });
+        truth.push(Effect::coulomb(j, fc[j]));
         truth.push(Effect::ViscousFriction {
             joint: j,
             fv: fv[j],
@@ -195,7 +192,7 @@ fn a_heavier_link_is_identified_through_its_efforts() {
     let delta = point_mass(0.25, [0.08, 0.0, 0.0]);
     let mut truth = vec![Effect::InertialParameters { link: 2, delta }];
     for j in 0..3 {
-        truth.push(Effect::CoulombFriction { joint: j, fc: 0.3 });
+        truth.push(Effect::coulomb(j, 0.3));
         truth.push(Effect::ViscousFriction { joint: j, fv: 0.2 });
     }
     let opts = |seed| SynthOptions::<3> {
@@ -257,10 +254,7 @@ fn panda_friction_on_every_joint_is_recovered_and_the_gap_closes() {
     let fv = [0.6, 0.6, 0.4, 0.4, 0.2, 0.2, 0.1];
     let mut truth = Vec::new();
     for j in 0..7 {
-        truth.push(Effect::CoulombFriction {
-            joint: j,
-            fc: fc[j],
-        });
+        truth.push(Effect::coulomb(j, fc[j]));
         truth.push(Effect::ViscousFriction {
             joint: j,
             fv: fv[j],

@@ -37,6 +37,8 @@ use super::analysis::{fit, Prepared};
 use super::eliminate::{eliminate, full};
 use super::parallel;
 use super::pool::{fixed_column, Pool, Solution};
+use super::prior::STRENGTHS;
+use super::strength;
 use super::validate::Folds;
 use super::weights::loud_joints;
 use super::Options;
@@ -148,6 +150,11 @@ pub fn explain<R: Robot<N>, const N: usize>(
         if explicit_crit(pool, &other) < explicit_crit(pool, &set) && cv(&other) < cv(&set) {
             set = reweighted::<N>(pool, other, options);
         }
+    }
+    // The prior's strength by cross-validation of the set (`strength.rs`);
+    // the selection resumes from the set under a weaker one.
+    if strength::choose::<N>(pool, &set) != STRENGTHS[0] {
+        set = select::<N>(pool, set, options);
     }
     for _ in 0..ROUNDS {
         let sol = pool.solve(&set);

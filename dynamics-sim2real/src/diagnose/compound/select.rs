@@ -42,7 +42,7 @@ pub(super) fn explicit_crit(pool: &Pool, set: &[usize]) -> f64 {
 /// The simpler term a richer one nests at its place.
 pub(super) fn simpler(c: Candidate) -> Option<fn(&Candidate) -> bool> {
     match c {
-        Candidate::Stribeck(..) => Some(|s| matches!(s, Candidate::Coulomb(_))),
+        Candidate::Stribeck(..) => Some(|s| matches!(s, Candidate::Coulomb(..))),
         Candidate::Elasticity(_) | Candidate::Backlash(_) => {
             Some(|s| matches!(s, Candidate::Armature(_)))
         }

@@ -38,6 +38,24 @@ pub fn fixed_column<const N: usize>(f: &Fit, p: &Prepared<N>) -> Vec<f64> {
     whitened(p, |k| p.sig.residual[k] - after[k])
 }
 
+/// The least values of a linear candidate's parameters: none, or 0 for a
+/// sign-constrained one, except that a friction correction may take away
+/// the friction the nominal model carries at its joint (its Coulomb level
+/// for Coulomb and Stribeck's `fc`, its viscous coefficient for viscous).
+fn lower_bounds<const N: usize>(c: Candidate, p: &Prepared<N>) -> Vec<f64> {
+    let (coulomb, viscous) = &p.basis.friction;
+    c.linear_parameters()
+        .iter()
+        .enumerate()
+        .map(|(i, &(_, nonneg))| match (c, i) {
+            _ if !nonneg => f64::NEG_INFINITY,
+            (Candidate::Coulomb(j, _) | Candidate::Stribeck(j, _), 0) => -coulomb[j],
+            (Candidate::Viscous(j), 0) => -viscous[j],
+            _ => 0.0,
+        })
+        .collect()
+}
+
 impl Pool {
     /// The pool of `fits` on `p` (every single fit, grid variants too) and
     /// of the link corrections whose whitened regressor columns are `links`
@@ -66,7 +84,7 @@ impl Pool {
                 terms.push(Term {
                     fit: f.clone(),
                     cols: vec![],
-                    nonneg: vec![],
+                    lower: vec![],
                     limit: vec![],
                     fixed: Some(cols.len() - 1),
                     k: f.k,
@@ -82,7 +100,7 @@ impl Pool {
                 terms.push(Term {
                     fit: f.clone(),
                     cols: (at..cols.len()).collect(),
-                    nonneg: c.linear_parameters().iter().map(|p| p.1).collect(),
+                    lower: lower_bounds(c, p),
                     limit: c
                         .linear_parameters()
                         .iter()
@@ -117,7 +135,7 @@ impl Pool {
                     k: r,
                 },
                 cols: (at..cols.len()).collect(),
-                nonneg: vec![false; r],
+                lower: vec![f64::NEG_INFINITY; r],
                 limit: vec![f64::INFINITY; r],
                 fixed: None,
                 k: r,
@@ -129,8 +147,9 @@ impl Pool {
         let y = DVector::from_vec(whitened(p, |k| p.sig.residual[k]));
         let xty = x.tr_mul(&y);
         let yy = y.norm_squared();
-        let prior = prior::matrix(&terms, cols.len(), nominal);
-        let gram = penalised(&x, &prior, yy);
+        let prior = prior::Prior::new(&terms, cols.len(), nominal);
+        let strength = prior::STRENGTHS[0];
+        let gram = penalised(&x, &prior, yy, strength);
         Pool {
             x,
             y,
@@ -140,6 +159,7 @@ impl Pool {
             terms,
             weights: vec![1.0; N],
             prior,
+            strength,
         }
     }
 }

@@ -16,7 +16,7 @@ use nalgebra::{DMatrix, DVector};
 use super::analysis::Fit;
 use super::candidate::Candidate;
 use super::links::LinkBasis;
-use super::prior;
+use super::prior::Prior;
 
 mod build;
 mod solve;
@@ -32,8 +32,10 @@ pub struct Term {
     pub fit: Fit,
     /// Free columns (linear parameters), indices into the pool.
     pub cols: Vec<usize>,
-    /// Which free columns must stay >= 0.
-    pub nonneg: Vec<bool>,
+    /// Per free column, the least value its parameter may take (0: a
+    /// sign-constrained one; a friction correction's the nominal model's
+    /// own level negated, `nominal_friction.rs`; `-inf`: none).
+    pub lower: Vec<f64>,
     /// Per free column, the largest magnitude its parameter may take
     /// (infinite: none; an effort scale's [`EFFORT_SCALE_LIMIT`]).
     pub limit: Vec<f64>,
@@ -52,7 +54,7 @@ impl Term {
     pub fn family(&self) -> (u8, Option<usize>) {
         let c = self.fit.candidate;
         let f = match c {
-            Candidate::Coulomb(_) | Candidate::Stribeck(..) => 0,
+            Candidate::Coulomb(..) | Candidate::Stribeck(..) => 0,
             Candidate::Armature(_) | Candidate::Elasticity(_) | Candidate::Backlash(_) => 1,
             Candidate::Viscous(_) => 2,
             Candidate::Payload => 3,
@@ -85,10 +87,13 @@ pub struct Pool {
     /// Per joint, the weight of its rows on top of the whitening by the
     /// noise floor (1: the floor alone; `reweight`).
     pub weights: Vec<f64>,
-    /// The prior toward the nominal model (`prior.rs`): `theta^T P theta`
-    /// over the free columns, in parameter units, added to the Gram matrix
-    /// times [`prior::weight`] (0 x 0: none).
-    pub prior: DMatrix<f64>,
+    /// The prior toward the nominal model (`prior.rs`), added to the Gram
+    /// matrix at its weight ([`weight`](super::prior::weight)).
+    pub prior: Prior,
+    /// How many rows of the nominal gap one spread of the links' prior is
+    /// worth ([`STRENGTHS`](super::prior::STRENGTHS), chosen by cross-validation:
+    /// `strength.rs`).
+    pub strength: f64,
 }
 
 /// A joint fit of a subset of terms.
@@ -124,7 +129,7 @@ impl Pool {
         }
         self.xty = self.x.tr_mul(&self.y);
         self.yy = self.y.norm_squared();
-        self.gram = penalised(&self.x, &self.prior, self.yy);
+        self.gram = penalised(&self.x, &self.prior, self.yy, self.strength);
         self.weights = w.to_vec();
     }
 
@@ -158,6 +163,12 @@ impl Pool {
         self.terms[t].fit = fit;
     }
 
+    /// Sets the prior's strength (the Gram matrix follows).
+    pub fn set_strength(&mut self, strength: f64) {
+        self.strength = strength;
+        self.gram = penalised(&self.x, &self.prior, self.yy, strength);
+    }
+
     /// Rows in the fit.
     pub fn n(&self) -> usize {
         self.y.len()
@@ -180,12 +191,15 @@ impl Pool {
 }
 
 /// `X^T X` plus the prior's matrix at its weight for a residual of sum of
-/// squares `yy` (`prior.rs`).
-pub(in crate::diagnose) fn penalised(x: &DMatrix<f64>, p: &DMatrix<f64>, yy: f64) -> DMatrix<f64> {
+/// squares `yy` and a prior of `strength` (`prior.rs`).
+pub(in crate::diagnose) fn penalised(
+    x: &DMatrix<f64>,
+    p: &Prior,
+    yy: f64,
+    strength: f64,
+) -> DMatrix<f64> {
     let mut g = x.tr_mul(x);
-    if p.shape() == g.shape() {
-        g += p * prior::weight(yy, x.nrows());
-    }
+    p.add_to(&mut g, yy, x.nrows(), strength);
     g
 }
 
@@ -210,8 +224,11 @@ pub(crate) fn test_term(
             k,
         },
         limit: vec![f64::INFINITY; cols.len()],
+        lower: nonneg
+            .iter()
+            .map(|&n| if n { 0.0 } else { f64::NEG_INFINITY })
+            .collect(),
         cols,
-        nonneg,
         fixed,
         k,
         link: None,
@@ -230,7 +247,8 @@ pub(crate) fn test_pool(x: DMatrix<f64>, y: DVector<f64>, terms: Vec<Term>, join
         y,
         terms,
         weights: vec![1.0; joints],
-        prior: DMatrix::zeros(0, 0),
+        prior: Prior::none(),
+        strength: super::prior::STRENGTHS[0],
     }
 }
 

@@ -8,22 +8,23 @@ use super::{Pool, Solution};
 
 impl Pool {
     /// The joint least-squares fit of `set` (term indices), penalised by
-    /// the prior toward the nominal model (`prior.rs`); sign constraints
-    /// kept by dropping the most negative constrained parameter and solving
-    /// again, limits by holding the parameter furthest beyond its limit at
-    /// the limit and solving again.
+    /// the prior toward the nominal model (`prior.rs`); lower bounds (a
+    /// sign constraint is one at 0) kept by holding the parameter furthest
+    /// below its bound at the bound and solving again, limits by holding
+    /// the parameter furthest beyond its limit at the limit and solving
+    /// again.
     pub fn solve(&self, set: &[usize]) -> Solution {
-        // (set pos, column, nonneg, limit)
-        let mut free: Vec<(usize, usize, bool, f64)> = Vec::new();
+        // (set pos, column, lower bound, limit)
+        let mut free: Vec<(usize, usize, f64, f64)> = Vec::new();
         let mut fixed: Vec<usize> = Vec::new();
         let mut k = 0;
         for (i, &t) in set.iter().enumerate() {
             let term = &self.terms[t];
             k += term.k;
             for (m, c) in term.cols.iter().enumerate() {
-                let nn = term.nonneg.get(m).copied().unwrap_or(false);
+                let low = term.lower.get(m).copied().unwrap_or(f64::NEG_INFINITY);
                 let lim = term.limit.get(m).copied().unwrap_or(f64::INFINITY);
-                free.push((i, *c, nn, lim));
+                free.push((i, *c, low, lim));
             }
             fixed.extend(term.fixed);
         }
@@ -87,14 +88,20 @@ impl Pool {
                 continue;
             };
             let z = ch.solve(&bv);
+            // The parameter furthest below its bound (in the column's unit
+            // scale), held at it.
             let worst = idx
                 .iter()
-                .zip(z.iter())
-                .filter(|(&i, &v)| free[i].2 && v < 0.0)
-                .min_by(|a, b| a.1.total_cmp(b.1))
-                .map(|(&i, _)| i);
+                .enumerate()
+                .map(|(r, &i)| (i, (z[r] / d[r] - free[i].2) * d[r]))
+                .filter(|&(_, below)| below < 0.0)
+                .min_by(|a, b| a.1.total_cmp(&b.1))
+                .map(|(i, _)| i);
             if let Some(i) = worst {
                 active[i] = false;
+                if free[i].2 != 0.0 {
+                    held.push((i, free[i].2));
+                }
                 continue;
             }
             // The parameter furthest beyond its limit (relative to it).

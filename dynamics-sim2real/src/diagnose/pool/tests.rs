@@ -2,6 +2,7 @@ use super::test_pool;
 use super::test_term as term;
 use super::*;
 use crate::diagnose::fit::constrained_least_squares;
+use crate::effects::SIGN_SMOOTHING;
 
 /// The Gram route against a direct least-squares fit of the same
 /// columns, with a fixed column subtracted and a sign constraint that
@@ -22,7 +23,12 @@ fn joint_fits_from_the_gram_match_direct_least_squares() {
     let x = DMatrix::from_fn(n, 4, |r, c| cols[c][r]);
     let yv = DVector::from_vec(y.clone());
     let terms = vec![
-        term(Candidate::Coulomb(0), vec![0], vec![true], None),
+        term(
+            Candidate::Coulomb(0, SIGN_SMOOTHING),
+            vec![0],
+            vec![true],
+            None,
+        ),
         term(Candidate::Viscous(0), vec![1], vec![true], None),
         term(Candidate::EffortOffset(0), vec![2], vec![false], None),
         term(Candidate::Elasticity(1), vec![], vec![], Some(3)),

@@ -137,6 +137,8 @@ pub fn of(windows: &Windows, c: Candidate) -> Option<Window> {
 /// The pool's columns of the windowed terms limited to their windows (two
 /// more parameters each).
 pub fn limit_pool<const N: usize>(pool: &mut Pool, windows: &Windows, p: &Prepared<N>) {
+    // (The windowed kinds, `windowable`, carry no prior: their rows of the
+    // Gram matrix are their columns' products alone.)
     for t in 0..pool.terms.len() {
         let Some(w) = of(windows, pool.terms[t].fit.candidate) else {
             continue;
