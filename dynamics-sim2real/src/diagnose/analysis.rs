@@ -127,7 +127,7 @@ impl Fit {
             | (Candidate::Backlash(j), Some(g))
             | (Candidate::Armature(j), Some(g)) => {
                 let backlash = matches!(self.candidate, Candidate::Backlash(_));
-                let t = motor_transmitted(&p.sig, j, &g, backlash, p.basis.inertia[j]);
+                let t = motor_transmitted(&p.sig, j, &g, backlash, &p.basis.compliance);
                 for k in a..z {
                     if t[k].is_finite() {
                         r[k][j] = t[k] - p.sig.model[k][j];

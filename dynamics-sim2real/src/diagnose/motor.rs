@@ -8,6 +8,7 @@ use std::f64::consts::PI;
 use super::motor_sim::transmitted_raw_many;
 use super::signals::Signals;
 use crate::effects::Effect;
+use nalgebra::SVector;
 
 /// Motor-side parameters searched for elasticity and backlash.
 #[derive(Debug, Clone, Copy, PartialEq)]
@@ -138,10 +139,15 @@ pub fn motor_feasible(
 }
 
 /// Simulates the motor side of joint `j` driven by the measured effort
-/// (held per sample) and the link of joint `j` (own inertia `inertia`);
-/// returns the smoothed effort it passes to the link at every sample (NaN
-/// outside the range). The link follows the measured (smoothed) motion
-/// plus what the transmitted effort adds over the nominal model's,
+/// (held per sample) and the link of joint `j` (its acceleration per unit
+/// of its own effort `compliance[k][j]`, `Basis::compliance`); returns the
+/// smoothed effort it passes to the link at every sample (NaN outside the
+/// range). The link follows the measured (smoothed) motion plus what the
+/// transmitted effort adds over the nominal model's (times that
+/// compliance: the joint's own response with the other joints' efforts
+/// held, not one over its mean inertia: on the MAR, q2's and the slide's
+/// response is 1.2 to 2.1 times one over their own inertia, and q2's
+/// inertia runs from 0.9 to 3.0 kg m^2 with the slide),
 /// pulled back to the measurement at [`OBSERVER_HZ`]: a link pinned to
 /// the smoothed motion would meet a stiff contact or spring at positions
 /// the 40 ms smoothing has blurred (a backlash crossing lasts about as
@@ -153,10 +159,10 @@ pub fn motor_transmitted<const N: usize>(
     j: usize,
     g: &MotorGuess,
     backlash: bool,
-    inertia: f64,
+    compliance: &[SVector<f64, N>],
 ) -> Vec<f64> {
     sig.sg
-        .apply(&motor_transmitted_raw(sig, j, g, backlash, inertia), 0)
+        .apply(&motor_transmitted_raw(sig, j, g, backlash, compliance), 0)
 }
 
 /// [`motor_transmitted`] before smoothing (NaN outside the range, and
@@ -166,9 +172,9 @@ pub fn motor_transmitted_raw<const N: usize>(
     j: usize,
     g: &MotorGuess,
     backlash: bool,
-    inertia: f64,
+    compliance: &[SVector<f64, N>],
 ) -> Vec<f64> {
-    transmitted_raw_many(sig, j, std::slice::from_ref(g), backlash, inertia)
+    transmitted_raw_many(sig, j, std::slice::from_ref(g), backlash, compliance)
         .pop()
         .unwrap_or_default()
 }

@@ -41,7 +41,7 @@ pub(super) fn stiff_rotor<const N: usize>(linear: Fit, j: usize, p: &Prepared<N>
     };
     // Whitened SSE with each rotor of `gs` (simulated side by side).
     let costs = |gs: &[MotorGuess]| -> Vec<f64> {
-        transmitted_raw_many(&p.sig, j, gs, false, inertia)
+        transmitted_raw_many(&p.sig, j, gs, false, &p.basis.compliance)
             .iter()
             .map(|t| {
                 let sse: f64 = base - own
@@ -128,7 +128,7 @@ pub(super) fn fit_motor<R: Robot<N>, const N: usize>(c: Candidate, p: &Prepared<
     // Whitened rows of joint j with each guess of `gs` (simulated side by
     // side).
     let rows = |gs: &[MotorGuess]| -> Vec<Vec<f64>> {
-        transmitted_raw_many(&p.sig, j, gs, backlash, inertia)
+        transmitted_raw_many(&p.sig, j, gs, backlash, &p.basis.compliance)
             .iter()
             .map(|t| {
                 p.rows

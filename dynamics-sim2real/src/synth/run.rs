@@ -17,6 +17,15 @@ use dynamics_runtime::Robot;
 /// A velocity reverses when it reaches this fraction of its peak speed on
 /// both sides of zero.
 const REVERSAL: f64 = 0.05;
+/// The effect's size is measured away from the record's ends by this much,
+/// s: the half-width of the diagnosis's smoothing (`diagnose::signals`),
+/// where no differentiating filter of that width has a full window. What
+/// happens there is not in the data an analysis of the motion uses: a
+/// joint started at the reference's speed and stopped by its friction
+/// within 10 ms (a generated Stribeck case at 100 Hz: +0.12 rad/s at t = 0,
+/// never positive again) counted as reversing, and its start-up as
+/// breakaway, on one sample.
+const EDGE: f64 = 0.04;
 
 /// One experiment: the plant, the reference, the controller, the sensors.
 pub(super) struct Run<'a, R, const N: usize> {
@@ -201,7 +210,15 @@ impl<'a, R: Robot<N> + Clone, const N: usize> Run<'a, R, N> {
             SVector::<f64, N>::zeros(),
             SVector::<f64, N>::zeros(),
         );
-        for k in 1..n.saturating_sub(1) {
+        // The samples the size is measured on.
+        let (t0, t1) = (
+            times.first().copied().unwrap_or(0.0) + EDGE,
+            times.last().copied().unwrap_or(0.0) - EDGE,
+        );
+        let inner: Vec<usize> = (1..n.saturating_sub(1))
+            .filter(|&k| times[k] >= t0 && times[k] <= t1)
+            .collect();
+        for &k in &inner {
             let qdd = (seen[k + 1].1 - seen[k - 1].1) / (times[k + 1] - times[k - 1]);
             let held = (recorded[k - 1] + recorded[k]) * 0.5;
             let gap = held - robot.inverse_dynamics(&seen[k].0, &seen[k].1, &qdd);
@@ -219,13 +236,13 @@ impl<'a, R: Robot<N> + Clone, const N: usize> Run<'a, R, N> {
         // Whether each joint's velocity reverses (reaches a twentieth of
         // its peak speed on both sides of zero).
         let reverses = SVector::<bool, N>::from_fn(|j, _| {
-            let (lo, hi) = seen.iter().fold((0.0f64, 0.0f64), |(lo, hi), s| {
-                (lo.min(s.1[j]), hi.max(s.1[j]))
+            let (lo, hi) = inner.iter().fold((0.0f64, 0.0f64), |(lo, hi), &k| {
+                (lo.min(seen[k].1[j]), hi.max(seen[k].1[j]))
             });
             let peak = hi.max(-lo);
             hi >= REVERSAL * peak && -lo >= REVERSAL * peak && peak > 0.0
         });
-        let count = n.saturating_sub(2).max(1) as f64;
+        let count = inner.len().max(1) as f64;
         let effect = (sum / count).map(f64::sqrt);
         let distinct = SVector::<f64, N>::from_fn(|j, _| {
             let contains = self.motor[j] || (self.stribeck[j] && !reverses[j]);

@@ -13,7 +13,8 @@
 //! warned), each under one damage: the window found must lie within
 //! [`WINDOW_TOLERANCE`] of the truth's, the late channel be the one named.
 //! `LOGS_SEED_BASE=N` draws other cases (base 0 was the one looked at while
-//! building).
+//! building); `LOGS_ONLY=i,j` runs single cases (printing the report and
+//! the truth), `LOGS_KEEP=DIR` keeps the cases' files there.
 
 use dynamics_cli::gap::{Recording, SynthRequest, Truth};
 use dynamics_sim2real::diagnose::Options;
@@ -234,6 +235,7 @@ fn run_case(i: usize, dir: &std::path::Path, only: &[usize]) -> Outcome {
     let (report, _) =
         diagnose_files(robot, &a, &b, &Options::default(), &|_, _| {}).expect("diagnoses");
     if !only.is_empty() {
+        eprintln!("truth: {}", truth.effect);
         eprintln!(
             "{}",
             serde_json::to_string_pretty(&report.which).unwrap_or_default()
@@ -330,9 +332,16 @@ fn run_case(i: usize, dir: &std::path::Path, only: &[usize]) -> Outcome {
 }
 
 #[test]
-#[ignore = "80-200 s of diagnosis (60 cases); identifiable by the evidence of a 1 kHz record (rate_snr): base 12000 31/33 named (a backlash on the MAR named elastic twice), fresh bases 21000 36/39, 22000 27/28, 23000 34/34, 24000 31/32, everything else right on all five; run with --ignored"]
+#[ignore = "50-200 s of diagnosis (60 cases); identifiable by the evidence of a 1 kHz record (rate_snr): base 12000 31/33 named (a backlash on the MAR named elastic twice), bases 21000 38/39, 22000 27/28, 23000 33/34, 24000 31/31, fresh 31000 34/36 (two RRP slide backlashes), 32000 35/35, 33000 34/35; joints, controls, warnings right on all eight; run with --ignored"]
 fn diagnoser_names_the_effect_in_damaged_logs() {
-    let dir = std::env::temp_dir().join(format!("dynamics-logs-{}", std::process::id()));
+    // `LOGS_KEEP=DIR` writes the cases' files there and keeps them.
+    let keep = std::env::var("LOGS_KEEP").ok();
+    let dir = keep
+        .clone()
+        .map(std::path::PathBuf::from)
+        .unwrap_or_else(|| {
+            std::env::temp_dir().join(format!("dynamics-logs-{}", std::process::id()))
+        });
     std::fs::create_dir_all(&dir).expect("temp dir");
     // `LOGS_ONLY=3,17` runs only those cases (to look at one closely).
     let only: Vec<usize> = std::env::var("LOGS_ONLY")
@@ -342,7 +351,9 @@ fn diagnoser_names_the_effect_in_damaged_logs() {
         .filter(|i| only.is_empty() || only.contains(i))
         .map(|i| run_case(i, &dir, &only))
         .collect();
-    let _ = std::fs::remove_dir_all(&dir);
+    if keep.is_none() {
+        let _ = std::fs::remove_dir_all(&dir);
+    }
     let ident: Vec<&Outcome> = outcomes.iter().filter(|o| o.identifiable).collect();
     let named = ident.iter().filter(|o| o.said == o.truth.kind).count();
     let joints: Vec<&&Outcome> = ident

@@ -22,18 +22,21 @@ use std::f64::consts::PI;
 use super::motor::{MotorGuess, OBSERVER_HZ};
 use super::signals::Signals;
 use derivative::{add, force, Lanes};
+use nalgebra::SVector;
 
 /// Lanes integrated side by side.
 pub const LANES: usize = 4;
 
 /// The raw transmitted effort (see `motor::motor_transmitted_raw`) of
-/// every guess of `gs` at joint `j`, in their order.
+/// every guess of `gs` at joint `j`, in their order; `compliance` per
+/// sample is the link's acceleration per unit of its own effort
+/// (`Basis::compliance`).
 pub fn transmitted_raw_many<const N: usize>(
     sig: &Signals<N>,
     j: usize,
     gs: &[MotorGuess],
     backlash: bool,
-    inertia: f64,
+    compliance: &[SVector<f64, N>],
 ) -> Vec<Vec<f64>> {
     let mut out = Vec::with_capacity(gs.len());
     let mut rest = gs;
@@ -41,12 +44,12 @@ pub fn transmitted_raw_many<const N: usize>(
         let take = rest.len().min(LANES);
         let (now, later) = rest.split_at(take);
         match (take, backlash) {
-            (1, false) => out.extend(lanes::<N, 1, false>(sig, j, now, inertia)),
-            (1, true) => out.extend(lanes::<N, 1, true>(sig, j, now, inertia)),
-            (2, false) => out.extend(lanes::<N, 2, false>(sig, j, now, inertia)),
-            (2, true) => out.extend(lanes::<N, 2, true>(sig, j, now, inertia)),
-            (_, false) => out.extend(lanes::<N, LANES, false>(sig, j, now, inertia)),
-            (_, true) => out.extend(lanes::<N, LANES, true>(sig, j, now, inertia)),
+            (1, false) => out.extend(lanes::<N, 1, false>(sig, j, now, compliance)),
+            (1, true) => out.extend(lanes::<N, 1, true>(sig, j, now, compliance)),
+            (2, false) => out.extend(lanes::<N, 2, false>(sig, j, now, compliance)),
+            (2, true) => out.extend(lanes::<N, 2, true>(sig, j, now, compliance)),
+            (_, false) => out.extend(lanes::<N, LANES, false>(sig, j, now, compliance)),
+            (_, true) => out.extend(lanes::<N, LANES, true>(sig, j, now, compliance)),
         }
         rest = later;
     }
@@ -59,13 +62,13 @@ fn lanes<const N: usize, const L: usize, const B: bool>(
     sig: &Signals<N>,
     j: usize,
     gs: &[MotorGuess],
-    inertia: f64,
+    compliance: &[SVector<f64, N>],
 ) -> Vec<Vec<f64>> {
     let n = sig.t.len();
     let (a, z) = sig.range;
     let used = gs.len().min(L);
     let nan = || vec![vec![f64::NAN; n]; used];
-    if z <= a + 1 || used == 0 {
+    if z <= a + 1 || used == 0 || compliance.len() < z {
         return nan();
     }
     let g: [MotorGuess; L] = std::array::from_fn(|l| gs[l.min(used - 1)]);
@@ -98,7 +101,6 @@ fn lanes<const N: usize, const L: usize, const B: bool>(
     const SUB: usize = 2;
     // A multiply, not a divide, on the integration's dependent chain.
     let inv_jm = g.map(|g| 1.0 / g.jm);
-    let inv_i = 1.0 / inertia;
     for k in a..z {
         for l in 0..L {
             lane_out[l][k] =
@@ -116,6 +118,8 @@ fn lanes<const N: usize, const L: usize, const B: bool>(
         );
         let h = (sig.t[k + 1] - sig.t[k]) / SUB as f64;
         let tau = sig.tau_raw[k][j];
+        // The link's response to its own effort over the interval.
+        let inv_i = 0.5 * (compliance[k][j] + compliance[k + 1][j]);
         // The measured motion and the model's effort at fraction s of the
         // interval.
         let at = |s: f64| -> [f64; 4] {

@@ -12,7 +12,7 @@ fn one_at_a_time<const N: usize>(
     j: usize,
     g: &MotorGuess,
     backlash: bool,
-    inertia: f64,
+    compliance: &[SVector<f64, N>],
 ) -> Vec<f64> {
     let n = sig.t.len();
     let (a, z) = sig.range;
@@ -47,7 +47,7 @@ fn one_at_a_time<const N: usize>(
     // five seed bases as with four steps.
     const SUB: usize = 2;
     // A multiply, not a divide, on the integration's dependent chain.
-    let (inv_jm, inv_i) = (1.0 / g.jm, 1.0 / inertia);
+    let inv_jm = 1.0 / g.jm;
     for k in a..z {
         out[k] = force(th - ql, thd - vl);
         if k + 1 >= z {
@@ -62,6 +62,7 @@ fn one_at_a_time<const N: usize>(
         );
         let h = (sig.t[k + 1] - sig.t[k]) / SUB as f64;
         let tau = sig.tau_raw[k][j];
+        let inv_i = 0.5 * (compliance[k][j] + compliance[k + 1][j]);
         // State derivative of (motor angle, motor rate, link angle, link
         // rate) at fraction s of the interval: the link follows the
         // measured motion plus what the transmitted effort adds over the
@@ -166,20 +167,26 @@ fn guesses(backlash: bool) -> Vec<MotorGuess> {
 #[test]
 fn every_lane_is_the_simulation_of_its_guess_alone() {
     let sig = signals();
+    // A link whose response to its effort varies along the motion.
+    let compliance: Vec<SVector<f64, 1>> = sig
+        .t
+        .iter()
+        .map(|&s| SVector::<f64, 1>::new(1.0 / (0.8 + 0.2 * (2.0 * s).sin())))
+        .collect();
     for backlash in [false, true] {
         let mut gs = guesses(backlash);
         // A guess whose integration blows up (a rotor of no inertia).
         gs[3].jm = 1e-12;
         let alone: Vec<Vec<f64>> = gs
             .iter()
-            .map(|g| one_at_a_time(&sig, 0, g, backlash, 0.8))
+            .map(|g| one_at_a_time(&sig, 0, g, backlash, &compliance))
             .collect();
         assert!(alone[3].iter().all(|x| x.is_nan()));
         assert!(alone[0][100].is_finite() && alone[0][100] != 0.0);
         for group in [1, 2, 3, 7] {
             let mut together = Vec::new();
             for c in gs.chunks(group) {
-                together.extend(transmitted_raw_many(&sig, 0, c, backlash, 0.8));
+                together.extend(transmitted_raw_many(&sig, 0, c, backlash, &compliance));
             }
             assert_eq!(together.len(), gs.len());
             for (a, b) in alone.iter().zip(&together) {
