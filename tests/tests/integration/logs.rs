@@ -332,7 +332,7 @@ fn run_case(i: usize, dir: &std::path::Path, only: &[usize]) -> Outcome {
 }
 
 #[test]
-#[ignore = "50-200 s of diagnosis (60 cases); identifiable by the evidence of a 1 kHz record (rate_snr): base 12000 31/33 named (a backlash on the MAR named elastic twice), bases 21000 38/39, 22000 27/28, 23000 33/34, 24000 31/31, fresh 31000 34/36 (two RRP slide backlashes), 32000 35/35, 33000 34/35; joints, controls, warnings right on all eight; run with --ignored"]
+#[ignore = "50-200 s of diagnosis (60 cases); identifiable by the evidence of a 1 kHz record (rate_snr): base 12000 31/33 named (a backlash on the MAR named elastic twice), bases 21000 36/39, 22000 27/28, 23000 34/34, 24000 31/31, fresh 31000 34/36 (two RRP slide backlashes), 32000 35/35, 33000 34/35; joints, controls, warnings right on all eight; run with --ignored"]
 fn diagnoser_names_the_effect_in_damaged_logs() {
     // `LOGS_KEEP=DIR` writes the cases' files there and keeps them.
     let keep = std::env::var("LOGS_KEEP").ok();
