@@ -35,6 +35,7 @@ mod basis;
 mod candidate;
 mod compound;
 mod eliminate;
+mod error;
 mod explain;
 mod filter;
 mod fit;
@@ -46,6 +47,7 @@ mod motor_fit;
 mod motor_sim;
 mod noise;
 mod nominal_friction;
+mod options;
 mod parallel;
 mod pool;
 mod prior;
@@ -70,121 +72,21 @@ mod yardstick;
 
 pub use analysis::{Fit, Prepared};
 pub use candidate::Candidate;
+pub use error::DiagnoseError;
 pub use filter::SavitzkyGolay;
 pub use fit::aicc;
 pub use motor::MotorGuess;
 pub use noise::SensorNoise;
+pub use options::Options;
 pub use report::*;
 pub(crate) use signals::Signals;
 
 use nalgebra::SVector;
-use thiserror::Error;
 
 use crate::data::{prepare, DataError, Measured};
 use crate::effects::{EffectKind, Tip};
 use crate::Warning;
 use dynamics_runtime::Robot;
-
-/// Options of [`diagnose`].
-#[derive(Debug, Clone, PartialEq)]
-pub struct Options {
-    /// Candidate kinds (empty: all).
-    pub kinds: Vec<EffectKind>,
-    /// AICc improvement over the nominal model below which the verdict is
-    /// `none`.
-    pub none_margin: f64,
-    /// AICc difference under which two candidates are `ambiguous`.
-    pub ambiguity_margin: f64,
-    /// When no candidate qualifies, the verdict is `unexplained` rather than
-    /// `none` if some joint's torque residual RMS is at least this many
-    /// times its noise floor: the gap is real, the candidates miss it.
-    pub unexplained_ratio: f64,
-    /// AICc improvement a richer nested model must add over the simpler one
-    /// it contains to be preferred (10: "strong evidence" on the usual
-    /// scale of AIC differences).
-    pub nesting_margin: f64,
-    /// AICc improvement each effect after the first must add to the
-    /// compound explanation (the first must add `none_margin`).
-    pub add_margin: f64,
-    /// Cross-validated deviance (block cross-validation on the training
-    /// data, `validate.rs`) each effect of the compound explanation must
-    /// save: an effect is added, and kept, only if the set predicts blocks
-    /// of the data it was not fitted on better with it than without.
-    pub cv_margin: f64,
-    /// The compound explanation stops adding effects once the residual RMS
-    /// is within this many times the noise floor on every joint; and a
-    /// motor side (elasticity, backlash) is not ranked before the rigid
-    /// rotor it contains where that rotor leaves its joint within it.
-    pub floor_ratio: f64,
-    /// Threads (0: all cores).
-    pub threads: usize,
-    /// Sensor noise, when known: the torque residual's noise floor is then
-    /// what this noise makes of it (pushed through the same smoothing and
-    /// inverse dynamics) rather than what noise of the levels estimated
-    /// from the data makes of it.
-    pub noise: Option<SensorNoise>,
-}
-
-impl Default for Options {
-    fn default() -> Self {
-        Options {
-            kinds: vec![],
-            none_margin: 100.0,
-            ambiguity_margin: 10.0,
-            unexplained_ratio: 3.0,
-            nesting_margin: 10.0,
-            add_margin: 40.0,
-            cv_margin: 0.0,
-            floor_ratio: 1.0,
-            threads: 0,
-            noise: None,
-        }
-    }
-}
-
-/// Why a diagnosis could not run.
-#[derive(Debug, Error)]
-pub enum DiagnoseError {
-    /// A data set is too short for the filter.
-    #[error(
-        "{which} data: {samples} samples over {duration:.3} s are too few (need at least {need})"
-    )]
-    TooShort {
-        /// `training` or `held-out`.
-        which: &'static str,
-        /// Samples.
-        samples: usize,
-        /// Duration.
-        duration: f64,
-        /// Samples needed.
-        need: usize,
-    },
-    /// Stated sensor noise that cannot be used.
-    #[error("sensor noise `{sensor}`: {reason}")]
-    Noise {
-        /// `q`, `qd` or `tau`.
-        sensor: &'static str,
-        /// Why.
-        reason: String,
-    },
-    /// The data could not be prepared (too many glitches, time in
-    /// milliseconds, ...).
-    #[error(transparent)]
-    Data(#[from] DataError),
-    /// No joint moves: there is nothing to identify.
-    #[error("training data: no joint moves; nothing about the robot can be identified from them")]
-    NoMotion,
-    /// The effort column of a joint has the wrong sign.
-    #[error("{which} data: joint {joint}: the measured effort correlates negatively with the nominal model's (r = {correlation:.2}): is the effort column's sign flipped?")]
-    EffortSign {
-        /// `training` or `held-out`.
-        which: &'static str,
-        /// The joint.
-        joint: String,
-        /// Correlation of the measured and the model's smoothed efforts.
-        correlation: f64,
-    },
-}
 
 fn check<const N: usize>(m: &Measured<N>, which: &'static str) -> Result<(), DiagnoseError> {
     let need = 200;

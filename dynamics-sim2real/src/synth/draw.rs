@@ -16,7 +16,7 @@ pub struct Scales<const N: usize> {
     pub peak_effort: SVector<f64, N>,
     /// Peak reference speed.
     pub peak_speed: SVector<f64, N>,
-    /// Mean of the joint's own inertia A[j][j] along the reference (the
+    /// Mean of the joint's own inertia `A[j][j]` along the reference (the
     /// inertia it moves with every other joint locked).
     pub inertia: SVector<f64, N>,
     /// Mean of `1 / (A^-1)[j][j]` along the reference: the inertia joint j

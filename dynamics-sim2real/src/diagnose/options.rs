@@ -1,0 +1,62 @@
+//! The options of a diagnosis: which effects, the margins of the
+//! information criterion, the noise floor's ratio, the threads.
+
+use super::SensorNoise;
+use crate::effects::EffectKind;
+
+/// Options of [`diagnose`](super::diagnose()).
+#[derive(Debug, Clone, PartialEq)]
+pub struct Options {
+    /// Candidate kinds (empty: all).
+    pub kinds: Vec<EffectKind>,
+    /// AICc improvement over the nominal model below which the verdict is
+    /// `none`.
+    pub none_margin: f64,
+    /// AICc difference under which two candidates are `ambiguous`.
+    pub ambiguity_margin: f64,
+    /// When no candidate qualifies, the verdict is `unexplained` rather than
+    /// `none` if some joint's torque residual RMS is at least this many
+    /// times its noise floor: the gap is real, the candidates miss it.
+    pub unexplained_ratio: f64,
+    /// AICc improvement a richer nested model must add over the simpler one
+    /// it contains to be preferred (10: "strong evidence" on the usual
+    /// scale of AIC differences).
+    pub nesting_margin: f64,
+    /// AICc improvement each effect after the first must add to the
+    /// compound explanation (the first must add `none_margin`).
+    pub add_margin: f64,
+    /// Cross-validated deviance (block cross-validation on the training
+    /// data, `validate.rs`) each effect of the compound explanation must
+    /// save: an effect is added, and kept, only if the set predicts blocks
+    /// of the data it was not fitted on better with it than without.
+    pub cv_margin: f64,
+    /// The compound explanation stops adding effects once the residual RMS
+    /// is within this many times the noise floor on every joint; and a
+    /// motor side (elasticity, backlash) is not ranked before the rigid
+    /// rotor it contains where that rotor leaves its joint within it.
+    pub floor_ratio: f64,
+    /// Threads (0: all cores).
+    pub threads: usize,
+    /// Sensor noise, when known: the torque residual's noise floor is then
+    /// what this noise makes of it (pushed through the same smoothing and
+    /// inverse dynamics) rather than what noise of the levels estimated
+    /// from the data makes of it.
+    pub noise: Option<SensorNoise>,
+}
+
+impl Default for Options {
+    fn default() -> Self {
+        Options {
+            kinds: vec![],
+            none_margin: 100.0,
+            ambiguity_margin: 10.0,
+            unexplained_ratio: 3.0,
+            nesting_margin: 10.0,
+            add_margin: 40.0,
+            cv_margin: 0.0,
+            floor_ratio: 1.0,
+            threads: 0,
+            noise: None,
+        }
+    }
+}
