@@ -79,7 +79,7 @@ mod tests {
         let link = test_term(Candidate::Inertial(0), vec![0], vec![false], None);
         let mut pool = test_pool(x, DVector::from_vec(y), vec![link], 1);
         pool.prior.links = DMatrix::from_element(1, 1, 1.0 / 0.04);
-        pool.set_strength(STRENGTHS[0]);
+        pool.gram = crate::diagnose::pool::penalised(&pool.x, &pool.prior, pool.yy, pool.strength);
         let strong = pool.solve(&[0]).theta[0][0];
         let s = choose::<1>(&mut pool, &[0]);
         let weak = pool.solve(&[0]).theta[0][0];

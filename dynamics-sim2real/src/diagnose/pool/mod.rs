@@ -16,7 +16,7 @@ use nalgebra::{DMatrix, DVector};
 use super::analysis::Fit;
 use super::candidate::Candidate;
 use super::links::LinkBasis;
-use super::prior::Prior;
+use super::prior::{weight, Prior};
 
 mod build;
 mod solve;
@@ -165,8 +165,13 @@ impl Pool {
 
     /// Sets the prior's strength (the Gram matrix follows).
     pub fn set_strength(&mut self, strength: f64) {
+        // Only the links' part changes: `X^T X` is not formed again.
+        if self.prior.links.shape() == self.gram.shape() {
+            let n = self.x.nrows();
+            let change = weight(self.yy, n, strength) - weight(self.yy, n, self.strength);
+            self.gram += &self.prior.links * change;
+        }
         self.strength = strength;
-        self.gram = penalised(&self.x, &self.prior, self.yy, strength);
     }
 
     /// Rows in the fit.
