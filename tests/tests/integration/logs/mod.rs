@@ -36,9 +36,11 @@ const CYCLED_CASES: usize = 12;
 /// the 40 ms smoothing filter).
 const WINDOW_TOLERANCE: f64 = 0.2;
 /// As in the clean scoring (`diagnosis/`): the effect's effort, and the
-/// part that tells it from the simpler effect it contains, at least this
-/// many times one sample's effort noise, on a 1 kHz record; on a record of
-/// rate `r`, the ratio times `sqrt(r / 1 kHz)` (see [`rate_snr`]).
+/// part that tells it from the simpler effect it contains, both through
+/// the diagnosis's smoothing (the generator's `snr`, `distinct_snr`), at
+/// least this many times one sample's effort noise, on a 1 kHz record; on
+/// a record of rate `r`, the ratio times `sqrt(r / 1 kHz)` (see
+/// [`rate_snr`]).
 const IDENTIFIABLE_SNR: f64 = 2.0;
 
 /// The generator's signal-to-noise ratio (per sample) of a record of rate
