@@ -39,6 +39,7 @@ mod error;
 mod explain;
 mod filter;
 mod fit;
+mod friction_words;
 mod horizon;
 mod late;
 mod links;
