@@ -46,12 +46,13 @@ pub fn best_per_place(
     best.sort_by(|a, b| a.aicc(n).total_cmp(&b.aicc(n)));
     // Parsimony: a richer model that contains a simpler one at the same
     // joint (Stribeck contains Coulomb; elasticity and backlash contain a
-    // rigid rotor) must beat it clearly, or the simpler one goes first.
+    // rigid rotor; a spring contains an offset) must beat it clearly, or the simpler one goes first.
     if best.len() > 1 {
         let top = best[0].candidate;
         let simpler = match top {
             Candidate::Stribeck(j, _) => Some(Candidate::Coulomb(j, SIGN_SMOOTHING)),
             Candidate::Elasticity(j) | Candidate::Backlash(j) => Some(Candidate::Armature(j)),
+            Candidate::Spring(j) => Some(Candidate::EffortOffset(j)),
             _ => None,
         };
         if let Some(s) = simpler {

@@ -50,6 +50,11 @@ pub enum EffectKind {
     /// Coulomb friction at the same joint, a friction level that depends on
     /// the direction of motion).
     EffortOffset,
+    /// A spring at the joint: effort `-(stiffness q + preload)` (a cable
+    /// harness or hose bent by the joint, a compensator's spring; at rest
+    /// at `q = -preload / stiffness`). (Not in [`EffectKind::ALL`]: the
+    /// single-effect draws stay as they are; `tests/spring.rs` checks it.)
+    JointSpring,
 }
 
 impl EffectKind {
@@ -87,6 +92,7 @@ impl EffectKind {
             EffectKind::TimeDelay => "time_delay",
             EffectKind::EffortScale => "effort_scale",
             EffectKind::EffortOffset => "effort_offset",
+            EffectKind::JointSpring => "joint_spring",
         }
     }
 
@@ -125,7 +131,7 @@ impl fmt::Display for EffectKind {
 
 /// An effect name outside the vocabulary.
 #[derive(Debug, Clone, PartialEq, Eq, thiserror::Error)]
-#[error("unknown effect `{0}`; known: none, coulomb_friction, viscous_friction, stribeck_friction, armature, inertial_parameters, payload_mass, joint_elasticity, backlash, environment_resistance, encoder_offset, time_delay, effort_scale, effort_offset")]
+#[error("unknown effect `{0}`; known: none, coulomb_friction, viscous_friction, stribeck_friction, armature, inertial_parameters, payload_mass, joint_elasticity, backlash, environment_resistance, encoder_offset, time_delay, effort_scale, effort_offset, joint_spring")]
 pub struct UnknownEffect(pub String);
 
 impl FromStr for EffectKind {
@@ -133,7 +139,7 @@ impl FromStr for EffectKind {
     fn from_str(s: &str) -> Result<Self, Self::Err> {
         EffectKind::ALL
             .into_iter()
-            .chain([EffectKind::InertialParameters])
+            .chain([EffectKind::InertialParameters, EffectKind::JointSpring])
             .find(|k| k.name() == s)
             .ok_or_else(|| UnknownEffect(s.to_string()))
     }
