@@ -15,7 +15,6 @@
 
 use nalgebra::{DMatrix, DVector};
 
-use super::candidate::Candidate;
 use super::compound::tie_key;
 use super::fit::aicc;
 use super::pool::{independent, Pool};
@@ -25,12 +24,7 @@ use super::pool::{independent, Pool};
 pub fn full(pool: &Pool) -> Vec<usize> {
     let mut best: Vec<((u8, Option<usize>), usize, f64)> = Vec::new();
     for (t, term) in pool.terms.iter().enumerate() {
-        // (A spring stands in its family as the offset it nests: the
-        // selection that resumes may swap it in by the nesting margin.)
-        if term.fixed.is_some()
-            || term.cols.is_empty()
-            || matches!(term.fit.candidate, Candidate::Spring(_))
-        {
+        if term.fixed.is_some() || term.cols.is_empty() {
             continue;
         }
         let sse = if term.fit.sse.is_finite() {
