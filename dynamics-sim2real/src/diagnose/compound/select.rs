@@ -134,6 +134,9 @@ pub(super) fn select<const N: usize>(
                     s[i] = t;
                     (s, nesting(pool.terms[t].fit.candidate, options))
                 }
+                // A wider Coulomb law comes in only in place of the sharp
+                // one: added first, it takes viscous friction's place.
+                None if pool.terms[t].fit.candidate.widened() => continue,
                 None => {
                     let mut s = set.clone();
                     s.push(t);
