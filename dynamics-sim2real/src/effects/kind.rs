@@ -52,14 +52,13 @@ pub enum EffectKind {
     EffortOffset,
     /// A spring at the joint: effort `-(stiffness q + preload)` (a cable
     /// harness or hose bent by the joint, a compensator's spring; at rest
-    /// at `q = -preload / stiffness`). (Not in [`EffectKind::ALL`]: the
-    /// single-effect draws stay as they are; `tests/spring.rs` checks it.)
+    /// at `q = -preload / stiffness`).
     JointSpring,
 }
 
 impl EffectKind {
     /// Every kind, `None` first.
-    pub const ALL: [EffectKind; 13] = [
+    pub const ALL: [EffectKind; 14] = [
         EffectKind::None,
         EffectKind::CoulombFriction,
         EffectKind::ViscousFriction,
@@ -73,6 +72,7 @@ impl EffectKind {
         EffectKind::TimeDelay,
         EffectKind::EffortScale,
         EffectKind::EffortOffset,
+        EffectKind::JointSpring,
     ];
 
     /// The name of the vocabulary (`coulomb_friction`, ...).
@@ -139,7 +139,7 @@ impl FromStr for EffectKind {
     fn from_str(s: &str) -> Result<Self, Self::Err> {
         EffectKind::ALL
             .into_iter()
-            .chain([EffectKind::InertialParameters, EffectKind::JointSpring])
+            .chain([EffectKind::InertialParameters])
             .find(|k| k.name() == s)
             .ok_or_else(|| UnknownEffect(s.to_string()))
     }
