@@ -73,6 +73,7 @@ pub fn parameter_names(kind: EffectKind) -> &'static [&'static str] {
         EffectKind::Backlash => &["motor_inertia", "half_width", "contact_stiffness"],
         EffectKind::EffortScale => &["scale_minus_one"],
         EffectKind::EffortOffset => &["offset"],
+        EffectKind::JointSpring => &["stiffness", "preload"],
         EffectKind::None | EffectKind::InertialParameters => &[],
     }
 }
@@ -156,6 +157,7 @@ pub fn effect<R: Robot<N>, const N: usize>(entry: &Entry) -> Result<Effect, Base
         EffectKind::TimeDelay => Candidate::TimeDelay,
         EffectKind::EffortScale => Candidate::EffortScale(joint()?),
         EffectKind::EffortOffset => Candidate::EffortOffset(joint()?),
+        EffectKind::JointSpring => Candidate::Spring(joint()?),
         EffectKind::JointElasticity => {
             return Ok(Effect::JointElasticity {
                 joint: joint()?,

@@ -50,6 +50,9 @@ pub enum Candidate {
     EffortScale(usize),
     /// Effort sensor offset at a joint.
     EffortOffset(usize),
+    /// A spring at a joint: stiffness and preload (the effort at q = 0). It
+    /// nests the effort offset (stiffness 0) and shares its family.
+    Spring(usize),
     /// Inertial corrections of a link (index into `Robot::LINK_NAMES`):
     /// columns from the inertial regressor (`links.rs`), only within the
     /// compound explanation.
@@ -103,6 +106,9 @@ impl Candidate {
             if want(EffectKind::EffortOffset) {
                 out.push(Candidate::EffortOffset(j));
             }
+            if want(EffectKind::JointSpring) {
+                out.push(Candidate::Spring(j));
+            }
         }
         if want(EffectKind::PayloadMass) {
             out.push(Candidate::Payload);
@@ -133,6 +139,7 @@ impl Candidate {
             Candidate::Backlash(_) => EffectKind::Backlash,
             Candidate::EffortScale(_) => EffectKind::EffortScale,
             Candidate::EffortOffset(_) => EffectKind::EffortOffset,
+            Candidate::Spring(_) => EffectKind::JointSpring,
             Candidate::Inertial(_) => EffectKind::InertialParameters,
         }
     }
@@ -155,7 +162,8 @@ impl Candidate {
             | Candidate::Elasticity(j)
             | Candidate::Backlash(j)
             | Candidate::EffortScale(j)
-            | Candidate::EffortOffset(j) => Some(j),
+            | Candidate::EffortOffset(j)
+            | Candidate::Spring(j) => Some(j),
             _ => None,
         }
     }
@@ -175,6 +183,7 @@ impl Candidate {
             }
             Candidate::EffortScale(_) => &[("scale_minus_one", false)],
             Candidate::EffortOffset(_) => &[("offset", false)],
+            Candidate::Spring(_) => &[("stiffness", true), ("preload", false)],
             Candidate::Elasticity(_) | Candidate::Backlash(_) | Candidate::Inertial(_) => &[],
         }
     }
@@ -222,6 +231,11 @@ impl Candidate {
             Candidate::LateEffort(d) => c[0] = late_effort_column(sig, k, d),
             Candidate::EffortScale(j) => c[0][j] = sig.model[k][j],
             Candidate::EffortOffset(j) => c[0][j] = 1.0,
+            // The drive holds the spring: stiffness q + preload.
+            Candidate::Spring(j) => {
+                c[0][j] = sig.q[k][j];
+                c[1][j] = 1.0;
+            }
             Candidate::Elasticity(_) | Candidate::Backlash(_) | Candidate::Inertial(_) => {}
         }
         c
@@ -264,6 +278,11 @@ impl Candidate {
             Candidate::EffortOffset(joint) => Effect::EffortOffset {
                 joint,
                 offset: p(0),
+            },
+            Candidate::Spring(joint) => Effect::JointSpring {
+                joint,
+                stiffness: p(0),
+                preload: p(1),
             },
             Candidate::Elasticity(_) | Candidate::Backlash(_) | Candidate::Inertial(_) => {
                 return None

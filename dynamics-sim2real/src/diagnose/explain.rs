@@ -9,6 +9,7 @@ use nalgebra::{DMatrix, DVector, SVector};
 use super::analysis::{Fit, Prepared};
 use super::candidate::Candidate;
 use super::compound::{without_others, Explanation};
+use super::friction_words::{add_direction_words, nominal_words, within_nominal, Friction};
 use super::links::{combined, delta, words};
 use super::pool::{fixed_column, linear_columns, Pool, Solution};
 use super::rank::ranked_entry;
@@ -190,54 +191,6 @@ pub fn effects<const N: usize>(
         .collect()
 }
 
-/// Per joint, the nominal model's Coulomb levels and viscous coefficients
-/// (`nominal_friction.rs`).
-pub type Friction<const N: usize> = (SVector<f64, N>, SVector<f64, N>);
-
-/// Whether `e` is a friction correction that takes away no more of the
-/// nominal model's `friction` than there is.
-fn within_nominal<const N: usize>(e: &Effect, friction: &Friction<N>) -> bool {
-    let (coulomb, viscous) = friction;
-    let ok = |x: f64, nominal: Option<&f64>| {
-        nominal.is_some_and(|n| x.is_finite() && x >= -n * (1.0 + 1e-9))
-    };
-    match *e {
-        Effect::CoulombFriction { joint, fc, .. } => ok(fc, coulomb.get(joint)),
-        Effect::ViscousFriction { joint, fv } => ok(fv, viscous.get(joint)),
-        Effect::StribeckFriction { joint, fc, fs, vs } => {
-            ok(fc, coulomb.get(joint)) && ok(fs, coulomb.get(joint)) && vs > 0.0
-        }
-        _ => false,
-    }
-}
-
-/// In words, a friction correction `value` of parameter `name` at joint
-/// `j` (named `joint`) where the nominal model has friction of its own.
-fn nominal_words<const N: usize>(
-    c: Candidate,
-    value: f64,
-    joint: &str,
-    friction: &Friction<N>,
-) -> Option<String> {
-    let (what, nominal) = match c {
-        Candidate::Coulomb(j, _) | Candidate::Stribeck(j, _) => {
-            ("Coulomb level", friction.0.get(j))
-        }
-        Candidate::Viscous(j) => ("viscous coefficient", friction.1.get(j)),
-        _ => return None,
-    };
-    let n = *nominal.filter(|n| **n > 0.0)?;
-    let total = (n + value).max(0.0);
-    let gone = if total <= 1e-9 * n {
-        " (all of it taken away: the data show none)"
-    } else {
-        ""
-    };
-    Some(format!(
-        "{joint}: the nominal model's {what} {n:.3} corrected by {value:+.3} to {total:.3}{gone}"
-    ))
-}
-
 /// The report's entries and the held-out steps.
 pub fn entries<R: Robot<N>, const N: usize>(
     pool: &Pool,
@@ -289,7 +242,7 @@ pub fn entries<R: Robot<N>, const N: usize>(
         steps.clear();
     }
     let full = hsse(&h_full);
-    let explained = e
+    let mut explained: Vec<Explained> = e
         .set
         .iter()
         .enumerate()
@@ -364,6 +317,7 @@ pub fn entries<R: Robot<N>, const N: usize>(
             }
         })
         .collect();
+    add_direction_words(&mut explained, &R::JOINT_NAMES, &friction.0);
     (explained, steps)
 }
 

@@ -39,6 +39,7 @@ mod error;
 mod explain;
 mod filter;
 mod fit;
+mod friction_words;
 mod horizon;
 mod late;
 mod links;
@@ -196,7 +197,9 @@ pub fn diagnose<R: Robot<N> + Clone + Sync, const N: usize>(
 
     // Best grid variant per (kind, place), ranked by AICc, simpler nested
     // models first unless the richer one wins clearly (and, for a motor
-    // side, unless the rotor alone leaves only noise).
+    // side, unless the rotor alone leaves only noise); elasticity and
+    // backlash at one joint, and Stribeck over Coulomb, also on the
+    // held-out record's evidence (`rank::best_per_place`).
     let held_out = |f: &Fit| {
         let (hs, hn) = (h.sse(&window::corrected(f, &h, &limited)), h.n() as f64);
         hn * (hs.max(1e-300) / hn).ln()

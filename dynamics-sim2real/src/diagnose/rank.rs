@@ -37,18 +37,18 @@ pub struct Judge<'a> {
 ///   (its true half-width and inertia) by 468 and 301.
 /// - A richer model that contains a simpler one at the same joint
 ///   (Stribeck contains Coulomb; elasticity and backlash contain a rigid
-///   rotor) must beat it by `nesting_margin`, or the simpler one goes
-///   first: Stribeck on the evidence of both records (on a generated
-///   Stribeck at 100 Hz, 8.2 AICc ahead on training and 20 on the held-out
-///   record), a motor side on the training AICc alone. A motor side's
-///   spring is also a low-pass filter on the effort, and what it fits that
-///   way (the velocity loop's reaction to the sensors' noise, see
-///   [`within_floor`]) is in
-///   every record of the same drive: it predicts the held-out record
-///   better too (a generated rotor inertia at 100 Hz: elastic 0.6 AICc
-///   ahead on training, 20 on the held-out record), so the held-out record
-///   is no evidence for it over its rotor. A motor side also goes behind
-///   its rotor when `judge.quiet` says the rotor already leaves the joint's
+///   rotor; a spring contains an effort offset) must beat it by
+///   `nesting_margin`, or the simpler one goes first: Stribeck on the
+///   evidence of both records (on a generated Stribeck at 100 Hz, 8.2 AICc
+///   ahead on training and 20 on the held-out record), the others on the
+///   training AICc alone. A motor side's spring is also a low-pass filter
+///   on the effort, and what it fits that way (the velocity loop's
+///   reaction to the sensors' noise, see [`within_floor`]) is in every
+///   record of the same drive: it predicts the held-out record better too
+///   (a generated rotor inertia at 100 Hz: elastic 0.6 AICc ahead on
+///   training, 20 on the held-out record), so the held-out record is no
+///   evidence for it over its rotor. A motor side also goes behind its
+///   rotor when `judge.quiet` says the rotor already leaves the joint's
 ///   residual within the noise floor: then the data show no signature left
 ///   for the motor side to explain.
 pub fn best_per_place(fits: Vec<Fit>, n: usize, nesting_margin: f64, judge: &Judge) -> Vec<Fit> {
@@ -99,15 +99,16 @@ pub fn best_per_place(fits: Vec<Fit>, n: usize, nesting_margin: f64, judge: &Jud
     let simpler = match best[0].candidate {
         Candidate::Stribeck(j, _) => Some(Candidate::Coulomb(j, SIGN_SMOOTHING)),
         Candidate::Elasticity(j) | Candidate::Backlash(j) => Some(Candidate::Armature(j)),
+        Candidate::Spring(j) => Some(Candidate::EffortOffset(j)),
         _ => None,
     };
     if let Some(s) = simpler {
         if let Some(i) = find(&best, s) {
             let motor_side = matches!(s, Candidate::Armature(_));
-            let gain = if motor_side {
-                best[i].aicc(n) - best[0].aicc(n)
-            } else {
+            let gain = if matches!(s, Candidate::Coulomb(..)) {
                 evidence(&best[i]) - evidence(&best[0])
+            } else {
+                best[i].aicc(n) - best[0].aicc(n)
             };
             if gain < nesting_margin || (motor_side && (judge.quiet)(&best[i])) {
                 let f = best.remove(i);

@@ -192,6 +192,7 @@ fn candidate<R: Robot<N>, const N: usize>(r: &Ranked) -> Result<Candidate, Trace
         EffectKind::Backlash => Candidate::Backlash(joint()?),
         EffectKind::EffortScale => Candidate::EffortScale(joint()?),
         EffectKind::EffortOffset => Candidate::EffortOffset(joint()?),
+        EffectKind::JointSpring => Candidate::Spring(joint()?),
         EffectKind::InertialParameters => {
             return Err(err(
                 "`inertial_parameters` has no single-effect candidate".into()

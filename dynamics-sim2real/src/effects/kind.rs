@@ -50,11 +50,15 @@ pub enum EffectKind {
     /// Coulomb friction at the same joint, a friction level that depends on
     /// the direction of motion).
     EffortOffset,
+    /// A spring at the joint: effort `-(stiffness q + preload)` (a cable
+    /// harness or hose bent by the joint, a compensator's spring; at rest
+    /// at `q = -preload / stiffness`).
+    JointSpring,
 }
 
 impl EffectKind {
     /// Every kind, `None` first.
-    pub const ALL: [EffectKind; 13] = [
+    pub const ALL: [EffectKind; 14] = [
         EffectKind::None,
         EffectKind::CoulombFriction,
         EffectKind::ViscousFriction,
@@ -68,6 +72,7 @@ impl EffectKind {
         EffectKind::TimeDelay,
         EffectKind::EffortScale,
         EffectKind::EffortOffset,
+        EffectKind::JointSpring,
     ];
 
     /// The name of the vocabulary (`coulomb_friction`, ...).
@@ -87,6 +92,7 @@ impl EffectKind {
             EffectKind::TimeDelay => "time_delay",
             EffectKind::EffortScale => "effort_scale",
             EffectKind::EffortOffset => "effort_offset",
+            EffectKind::JointSpring => "joint_spring",
         }
     }
 
@@ -125,7 +131,7 @@ impl fmt::Display for EffectKind {
 
 /// An effect name outside the vocabulary.
 #[derive(Debug, Clone, PartialEq, Eq, thiserror::Error)]
-#[error("unknown effect `{0}`; known: none, coulomb_friction, viscous_friction, stribeck_friction, armature, inertial_parameters, payload_mass, joint_elasticity, backlash, environment_resistance, encoder_offset, time_delay, effort_scale, effort_offset")]
+#[error("unknown effect `{0}`; known: none, coulomb_friction, viscous_friction, stribeck_friction, armature, inertial_parameters, payload_mass, joint_elasticity, backlash, environment_resistance, encoder_offset, time_delay, effort_scale, effort_offset, joint_spring")]
 pub struct UnknownEffect(pub String);
 
 impl FromStr for EffectKind {

@@ -93,6 +93,7 @@ impl<const N: usize> Scales<N> {
 /// | time_delay | 1-10 ms |
 /// | effort_scale | 0.85-0.95 or 1.05-1.15 |
 /// | effort_offset | 0.5-3 % of the joint's peak effort, either sign |
+/// | joint_spring | over 1 rad (0.1 m) of travel 1-5 % of the peak effort, at rest within 0.5 rad (5 cm) of the zero |
 ///
 /// ```
 /// use dynamics_sim2real::effects::EffectKind;
@@ -191,6 +192,17 @@ pub fn draw_effect<const N: usize>(
                     } else {
                         size * 1e-3
                     },
+            }
+        }
+        // Over a radian (or 0.1 m) of travel, 1-5 % of the peak effort; at
+        // rest within half a radian (5 cm) of the zero.
+        EffectKind::JointSpring => {
+            let travel = if revolute { 1.0 } else { 0.1 };
+            let stiffness = peak * rng.uniform(0.01, 0.05) / travel;
+            Effect::JointSpring {
+                joint: j,
+                stiffness,
+                preload: -stiffness * travel * rng.uniform(-0.5, 0.5),
             }
         }
         EffectKind::TimeDelay => Effect::TimeDelay {

@@ -140,5 +140,19 @@ pub(super) fn effect_for<R: Robot<N>, const N: usize>(
         Effect::TimeDelay { .. } => Effect::TimeDelay { delay: m },
         Effect::EffortScale { joint, .. } => Effect::EffortScale { joint, scale: m },
         Effect::EffortOffset { joint, .. } => Effect::EffortOffset { joint, offset: m },
+        // The magnitude is the stiffness; the drawn rest position is kept.
+        Effect::JointSpring {
+            joint,
+            stiffness,
+            preload,
+        } => Effect::JointSpring {
+            joint,
+            stiffness: m,
+            preload: if stiffness > 0.0 {
+                preload * m / stiffness
+            } else {
+                0.0
+            },
+        },
     }))
 }

@@ -25,9 +25,10 @@
 //!
 //! Where the set leaves joints above their floor, the rows are weighed by
 //! the residual left rather than by the floor alone and the selection
-//! resumes (`weights.rs`); where it leaves every joint at [`EVERYWHERE`]
-//! x its floor (model error, not a missed effect), the search also starts
-//! from the full linear model (`eliminate.rs`) and keeps the better set.
+//! resumes (`weights.rs`); where it leaves half the joints or more at
+//! [`EVERYWHERE`] x their floor (model error, not a missed effect), the
+//! search also starts from the full linear model (`eliminate.rs`) and
+//! keeps the better set.
 
 mod select;
 
@@ -54,6 +55,10 @@ pub const ROUNDS: usize = 2;
 /// Residual left on every joint, in units of the floor ratio, above which
 /// the search also starts from the full linear model.
 pub const EVERYWHERE: f64 = 2.0;
+
+/// Loud joints at least (and half the joints) for the search from the full
+/// linear model.
+pub const MODEL_ERROR_JOINTS: usize = 2;
 
 /// The chosen set, its joint fit and the rival of each effect.
 #[derive(Debug, Clone)]
@@ -134,16 +139,23 @@ pub fn explain<R: Robot<N>, const N: usize>(
 ) -> Explanation {
     let mut set = select::<N>(pool, vec![], options);
     set = reweighted::<N>(pool, set, options);
-    // Model error left everywhere (every joint still at `EVERYWHERE` x its
-    // floor: a missed effect leaves its own joint loud, a real robot's
-    // model error all of them): the search from the other end, from every
+    // Model error left all over (half the joints or more, at least
+    // [`MODEL_ERROR_JOINTS`], still at `EVERYWHERE` x their floor: a
+    // missed effect leaves its own joint loud, a real robot's model error
+    // most of them; an effect that quiets one joint, a spring at the
+    // Panda's wrist, does not make it a missed effect): the search from the
+    // other end, from every
     // linear term at once, where effects that explain only together are
     // found (`eliminate.rs`). Its set is kept if both its criterion (on the
     // residual computed row by row, not through the Gram matrix, which
     // nearly dependent columns make inexact) and its cross-validated
     // deviance beat the forward path's.
     let gap = pool.floor_rms(&pool.residual(&set, &pool.solve(&set)));
-    if gap.iter().all(|&r| r >= EVERYWHERE * options.floor_ratio) {
+    let loud = gap
+        .iter()
+        .filter(|&&r| r >= EVERYWHERE * options.floor_ratio)
+        .count();
+    if loud >= MODEL_ERROR_JOINTS.max(N.div_ceil(2)).min(N) {
         let start = eliminate(pool, full(pool), options.add_margin);
         let other = select::<N>(pool, start, options);
         let cv = |s: &[usize]| Folds::new(pool, N).map_or(0.0, |f| f.deviance(pool, s));

@@ -48,6 +48,8 @@ pub(super) fn simpler(c: Candidate) -> Option<fn(&Candidate) -> bool> {
         Candidate::Elasticity(_) | Candidate::Backlash(_) => {
             Some(|s| matches!(s, Candidate::Armature(_)))
         }
+        // A spring is an effort offset that grows with the position.
+        Candidate::Spring(_) => Some(|s| matches!(s, Candidate::EffortOffset(_))),
         // A point mass at the tip is an inertial change of the tip's link
         // with one parameter instead of up to ten.
         Candidate::Inertial(_) => Some(|s| matches!(s, Candidate::Payload)),
@@ -132,6 +134,9 @@ pub(super) fn select<const N: usize>(
                     s[i] = t;
                     (s, nesting(pool.terms[t].fit.candidate, options))
                 }
+                // A wider Coulomb law comes in only in place of the sharp
+                // one: added first, it takes viscous friction's place.
+                None if pool.terms[t].fit.candidate.widened() => continue,
                 None => {
                     let mut s = set.clone();
                     s.push(t);

@@ -49,8 +49,8 @@ pub struct Term {
 
 impl Term {
     /// Exclusive family: at most one term of a family per place (Coulomb
-    /// and Stribeck; armature, elasticity and backlash; the grid variants
-    /// of one kind).
+    /// and Stribeck; armature, elasticity and backlash; effort offset and
+    /// joint spring; the grid variants of one kind).
     pub fn family(&self) -> (u8, Option<usize>) {
         let c = self.fit.candidate;
         let f = match c {
@@ -62,7 +62,8 @@ impl Term {
             Candidate::EncoderOffset(_) => 5,
             Candidate::TimeDelay | Candidate::LatePositions | Candidate::LateEffort(_) => 6,
             Candidate::EffortScale(_) => 7,
-            Candidate::EffortOffset(_) => 8,
+            // A spring nests the offset (stiffness 0).
+            Candidate::EffortOffset(_) | Candidate::Spring(_) => 8,
             Candidate::Inertial(l) => return (9, Some(l)),
         };
         (f, c.joint())

@@ -92,7 +92,8 @@ impl<R: Robot<N>, const N: usize> Calibrated<R, N> {
                 | EffectKind::StribeckFriction
                 | EffectKind::Armature
                 | EffectKind::PayloadMass
-                | EffectKind::EnvironmentResistance => {}
+                | EffectKind::EnvironmentResistance
+                | EffectKind::JointSpring => {}
                 _ => return Err(CalibratedError::NotNominal { kind }),
             }
             if let Some(joint) = e.joint().filter(|&j| j >= N) {
@@ -130,6 +131,11 @@ impl<R: Robot<N>, const N: usize> Calibrated<R, N> {
                 | Effect::ViscousFriction { joint, .. }
                 | Effect::StribeckFriction { joint, .. } => x.q0[joint] += e.joint_force(qd[joint]),
                 Effect::Armature { joint, inertia } => x.a[(joint, joint)] += inertia,
+                Effect::JointSpring {
+                    joint,
+                    stiffness,
+                    preload,
+                } => x.q0[joint] -= stiffness * q[joint] + preload,
                 Effect::PayloadMass { mass } => {
                     let (_, jac) = self.tip.position_jacobian(&self.robot, q);
                     let bias = self.tip.bias_acceleration(&self.robot, q, qd);

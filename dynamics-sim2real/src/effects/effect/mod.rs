@@ -137,6 +137,16 @@ pub enum Effect {
         /// Offset (N m or N).
         offset: f64,
     },
+    /// A spring at `joint`: the joint feels `-(stiffness q + preload)`.
+    JointSpring {
+        /// Joint index.
+        joint: usize,
+        /// Stiffness (N m/rad or N/m), >= 0.
+        stiffness: f64,
+        /// The spring's effort at `q = 0` (N m or N): at rest at
+        /// `q = -preload / stiffness`.
+        preload: f64,
+    },
 }
 
 impl Effect {
@@ -168,6 +178,7 @@ impl Effect {
             Effect::TimeDelay { .. } => EffectKind::TimeDelay,
             Effect::EffortScale { .. } => EffectKind::EffortScale,
             Effect::EffortOffset { .. } => EffectKind::EffortOffset,
+            Effect::JointSpring { .. } => EffectKind::JointSpring,
         }
     }
 
@@ -199,7 +210,8 @@ impl Effect {
             | Effect::Backlash { joint, .. }
             | Effect::EncoderOffset { joint, .. }
             | Effect::EffortScale { joint, .. }
-            | Effect::EffortOffset { joint, .. } => Some(joint),
+            | Effect::EffortOffset { joint, .. }
+            | Effect::JointSpring { joint, .. } => Some(joint),
             _ => None,
         }
     }

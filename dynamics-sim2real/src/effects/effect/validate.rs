@@ -88,6 +88,16 @@ impl Effect {
                     Err("effort_offset: offset must be finite".into())
                 }
             }
+            Effect::JointSpring {
+                stiffness, preload, ..
+            } => {
+                check("stiffness", stiffness, false)?;
+                if preload.is_finite() {
+                    Ok(())
+                } else {
+                    Err("joint_spring: preload must be finite".into())
+                }
+            }
         }
     }
 }

@@ -70,6 +70,11 @@ impl<R: Robot<N>, const N: usize> Plant<R, N> {
                 | Effect::ViscousFriction { joint, .. }
                 | Effect::StribeckFriction { joint, .. } => f[joint] += e.joint_force(qd[joint]),
                 Effect::Armature { joint, inertia } => a[(joint, joint)] += inertia,
+                Effect::JointSpring {
+                    joint,
+                    stiffness,
+                    preload,
+                } => f[joint] -= stiffness * q[joint] + preload,
                 Effect::PayloadMass { mass } => {
                     let (_, jac) = self.tip.position_jacobian(&self.robot, q);
                     let bias = self.tip.bias_acceleration(&self.robot, q, qd);

@@ -1,0 +1,170 @@
+//! Friction effects in the report's words: a correction against the
+//! nominal model's own friction ("the nominal model's viscous coefficient
+//! 0.800 corrected by -0.800 to 0.000"), and a Coulomb level that depends
+//! on the direction of motion (a Coulomb friction and an effort offset at
+//! the same joint: forward and backward levels).
+
+use nalgebra::SVector;
+
+use super::candidate::Candidate;
+use super::report::Explained;
+use crate::effects::{Effect, EffectKind};
+
+/// Per joint, the nominal model's Coulomb levels and viscous coefficients
+/// (`nominal_friction.rs`).
+pub type Friction<const N: usize> = (SVector<f64, N>, SVector<f64, N>);
+
+/// Whether `e` is a friction correction that takes away no more of the
+/// nominal model's `friction` than there is.
+pub(super) fn within_nominal<const N: usize>(e: &Effect, friction: &Friction<N>) -> bool {
+    let (coulomb, viscous) = friction;
+    let ok = |x: f64, nominal: Option<&f64>| {
+        nominal.is_some_and(|n| x.is_finite() && x >= -n * (1.0 + 1e-9))
+    };
+    match *e {
+        Effect::CoulombFriction { joint, fc, .. } => ok(fc, coulomb.get(joint)),
+        Effect::ViscousFriction { joint, fv } => ok(fv, viscous.get(joint)),
+        Effect::StribeckFriction { joint, fc, fs, vs } => {
+            ok(fc, coulomb.get(joint)) && ok(fs, coulomb.get(joint)) && vs > 0.0
+        }
+        _ => false,
+    }
+}
+
+/// In words, a friction correction `value` of parameter `name` at joint
+/// `j` (named `joint`) where the nominal model has friction of its own.
+pub(super) fn nominal_words<const N: usize>(
+    c: Candidate,
+    value: f64,
+    joint: &str,
+    friction: &Friction<N>,
+) -> Option<String> {
+    let (what, nominal) = match c {
+        Candidate::Coulomb(j, _) | Candidate::Stribeck(j, _) => {
+            ("Coulomb level", friction.0.get(j))
+        }
+        Candidate::Viscous(j) => ("viscous coefficient", friction.1.get(j)),
+        _ => return None,
+    };
+    let n = *nominal.filter(|n| **n > 0.0)?;
+    let total = (n + value).max(0.0);
+    let gone = if total <= 1e-9 * n {
+        " (all of it taken away: the data show none)"
+    } else {
+        ""
+    };
+    Some(format!(
+        "{joint}: the nominal model's {what} {n:.3} corrected by {value:+.3} to {total:.3}{gone}"
+    ))
+}
+
+/// The Coulomb level at `joint` with an effort offset beside it, in words:
+/// while the joint moves, a level `L` (nominal plus correction) and an
+/// offset `o` of the measured effort are a level `L + o` moving forward and
+/// `L - o` moving backward. Only samples at standstill tell the two
+/// readings apart, so the words give both.
+pub(super) fn direction_words(joint: &str, level: f64, offset: f64) -> String {
+    let (forward, backward) = (level + offset, level - offset);
+    let reading = if forward < 0.0 || backward < 0.0 {
+        "the offset is larger than the friction: more likely the sensor's own"
+    } else {
+        "or an offset of the effort sensor: only standstill tells them apart"
+    };
+    format!(
+        "{joint}: with the effort offset {offset:+.3} at this joint, the Coulomb level depends \
+         on the direction: {forward:.3} moving forward, {backward:.3} moving backward ({reading})"
+    )
+}
+
+/// Adds to each Coulomb (or Stribeck) friction of `entries` that has an
+/// effort offset at the same joint its direction-dependent levels
+/// ([`direction_words`]); `names` are the joints' names, `coulomb` the
+/// nominal model's Coulomb levels.
+pub(super) fn add_direction_words<const N: usize>(
+    entries: &mut [Explained],
+    names: &[&str; N],
+    coulomb: &SVector<f64, N>,
+) {
+    let offset = |joint: &str| {
+        entries.iter().find_map(|e| {
+            (e.kind == EffectKind::EffortOffset.name() && e.joint.as_deref() == Some(joint))
+                .then(|| e.parameters.first().map(|p| p.value))
+                .flatten()
+        })
+    };
+    let words: Vec<Option<String>> = entries
+        .iter()
+        .map(|e| {
+            let friction = [EffectKind::CoulombFriction, EffectKind::StribeckFriction]
+                .iter()
+                .any(|k| k.name() == e.kind);
+            let joint = e.joint.as_deref().filter(|_| friction)?;
+            let j = names.iter().position(|n| *n == joint)?;
+            let fc = e.parameters.iter().find(|p| p.name == "fc")?.value;
+            let o = offset(joint).filter(|o| o.is_finite() && *o != 0.0)?;
+            let level = fc + coulomb[j].max(0.0);
+            level.is_finite().then(|| direction_words(joint, level, o))
+        })
+        .collect();
+    for (e, w) in entries.iter_mut().zip(words) {
+        if let Some(w) = w {
+            e.description = Some(match e.description.take() {
+                Some(d) => format!("{d}; {w}"),
+                None => w,
+            });
+        }
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::diagnose::report::Parameter;
+
+    fn entry(kind: EffectKind, joint: &str, name: &str, value: f64) -> Explained {
+        Explained {
+            kind: kind.name().to_string(),
+            joint: Some(joint.to_string()),
+            point: None,
+            description: None,
+            parameters: vec![Parameter {
+                name: name.to_string(),
+                value,
+                std: 0.01,
+            }],
+            share: 0.1,
+            holdout_contribution: 0.1,
+            window: None,
+            channel: None,
+            ambiguous_with: None,
+        }
+    }
+
+    /// A Coulomb correction of +0.2 on a nominal level of 0.1 with an
+    /// effort offset of +0.05: 0.35 forward, 0.25 backward (by hand); a
+    /// Coulomb friction at another joint gets no words.
+    #[test]
+    fn coulomb_and_offset_at_a_joint_read_as_direction_dependent_levels() {
+        let mut entries = vec![
+            entry(EffectKind::CoulombFriction, "j1", "fc", 0.2),
+            entry(EffectKind::EffortOffset, "j1", "offset", 0.05),
+            entry(EffectKind::CoulombFriction, "j2", "fc", 0.3),
+        ];
+        let coulomb = SVector::<f64, 2>::new(0.1, 0.0);
+        add_direction_words(&mut entries, &["j1", "j2"], &coulomb);
+        let words = entries[0].description.as_deref().unwrap_or("");
+        assert!(words.contains("0.350 moving forward"), "{words}");
+        assert!(words.contains("0.250 moving backward"), "{words}");
+        assert!(words.contains("standstill"), "{words}");
+        assert!(entries[1].description.is_none());
+        assert!(entries[2].description.is_none());
+    }
+
+    /// An offset larger than the level reads as the sensor's.
+    #[test]
+    fn an_offset_larger_than_the_level_reads_as_the_sensors() {
+        let w = direction_words("j", 0.1, -0.3);
+        assert!(w.contains("-0.200 moving forward"), "{w}");
+        assert!(w.contains("more likely the sensor's own"), "{w}");
+    }
+}
