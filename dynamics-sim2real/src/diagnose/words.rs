@@ -132,7 +132,7 @@ pub(super) fn add_spring_words(entries: &mut [Explained]) {
         let rest = -p / k;
         if k > 0.0 && rest.is_finite() {
             e.description = Some(format!(
-                "{joint}: a spring of stiffness {k:.4} at rest at q = {rest:.3} (its effort                  {p:+.3} at q = 0)"
+                "{joint}: a spring of stiffness {k:.4} at rest at q = {rest:.3} (its effort {p:+.3} at q = 0)"
             ));
         }
     }
@@ -199,7 +199,10 @@ mod tests {
         }
         add_spring_words(&mut entries);
         let words = entries[0].description.as_deref().unwrap_or("");
-        assert!(words.contains("at rest at q = 0.200"), "{words}");
+        assert_eq!(
+            words,
+            "j1: a spring of stiffness 0.5000 at rest at q = 0.200 (its effort -0.100 at q = 0)"
+        );
         assert!(entries[1].description.is_none());
     }
 
