@@ -7,10 +7,10 @@
 use dynamics_runtime::Robot;
 use dynamics_sim2real::diagnose::{diagnose, Options};
 use dynamics_sim2real::effects::Effect;
-use dynamics_sim2real::synth::{synthesize, SynthOptions};
+use dynamics_sim2real::synth::synthesize;
 
 mod common;
-use common::Arm2;
+use common::{synth_options, Arm2};
 
 dynamics_macros::robot! {
     /// Arm2 (`common`) with friction parameters at its shoulder.
@@ -25,14 +25,6 @@ dynamics_macros::robot! {
     joint j2 = revolute(upper -> lower) { transfer = [tu(0.25), rot(q)]; }
 }
 
-fn options(seed: u64) -> SynthOptions<2> {
-    SynthOptions {
-        duration: 6.0,
-        seed,
-        ..Default::default()
-    }
-}
-
 /// The data come from the arm without friction; the nominal model says
 /// j1 has 0.8 N m s/rad of damping. The diagnosis takes it away with a
 /// viscous correction of about -0.8 (no more: the total stays >= 0), says
@@ -40,8 +32,8 @@ fn options(seed: u64) -> SynthOptions<2> {
 #[test]
 fn made_up_nominal_damping_is_taken_away() {
     let truth = Arm2Friction::default();
-    let a = synthesize(&truth, &[], &options(3)).expect("synthesizes");
-    let b = synthesize(&truth, &[], &options(103)).expect("synthesizes");
+    let a = synthesize(&truth, &[], &synth_options(6.0, 3)).expect("synthesizes");
+    let b = synthesize(&truth, &[], &synth_options(6.0, 103)).expect("synthesizes");
     let mut nominal = Arm2Friction::default();
     nominal.params_mut().fv = 0.8;
     let r = diagnose(&nominal, &a, &b, &Options::default(), &|_, _| {}).expect("diagnoses");
@@ -76,8 +68,8 @@ fn an_effort_scale_far_off_is_held_at_its_limit() {
         joint: 0,
         scale: 3.0,
     }];
-    let a = synthesize(&arm, &scale, &options(5)).expect("synthesizes");
-    let b = synthesize(&arm, &scale, &options(105)).expect("synthesizes");
+    let a = synthesize(&arm, &scale, &synth_options(6.0, 5)).expect("synthesizes");
+    let b = synthesize(&arm, &scale, &synth_options(6.0, 105)).expect("synthesizes");
     let r = diagnose(&arm, &a, &b, &Options::default(), &|_, _| {}).expect("diagnoses");
     let ranked = r
         .which

@@ -7,11 +7,11 @@
 use dynamics_runtime::Robot;
 use dynamics_sim2real::diagnose::{diagnose, Options};
 use dynamics_sim2real::effects::{Calibrated, Effect};
-use dynamics_sim2real::synth::{synthesize, SynthOptions};
+use dynamics_sim2real::synth::synthesize;
 use nalgebra::Vector2;
 
 mod common;
-use common::Arm2;
+use common::{synth_options, Arm2};
 
 const STIFFNESS: f64 = 0.6;
 const REST: f64 = 0.25;
@@ -24,19 +24,11 @@ fn spring() -> Effect {
     }
 }
 
-fn options(seed: u64) -> SynthOptions<2> {
-    SynthOptions {
-        duration: 6.0,
-        seed,
-        ..Default::default()
-    }
-}
-
 #[test]
 fn a_spring_at_a_joint_is_named_with_its_stiffness_and_rest() {
     let arm = Arm2::default();
-    let a = synthesize(&arm, &[spring()], &options(7)).expect("synthesizes");
-    let b = synthesize(&arm, &[spring()], &options(107)).expect("synthesizes");
+    let a = synthesize(&arm, &[spring()], &synth_options(6.0, 7)).expect("synthesizes");
+    let b = synthesize(&arm, &[spring()], &synth_options(6.0, 107)).expect("synthesizes");
     let r = diagnose(&arm, &a, &b, &Options::default(), &|_, _| {}).expect("diagnoses");
     assert_eq!(
         r.which.verdict.kind, "joint_spring",

@@ -39,7 +39,6 @@ mod error;
 mod explain;
 mod filter;
 mod fit;
-mod friction_words;
 mod horizon;
 mod late;
 mod links;
@@ -69,6 +68,7 @@ mod visibility;
 mod weights;
 mod window;
 mod windows;
+mod words;
 mod yardstick;
 
 pub use analysis::{Fit, Prepared};

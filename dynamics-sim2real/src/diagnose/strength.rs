@@ -37,13 +37,13 @@ pub fn choose<const N: usize>(pool: &mut Pool, set: &[usize]) -> f64 {
         return pool.strength;
     }
     let start = pool.strength;
+    let Some(mut folds) = Folds::new(pool, N) else {
+        return start;
+    };
     let mut scored: Vec<(usize, f64)> = Vec::new();
     for (i, &s) in STRENGTHS.iter().enumerate() {
         pool.set_strength(s);
-        let Some(folds) = Folds::new(pool, N) else {
-            pool.set_strength(start);
-            return start;
-        };
+        folds.follow(pool);
         let d = folds.deviance(pool, set);
         if d.is_finite() {
             scored.push((i, d));
@@ -87,6 +87,30 @@ mod tests {
         assert_eq!(pool.strength, s);
         assert!((weak + 0.4).abs() < (strong + 0.4).abs(), "{weak} {strong}");
         assert!((weak + 0.4).abs() < 0.02, "{weak}");
+    }
+
+    /// Folds that follow the pool's strength score a set as folds built
+    /// afresh at that strength do.
+    #[test]
+    fn folds_that_follow_the_strength_equal_folds_built_at_it() {
+        let n = 64;
+        let c: Vec<f64> = (0..n).map(|i| (i as f64 * 0.3).sin()).collect();
+        let y: Vec<f64> = (0..n)
+            .map(|i| -0.4 * c[i] + 0.1 * (i as f64 * 1.7).cos())
+            .collect();
+        let x = DMatrix::from_fn(n, 1, |r, _| c[r]);
+        let link = test_term(Candidate::Inertial(0), vec![0], vec![false], None);
+        let mut pool = test_pool(x, DVector::from_vec(y), vec![link], 1);
+        pool.prior.links = DMatrix::from_element(1, 1, 1.0 / 0.04);
+        pool.gram = crate::diagnose::pool::penalised(&pool.x, &pool.prior, pool.yy, pool.strength);
+        let mut folds = Folds::new(&pool, 1).expect("enough rows");
+        for &s in &STRENGTHS[1..] {
+            pool.set_strength(s);
+            folds.follow(&pool);
+            let fresh = Folds::new(&pool, 1).expect("enough rows");
+            let (a, b) = (folds.deviance(&pool, &[0]), fresh.deviance(&pool, &[0]));
+            assert!((a - b).abs() < 1e-9 * b.abs().max(1.0), "{s}: {a} {b}");
+        }
     }
 
     /// A term the links' prior does not hold (here an effort scale, whose

@@ -75,6 +75,16 @@ impl Folds {
         })
     }
 
+    /// Follows a change of `pool`'s prior strength (`Pool::set_strength`,
+    /// which changes only its Gram matrix): each block's fit on the others
+    /// is the pool's Gram less the block's, not formed from the rows again.
+    pub fn follow(&mut self, pool: &Pool) {
+        for b in &mut self.blocks {
+            b.rest.gram = &pool.gram - &b.gram;
+            b.rest.strength = pool.strength;
+        }
+    }
+
     /// The residual sum of squares of `set` on every block, each block
     /// predicted by the fit on the others.
     pub fn sse(&self, pool: &Pool, set: &[usize]) -> f64 {

@@ -55,6 +55,8 @@ fn separating_motion(a: &str, b: &str) -> String {
         "decorrelate speed and acceleration: a chirp, or fast cruising at low acceleration followed by hard starts at low speed".into()
     } else if pair("coulomb_friction", "encoder_offset") || pair("payload_mass", "encoder_offset") {
         "hold still at several poses across the joint's range and reverse the velocity at different positions: gravity's dependence on the angle separates an offset from friction and mass".into()
+    } else if pair("effort_offset", "joint_spring") {
+        "move the joint across a wider range of positions: a spring's effort grows with the position, an offset's does not".into()
     } else if pair("coulomb_friction", "stribeck_friction") {
         "slow velocity reversals (below 0.1 rad/s) where the breakaway level shows".into()
     } else if a == "joint_elasticity"

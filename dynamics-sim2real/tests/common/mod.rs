@@ -10,3 +10,13 @@ dynamics_macros::robot! {
     joint j1 = revolute(base -> upper) { transfer = [rot(q)]; }
     joint j2 = revolute(upper -> lower) { transfer = [tu(0.25), rot(q)]; }
 }
+
+/// The generator's defaults for Arm2 over `duration` s with seed `seed`.
+#[allow(dead_code)] // (not every test binary uses it)
+pub fn synth_options(duration: f64, seed: u64) -> dynamics_sim2real::synth::SynthOptions<2> {
+    dynamics_sim2real::synth::SynthOptions {
+        duration,
+        seed,
+        ..Default::default()
+    }
+}

@@ -1,8 +1,8 @@
-//! Friction effects in the report's words: a correction against the
+//! Joint effects in the report's words: a friction correction against the
 //! nominal model's own friction ("the nominal model's viscous coefficient
-//! 0.800 corrected by -0.800 to 0.000"), and a Coulomb level that depends
-//! on the direction of motion (a Coulomb friction and an effort offset at
-//! the same joint: forward and backward levels).
+//! 0.800 corrected by -0.800 to 0.000"), a Coulomb level that depends on
+//! the direction of motion (a Coulomb friction and an effort offset at the
+//! same joint: forward and backward levels), a spring's rest position.
 
 use nalgebra::SVector;
 
@@ -116,6 +116,28 @@ pub(super) fn add_direction_words<const N: usize>(
     }
 }
 
+/// Says where each joint spring of `entries` is at rest
+/// (`q = -preload / stiffness`), where it has a stiffness.
+pub(super) fn add_spring_words(entries: &mut [Explained]) {
+    for e in entries
+        .iter_mut()
+        .filter(|e| e.kind == EffectKind::JointSpring.name())
+    {
+        let get = |n: &str| e.parameters.iter().find(|p| p.name == n).map(|p| p.value);
+        let (Some(k), Some(p), Some(joint)) =
+            (get("stiffness"), get("preload"), e.joint.as_deref())
+        else {
+            continue;
+        };
+        let rest = -p / k;
+        if k > 0.0 && rest.is_finite() {
+            e.description = Some(format!(
+                "{joint}: a spring of stiffness {k:.4} at rest at q = {rest:.3} (its effort {p:+.3} at q = 0)"
+            ));
+        }
+    }
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;
@@ -158,6 +180,30 @@ mod tests {
         assert!(words.contains("standstill"), "{words}");
         assert!(entries[1].description.is_none());
         assert!(entries[2].description.is_none());
+    }
+
+    /// A spring of 0.5 with a preload of -0.1 rests at q = 0.2 (by hand);
+    /// one without stiffness gets no words.
+    #[test]
+    fn a_spring_is_said_with_its_rest_position() {
+        let mut entries = vec![
+            entry(EffectKind::JointSpring, "j1", "stiffness", 0.5),
+            entry(EffectKind::JointSpring, "j2", "stiffness", 0.0),
+        ];
+        for e in &mut entries {
+            e.parameters.push(Parameter {
+                name: "preload".into(),
+                value: -0.1,
+                std: 0.01,
+            });
+        }
+        add_spring_words(&mut entries);
+        let words = entries[0].description.as_deref().unwrap_or("");
+        assert_eq!(
+            words,
+            "j1: a spring of stiffness 0.5000 at rest at q = 0.200 (its effort -0.100 at q = 0)"
+        );
+        assert!(entries[1].description.is_none());
     }
 
     /// An offset larger than the level reads as the sensor's.
