@@ -8,6 +8,7 @@
 //! | [`synth`] | the data generator: a robot with withheld effects under a tracking controller, with sensor noise |
 //! | [`data`] | measured data: CSV files in and out ([`data::Measured`]) |
 //! | [`Warning`] | what the reader repaired and what the data cannot show, with place and figure |
+//! | [`smoothing`] | the Savitzky-Golay smoothing of the diagnosis, shared with the generator's measure of what it can see |
 //! | [`diagnose`] | the gap diagnosis: where the model misses, which effects explain it, how far the gap shrinks on held-out data |
 //! | [`baseline`] | a diagnosis report's effects read back as effects on the robot (a calibrated baseline; with [`effects::Calibrated`]) |
 //! | [`identify`] | the plain least-squares identification baseline: friction, offsets, rotor inertia and link inertial parameters (base parameters), held-out shrink |
@@ -21,6 +22,7 @@ pub mod diagnose;
 pub mod effects;
 pub mod identify;
 pub mod inertial;
+pub mod smoothing;
 pub mod synth;
 mod warning;
 

@@ -197,10 +197,22 @@ pub fn diagnose<R: Robot<N> + Clone + Sync, const N: usize>(
 
     // Best grid variant per (kind, place), ranked by AICc, simpler nested
     // models first unless the richer one wins clearly (and, for a motor
-    // side, unless the rotor alone leaves only noise).
-    let best = rank::best_per_place(fits, n, options.nesting_margin, &|f| {
-        rank::within_floor(f, &p, options.floor_ratio)
-    });
+    // side, unless the rotor alone leaves only noise); elasticity and
+    // backlash at one joint, and Stribeck over Coulomb, also on the
+    // held-out record's evidence (`rank::best_per_place`).
+    let held_out = |f: &Fit| {
+        let (hs, hn) = (h.sse(&window::corrected(f, &h, &limited)), h.n() as f64);
+        hn * (hs.max(1e-300) / hn).ln()
+    };
+    let best = rank::best_per_place(
+        fits,
+        n,
+        options.nesting_margin,
+        &rank::Judge {
+            quiet: &|f| rank::within_floor(f, &p, options.floor_ratio),
+            held_out: &held_out,
+        },
+    );
     let tip_name = Tip::of::<R, N>().name::<R, N>().to_string();
     let excess = |sse: f64, sse0: f64, n: usize| -> f64 {
         let gap0 = (sse0 - n as f64).max(1e-12);

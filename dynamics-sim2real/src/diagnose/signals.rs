@@ -10,12 +10,6 @@ use super::segments::Mask;
 use crate::data::Measured;
 use dynamics_runtime::Robot;
 
-/// Smoothing half-width in seconds. 40 ms (cubic fit over 81 samples at
-/// 1 kHz) passes motion and resonances up to about 30 Hz; its derivative
-/// amplifies velocity noise into acceleration noise 4.4 times less than a
-/// 15 ms window, and that noise (times the inertia) is the larger part of
-/// the torque residual's floor.
-pub const SMOOTHING_HALF_WIDTH: f64 = 0.04;
 /// Half-width of the light smoother of velocities, s.
 pub const LIGHT_HALF_WIDTH: f64 = 0.004;
 
@@ -72,8 +66,8 @@ impl<const N: usize> Signals<N> {
     pub fn new<R: Robot<N>>(robot: &R, m: &Measured<N>) -> Self {
         let n = m.len();
         let dt = m.sample_interval();
-        let half = ((SMOOTHING_HALF_WIDTH / dt).round() as usize).max(3);
-        let sg = SavitzkyGolay::new(half, dt);
+        let sg = SavitzkyGolay::analysis(dt);
+        let half = sg.half();
         let zero = vec![SVector::<f64, N>::zeros(); n];
         let (mut q, mut qd, mut qdd, mut tau) =
             (zero.clone(), zero.clone(), zero.clone(), zero.clone());

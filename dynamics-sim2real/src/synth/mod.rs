@@ -162,7 +162,9 @@ pub struct Synthesized<const N: usize> {
     /// same experiment run without sensor noise: the applied effort minus
     /// the nominal inverse dynamics of the motion the sensors report (away
     /// from the record's first and last 40 ms, as is whether a velocity
-    /// reverses, below: what no smoothing window of the diagnosis covers). Zero
+    /// reverses, below: what no smoothing window of the diagnosis covers),
+    /// through the diagnosis's smoothing ([`crate::smoothing`]: what lies
+    /// above the band it passes is in none of its fits). Zero
     /// (to the integrator's rounding) without effects. (Without noise, so
     /// that the controller's reaction to sensor noise, which no sensor
     /// resolves in the motion, does not count as part of a delay.)

@@ -10,6 +10,7 @@ use super::sensors::{delayed, effort_at};
 use super::{Excitation, Noise, Rng, Scales, SynthError, SynthOptions};
 use crate::data::Measured;
 use crate::effects::{smooth_sign, Effect};
+use crate::smoothing::SavitzkyGolay;
 use dynamics_runtime::control::Reference;
 use dynamics_runtime::ode::Tolerances;
 use dynamics_runtime::Robot;
@@ -194,17 +195,50 @@ impl<'a, R: Robot<N> + Clone, const N: usize> Run<'a, R, N> {
         // The effort is held over each sample interval: around sample k the
         // motion's mean acceleration (central difference of the velocity)
         // answers the mean of the efforts held before and after it.
-        // Per joint: sum of gap^2, of gap * x and of x^2, x the column of
-        // the simpler effect contained (the acceleration for a rigid rotor
-        // at the motor joints, the friction's sign for a Coulomb friction
-        // within a Stribeck one). A Stribeck friction is measured against
-        // a Coulomb one only where the velocity never reverses: there the
-        // Coulomb friction is a constant effort and only the low-speed rise
-        // tells Stribeck's apart, if the joint ever slows to it; where it
-        // reverses, the breakaway shows at every reversal, brief but
-        // clear (on a generated MAR case whose rise is 0.31 of one sample's
-        // noise in RMS over the record, the diagnosis named Stribeck's 25
-        // AICc ahead of Coulomb's), and the whole effect counts.
+        // Per joint: the gap, and x the column of the simpler effect
+        // contained (the acceleration for a rigid rotor at the motor
+        // joints, the friction's sign for a Coulomb friction within a
+        // Stribeck one). A Stribeck friction is measured against a Coulomb
+        // one only where the velocity never reverses: there the Coulomb
+        // friction is a constant effort and only the low-speed rise tells
+        // Stribeck's apart, if the joint ever slows to it; where it
+        // reverses, the breakaway shows at every reversal, brief but clear
+        // (on a generated MAR case whose rise is 0.31 of one sample's noise
+        // in RMS over the record, the diagnosis named Stribeck's 25 AICc
+        // ahead of Coulomb's), and the whole effect counts.
+        let nan = SVector::<f64, N>::repeat(f64::NAN);
+        let (mut gaps, mut xs) = (vec![nan; n], vec![nan; n]);
+        for k in 1..n.saturating_sub(1) {
+            let qdd = (seen[k + 1].1 - seen[k - 1].1) / (times[k + 1] - times[k - 1]);
+            let held = (recorded[k - 1] + recorded[k]) * 0.5;
+            gaps[k] = held - robot.inverse_dynamics(&seen[k].0, &seen[k].1, &qdd);
+            xs[k] = SVector::<f64, N>::from_fn(|j, _| {
+                if self.stribeck[j] && !self.motor[j] {
+                    smooth_sign(seen[k].1[j])
+                } else {
+                    qdd[j]
+                }
+            });
+        }
+        // Both as the diagnosis sees them, through its smoothing: what
+        // lies above the band it passes (a backlash's contact ringing at
+        // 60 Hz and more) is in no fit of the diagnosis, and its size in
+        // RMS of the smoothed signal is on the scale of one sample's noise
+        // (the smoothing shrinks that noise as it shrinks the evidence per
+        // row). On slow effects the same as the raw size.
+        let sg = SavitzkyGolay::analysis(1.0 / opts.rate);
+        let smoothed = |v: &[SVector<f64, N>]| -> Vec<SVector<f64, N>> {
+            let mut out = vec![nan; n];
+            for j in 0..N {
+                let col: Vec<f64> = v.iter().map(|x| x[j]).collect();
+                for (o, c) in out.iter_mut().zip(sg.apply(&col, 0)) {
+                    o[j] = c;
+                }
+            }
+            out
+        };
+        let (gaps, xs) = (smoothed(&gaps), smoothed(&xs));
+        // Per joint: sum of gap^2, of gap * x and of x^2.
         let (mut sum, mut cross, mut acc) = (
             SVector::<f64, N>::zeros(),
             SVector::<f64, N>::zeros(),
@@ -218,20 +252,16 @@ impl<'a, R: Robot<N> + Clone, const N: usize> Run<'a, R, N> {
         let inner: Vec<usize> = (1..n.saturating_sub(1))
             .filter(|&k| times[k] >= t0 && times[k] <= t1)
             .collect();
+        let mut count = 0usize;
         for &k in &inner {
-            let qdd = (seen[k + 1].1 - seen[k - 1].1) / (times[k + 1] - times[k - 1]);
-            let held = (recorded[k - 1] + recorded[k]) * 0.5;
-            let gap = held - robot.inverse_dynamics(&seen[k].0, &seen[k].1, &qdd);
-            let x = SVector::<f64, N>::from_fn(|j, _| {
-                if self.stribeck[j] && !self.motor[j] {
-                    smooth_sign(seen[k].1[j])
-                } else {
-                    qdd[j]
-                }
-            });
+            let (gap, x) = (gaps[k], xs[k]);
+            if !(gap.iter().all(|g| g.is_finite()) && x.iter().all(|x| x.is_finite())) {
+                continue;
+            }
             sum += gap.component_mul(&gap);
             cross += gap.component_mul(&x);
             acc += x.component_mul(&x);
+            count += 1;
         }
         // Whether each joint's velocity reverses (reaches a twentieth of
         // its peak speed on both sides of zero).
@@ -242,7 +272,7 @@ impl<'a, R: Robot<N> + Clone, const N: usize> Run<'a, R, N> {
             let peak = hi.max(-lo);
             hi >= REVERSAL * peak && -lo >= REVERSAL * peak && peak > 0.0
         });
-        let count = inner.len().max(1) as f64;
+        let count = count.max(1) as f64;
         let effect = (sum / count).map(f64::sqrt);
         let distinct = SVector::<f64, N>::from_fn(|j, _| {
             let contains = self.motor[j] || (self.stribeck[j] && !reverses[j]);

@@ -28,7 +28,8 @@ use nalgebra::SVector;
 use robots::registry::AnyRobot;
 
 /// A withheld effect counts for recall when its effort alone, RMS along
-/// the motion, is at least this many times one sample's effort noise (and
+/// the motion through the diagnosis's smoothing, is at least this many
+/// times one sample's effort noise (and
 /// so is the part a rigid rotor does not explain, for the motor sides).
 const IDENTIFIABLE_SNR: f64 = 2.0;
 const ROBOTS: [&str; 5] = ["arm3r", "rrp-rigid", "mar", "ur5", "panda"];

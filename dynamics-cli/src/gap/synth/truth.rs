@@ -26,7 +26,9 @@ pub struct Truth {
     /// truth side (computed by the generator, never by the diagnoser): the
     /// largest over the joints of the RMS, along the recorded training
     /// motion, of the effort the nominal model misses on noise-free data,
-    /// over the standard deviation of one sample's effort noise.
+    /// seen through the diagnosis's smoothing (`dynamics_sim2real::smoothing`:
+    /// what lies above the band it passes is in none of its fits), over
+    /// the standard deviation of one sample's effort noise.
     /// `synth::Synthesized::snr`; about 0 for a control.
     #[serde(default)]
     pub snr: f64,

@@ -26,8 +26,10 @@ use robots::builtin::{diagnose_files, synth};
 
 const CASES: usize = 44;
 /// A case is identifiable when the withheld effect's effort, RMS along the
-/// recorded motion, is at least this many times the effort noise of one
-/// sample (`Truth::snr`, computed by the generator from the truth side),
+/// recorded motion through the diagnosis's smoothing (what lies above the
+/// band it passes is in none of its fits), is at least this many times
+/// the effort noise of one sample (`Truth::snr`, computed by the generator
+/// from the truth side),
 /// and so is the part of it that tells the effect from the simpler effect
 /// it contains (`Truth::distinct_snr`: elasticity and backlash carry a
 /// rotor inertia, which alone is `armature`; a backlash whose gap is never
