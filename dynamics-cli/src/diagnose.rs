@@ -98,6 +98,26 @@ pub fn diagnose_cmd<R: Robot<N> + Clone + Sync, const N: usize>(
             );
         }
     }
+    let friction: Vec<_> = report
+        .which
+        .friction
+        .iter()
+        .filter(|f| f.corrected || f.coulomb > 0.0 || f.viscous > 0.0)
+        .collect();
+    if !friction.is_empty() {
+        println!("friction in the calibrated model (nominal -> with the explanation):");
+        for f in friction {
+            println!(
+                "  {:<8} Coulomb {:.4} -> {:.4}, viscous {:.4} -> {:.4}{}",
+                f.joint,
+                f.coulomb_nominal,
+                f.coulomb,
+                f.viscous_nominal,
+                f.viscous,
+                if f.corrected { "" } else { " (nominal kept)" }
+            );
+        }
+    }
     println!(
         "shrink on held-out data: torque gap -{:.1} %, short-horizon simulation error -{:.1} %",
         100.0 * report.shrink.torque_fraction,

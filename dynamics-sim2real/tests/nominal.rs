@@ -56,6 +56,11 @@ fn made_up_nominal_damping_is_taken_away() {
         .find(|d| d.starts_with("j1: the nominal model's viscous coefficient 0.800 corrected by"));
     assert!(said.is_some(), "{:#?}", r.which.effects);
     assert!(r.shrink.rms_fraction > 0.5, "{:?}", r.shrink);
+    // The calibrated model's friction at j1: none left of the 0.8.
+    let j1 = &r.which.friction[0];
+    assert_eq!(j1.joint, "j1");
+    assert!((j1.viscous_nominal - 0.8).abs() < 1e-6, "{j1:?}");
+    assert!(j1.viscous < 0.08 && j1.corrected, "{j1:?}");
 }
 
 /// Measured efforts at j1 three times the applied ones: the single-effect

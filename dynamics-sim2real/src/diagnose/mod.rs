@@ -39,6 +39,7 @@ mod error;
 mod explain;
 mod filter;
 mod fit;
+mod friction_table;
 mod horizon;
 mod late;
 mod links;
@@ -316,6 +317,12 @@ pub fn diagnose<R: Robot<N> + Clone + Sync, const N: usize>(
         which: Which {
             ranked,
             verdict,
+            friction: friction_table::friction_table(
+                &R::JOINT_NAMES,
+                &p.basis.friction.0,
+                &p.basis.friction.1,
+                &effects,
+            ),
             effects,
         },
         shrink,

@@ -64,6 +64,27 @@ pub struct Which {
     /// (empty when the model explains the data within noise or nothing
     /// explains the gap).
     pub effects: Vec<Explained>,
+    /// Each joint's friction in the calibrated model: the nominal model's
+    /// own with the explanation's corrections.
+    pub friction: Vec<JointFriction>,
+}
+
+/// A joint's friction in the calibrated model.
+#[derive(Debug, Clone, Serialize)]
+pub struct JointFriction {
+    /// Joint.
+    pub joint: String,
+    /// The nominal model's Coulomb level (N m or N).
+    pub coulomb_nominal: f64,
+    /// The Coulomb level with the explanation's corrections (>= 0).
+    pub coulomb: f64,
+    /// The nominal model's viscous coefficient (N m s/rad or N s/m).
+    pub viscous_nominal: f64,
+    /// The viscous coefficient with the explanation's corrections (>= 0).
+    pub viscous: f64,
+    /// Whether the explanation corrects the friction at this joint (else
+    /// the nominal values stand).
+    pub corrected: bool,
 }
 
 /// One effect of the compound explanation.
