@@ -54,8 +54,15 @@ const IDENTIFIABLE_SNR: f64 = 2.0;
 fn rate_snr(snr: f64, rate: f64) -> f64 {
     snr * (rate / 1000.0).min(1.0).sqrt()
 }
+/// Figures (named first / identifiable, by the evidence of a 1 kHz
+/// record, `rate_snr`, of the sizes seen through the diagnosis's
+/// smoothing): base 0 33/33 (windows and channels 13/14), 12000 31/31,
+/// 21000 37/38 (a rotor inertia on the RRP named elastic), 22000 27/27,
+/// 23000 33/33, 24000 31/31, 31000 33/33, 32000 33/33, 33000 33/33, 41000
+/// 39/40 (a Stribeck named Coulomb), 42000 28/28, 43000 34/34, 44000
+/// 31/31, 45000 32/32; joints, controls, warnings right on all. Some 30 s
+/// of diagnosis on 2 cores.
 #[test]
-#[ignore = "50-200 s of diagnosis (60 cases); identifiable by the evidence of a 1 kHz record (rate_snr) of the sizes seen through the diagnosis's smoothing: base 12000 31/31, 21000 37/38 (a rotor inertia on the RRP named elastic), 22000 27/27, 23000 33/33, 24000 31/31, 31000 33/33, 32000 33/33, 33000 33/33, 41000 39/40 (a Stribeck named Coulomb), 42000 28/28, 43000 34/34, fresh 44000 31/31, 45000 32/32; joints, controls, warnings right on all; run with --ignored"]
 fn diagnoser_names_the_effect_in_damaged_logs() {
     // `LOGS_KEEP=DIR` writes the cases' files there and keeps them.
     let keep = std::env::var("LOGS_KEEP").ok();
