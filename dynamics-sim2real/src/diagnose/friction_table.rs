@@ -69,26 +69,7 @@ fn finite(x: f64) -> f64 {
 #[cfg(test)]
 mod tests {
     use super::*;
-    use crate::diagnose::report::Parameter;
-
-    fn entry(kind: EffectKind, joint: &str, name: &str, value: f64) -> Explained {
-        Explained {
-            kind: kind.name().to_string(),
-            joint: Some(joint.to_string()),
-            point: None,
-            description: None,
-            parameters: vec![Parameter {
-                name: name.to_string(),
-                value,
-                std: 0.01,
-            }],
-            share: 0.1,
-            holdout_contribution: 0.1,
-            window: None,
-            channel: None,
-            ambiguous_with: None,
-        }
-    }
+    use crate::diagnose::report::test_entry as entry;
 
     /// By hand: j1 nominal 0.8 N m s/rad, corrected by -0.8 (all taken
     /// away), Coulomb 0 + 0.3; j2 keeps its nominal 0.2 / 0.5; j3 has a

@@ -278,3 +278,29 @@ pub struct JointShrink {
     /// After.
     pub simulation_after: f64,
 }
+
+/// A one-parameter joint effect of the explanation, for unit tests.
+#[cfg(test)]
+pub(crate) fn test_entry(
+    kind: crate::effects::EffectKind,
+    joint: &str,
+    name: &str,
+    value: f64,
+) -> Explained {
+    Explained {
+        kind: kind.name().to_string(),
+        joint: Some(joint.to_string()),
+        point: None,
+        description: None,
+        parameters: vec![Parameter {
+            name: name.to_string(),
+            value,
+            std: 0.01,
+        }],
+        share: 0.1,
+        holdout_contribution: 0.1,
+        window: None,
+        channel: None,
+        ambiguous_with: None,
+    }
+}

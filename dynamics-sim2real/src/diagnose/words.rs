@@ -141,26 +141,7 @@ pub(super) fn add_spring_words(entries: &mut [Explained]) {
 #[cfg(test)]
 mod tests {
     use super::*;
-    use crate::diagnose::report::Parameter;
-
-    fn entry(kind: EffectKind, joint: &str, name: &str, value: f64) -> Explained {
-        Explained {
-            kind: kind.name().to_string(),
-            joint: Some(joint.to_string()),
-            point: None,
-            description: None,
-            parameters: vec![Parameter {
-                name: name.to_string(),
-                value,
-                std: 0.01,
-            }],
-            share: 0.1,
-            holdout_contribution: 0.1,
-            window: None,
-            channel: None,
-            ambiguous_with: None,
-        }
-    }
+    use crate::diagnose::report::{test_entry as entry, Parameter};
 
     /// A Coulomb correction of +0.2 on a nominal level of 0.1 with an
     /// effort offset of +0.05: 0.35 forward, 0.25 backward (by hand); a
