@@ -15,7 +15,8 @@
 #
 # Splits: Panda, one 21 s record: train on 0-10.5 s, hold out 10.5-21 s.
 # KUKA, three 25 s records: train on 1, hold out 2 (same trajectory), 3
-# (another one); train on 3, hold out 1.
+# (another one); train on 3, hold out 1; each with the CAD URDF as it is
+# and without its friction.
 set -euo pipefail
 
 [ $# -ge 2 ] || { sed -n 2,20p "$0"; exit 2; }
@@ -51,6 +52,10 @@ for i in 1 2 3; do
 done
 show "$KUKA_REPO" "$KUKA_MODEL_COMMIT" model/kuka_lwr4.urdf "$WORK/kuka/kuka_lwr4.urdf"
 show "$KUKA_REPO" "$KUKA_MODEL_COMMIT" model/kuka_lwr4_identified.urdf "$WORK/kuka/kuka_lwr4_identified.urdf"
+# The CAD file's <dynamics damping friction> are placeholders (0.2-1.2 N m
+# s/rad, 0.05-0.8 N m); most URDFs carry no friction at all. The same file
+# without them is the second nominal model the KUKA is diagnosed with.
+sed 's#<dynamics [^>]*/>##' "$WORK/kuka/kuka_lwr4.urdf" > "$WORK/kuka/kuka_lwr4_no_friction.urdf"
 
 # The throwaway crate: the robots by absolute URDF path, and a runner.
 CRATE="$WORK/crate"
@@ -80,6 +85,13 @@ dynamics_macros::robot! {
 }
 
 dynamics_macros::robot! {
+    /// The same without its <dynamics damping friction>.
+    pub robot KukaNoFriction;
+    gravity = [0.0, 0.0, -9.81];
+    urdf = "$WORK/kuka/kuka_lwr4_no_friction.urdf";
+}
+
+dynamics_macros::robot! {
     /// The Panda without its hand (as logged by Gaz et al.).
     pub robot PandaArm;
     gravity = [0.0, 0.0, -9.81];
@@ -101,4 +113,7 @@ K="$WORK/kuka"
     "$RUN" kuka "$KUKA_MAP" "$K/measurements_1.npz" - "$K/measurements_2.npz" - "$WORK/kuka-1-2.json" "$K/kuka_lwr4_identified.urdf"
     "$RUN" kuka "$KUKA_MAP" "$K/measurements_1.npz" - "$K/measurements_3.npz" - "$WORK/kuka-1-3.json" "$K/kuka_lwr4_identified.urdf"
     "$RUN" kuka "$KUKA_MAP" "$K/measurements_3.npz" - "$K/measurements_1.npz" - "$WORK/kuka-3-1.json" "$K/kuka_lwr4_identified.urdf"
+    "$RUN" kuka-no-friction "$KUKA_MAP" "$K/measurements_1.npz" - "$K/measurements_2.npz" - "$WORK/kuka-no-friction-1-2.json" "$K/kuka_lwr4_identified.urdf"
+    "$RUN" kuka-no-friction "$KUKA_MAP" "$K/measurements_1.npz" - "$K/measurements_3.npz" - "$WORK/kuka-no-friction-1-3.json" "$K/kuka_lwr4_identified.urdf"
+    "$RUN" kuka-no-friction "$KUKA_MAP" "$K/measurements_3.npz" - "$K/measurements_1.npz" - "$WORK/kuka-no-friction-3-1.json" "$K/kuka_lwr4_identified.urdf"
 } | tee "$WORK/table.md"

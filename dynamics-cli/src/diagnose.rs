@@ -107,8 +107,13 @@ pub fn diagnose_cmd<R: Robot<N> + Clone + Sync, const N: usize>(
     if !friction.is_empty() {
         println!("friction in the calibrated model (nominal -> with the explanation):");
         for f in friction {
+            let breakaway = if f.breakaway > f.coulomb + 5e-5 {
+                format!(" (breaking away at {:.4})", f.breakaway)
+            } else {
+                String::new()
+            };
             println!(
-                "  {:<8} Coulomb {:.4} -> {:.4}, viscous {:.4} -> {:.4}{}",
+                "  {:<8} Coulomb {:.4} -> {:.4}{breakaway}, viscous {:.4} -> {:.4}{}",
                 f.joint,
                 f.coulomb_nominal,
                 f.coulomb,

@@ -28,6 +28,7 @@ fn main() -> Res<()> {
     }
     match args[0].as_str() {
         "kuka" => run(robots::Kuka::default(), &args),
+        "kuka-no-friction" => run(robots::KukaNoFriction::default(), &args),
         "panda-arm" => run(robots::PandaArm::default(), &args),
         other => Err(format!("unknown robot `{other}`").into()),
     }
@@ -229,8 +230,10 @@ fn print_rows(report: &Report, args: &[String], how: &str, seconds: f64, base: O
     );
 }
 
-/// Per joint: the published friction beside the diagnosis's single fits
-/// (`which.ranked`) and the effects its explanation names there.
+/// Per joint: the published friction beside the calibrated model's
+/// (`which.friction`: the nominal model's own with the explanation's
+/// corrections; `nominal -> calibrated` where corrected) and the effects
+/// the explanation names there.
 fn print_friction<const N: usize>(
     report: &Report,
     joints: &[&str; N],
@@ -243,18 +246,31 @@ fn print_friction<const N: usize>(
         urdf_friction(&text, joints)
     };
     println!();
-    println!("| joint | published Coulomb | published viscous | ours: Coulomb fc | ours: viscous fv | named in the explanation (joint fit) |");
+    println!("| joint | published Coulomb | published viscous | calibrated Coulomb | calibrated viscous | named in the explanation (joint fit) |");
     println!("|---|---|---|---|---|---|");
     for (i, j) in joints.iter().enumerate() {
-        let fit = |kind: &str| {
-            report
-                .which
-                .ranked
-                .iter()
-                .find(|r| r.kind == kind && r.joint.as_deref() == Some(*j))
-                .and_then(|r| r.parameters.first())
-                .map(|p| format!("{:.3} ± {:.3}", p.value, p.std))
-                .unwrap_or_else(|| "-".into())
+        let ours = report.which.friction.iter().find(|f| f.joint == *j);
+        let level = |nominal: f64, calibrated: f64| {
+            if (nominal - calibrated).abs() < 5e-4 {
+                format!("{calibrated:.3}")
+            } else {
+                format!("{nominal:.3} -> {calibrated:.3}")
+            }
+        };
+        let (coulomb, viscous) = match ours {
+            Some(f) if f.breakaway > f.coulomb + 5e-4 => (
+                format!(
+                    "{} (breaking away at {:.3})",
+                    level(f.coulomb_nominal, f.coulomb),
+                    f.breakaway
+                ),
+                level(f.viscous_nominal, f.viscous),
+            ),
+            Some(f) => (
+                level(f.coulomb_nominal, f.coulomb),
+                level(f.viscous_nominal, f.viscous),
+            ),
+            None => ("-".into(), "-".into()),
         };
         // The explanation's effects at this joint, with their joint fit.
         let named: Vec<String> = report
@@ -262,17 +278,19 @@ fn print_friction<const N: usize>(
             .effects
             .iter()
             .filter(|e| e.joint.as_deref() == Some(*j))
-            .map(|e| match e.parameters.first() {
-                Some(p) => format!("{} {:.3} ± {:.3}", e.kind, p.value, p.std),
-                None => e.kind.clone(),
+            .map(|e| {
+                let p: Vec<String> = e
+                    .parameters
+                    .iter()
+                    .map(|p| format!("{} {:.3} ± {:.3}", p.name, p.value, p.std))
+                    .collect();
+                format!("{} ({})", e.kind, p.join(", "))
             })
             .collect();
         println!(
-            "| {j} | {} | {} | {} | {} | {} |",
+            "| {j} | {} | {} | {coulomb} | {viscous} | {} |",
             theirs[i].0,
             theirs[i].1,
-            fit("coulomb_friction"),
-            fit("viscous_friction"),
             named.join("; ")
         );
     }

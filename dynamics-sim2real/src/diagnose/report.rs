@@ -78,6 +78,10 @@ pub struct JointFriction {
     pub coulomb_nominal: f64,
     /// The Coulomb level with the explanation's corrections (>= 0).
     pub coulomb: f64,
+    /// The level as the joint starts to move (>= `coulomb`): the Coulomb
+    /// level plus a Stribeck friction's excess `fs - fc`, which fades over
+    /// its Stribeck velocity.
+    pub breakaway: f64,
     /// The nominal model's viscous coefficient (N m s/rad or N s/m).
     pub viscous_nominal: f64,
     /// The viscous coefficient with the explanation's corrections (>= 0).
