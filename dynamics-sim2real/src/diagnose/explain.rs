@@ -13,9 +13,7 @@ use super::links::{combined, delta, words};
 use super::pool::{fixed_column, linear_columns, Pool, Solution};
 use super::rank::ranked_entry;
 use super::report::{Explained, Parameter, Rival, ShrinkStep};
-use super::words::{
-    add_direction_words, add_spring_words, nominal_words, within_nominal, Friction,
-};
+use super::words::{add_direction_words, nominal_words, within_nominal, Friction};
 use crate::effects::Effect;
 use crate::inertial::{check, complete, describe};
 use dynamics_runtime::Robot;
@@ -320,7 +318,6 @@ pub fn entries<R: Robot<N>, const N: usize>(
         })
         .collect();
     add_direction_words(&mut explained, &R::JOINT_NAMES, &friction.0);
-    add_spring_words(&mut explained);
     (explained, steps)
 }
 

@@ -272,6 +272,7 @@ pub fn diagnose<R: Robot<N> + Clone + Sync, const N: usize>(
         &nominal,
         &p.basis.friction,
     );
+    words::add_spring_words(&mut effects, &R::JOINT_NAMES, &excitation.range);
     window::annotate(&mut effects, &pool, &explanation, &limited);
     // A late effort stream, or a late motion whose channel is unresolved.
     late::warn(

@@ -40,6 +40,9 @@ pub struct Excitation {
     pub moves: Vec<bool>,
     /// Whether each joint's velocity reverses.
     pub reverses: Vec<bool>,
+    /// Each joint's range of motion (smoothed position, lowest and
+    /// highest).
+    pub range: Vec<(f64, f64)>,
 }
 
 /// What the training data `p` (joint names `names`) can show; warnings
@@ -51,6 +54,7 @@ pub(super) fn excitation<const N: usize>(
 ) -> Result<Excitation, DiagnoseError> {
     let mut moves = vec![false; N];
     let mut reverses = vec![false; N];
+    let mut range = vec![(0.0, 0.0); N];
     for j in 0..N {
         let (mut lo, mut hi, mut vlo, mut vhi) = (f64::INFINITY, f64::NEG_INFINITY, 0.0f64, 0.0f64);
         for &k in &p.rows {
@@ -60,6 +64,7 @@ pub(super) fn excitation<const N: usize>(
             vhi = vhi.max(p.sig.qd[k][j]);
         }
         let peak = vhi.max(-vlo);
+        range[j] = (lo, hi);
         moves[j] = hi - lo >= (TRAVEL_NOISE * p.levels[0][j]).max(MIN_TRAVEL);
         reverses[j] = moves[j] && vhi >= REVERSAL * peak && -vlo >= REVERSAL * peak;
         if !moves[j] {
@@ -76,7 +81,11 @@ pub(super) fn excitation<const N: usize>(
     if !moves.iter().any(|&m| m) {
         return Err(DiagnoseError::NoMotion);
     }
-    Ok(Excitation { moves, reverses })
+    Ok(Excitation {
+        moves,
+        reverses,
+        range,
+    })
 }
 
 /// Refuses an effort column whose sign is flipped: the measured effort

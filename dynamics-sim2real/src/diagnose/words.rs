@@ -117,8 +117,15 @@ pub(super) fn add_direction_words<const N: usize>(
 }
 
 /// Says where each joint spring of `entries` is at rest
-/// (`q = -preload / stiffness`), where it has a stiffness.
-pub(super) fn add_spring_words(entries: &mut [Explained]) {
+/// (`q = -preload / stiffness`), where it has a stiffness, and when that
+/// lies outside the range the joint moved in the training data (`range`,
+/// per joint of `names`): there the data show an effort that grows with
+/// the position over the range, not where it would vanish.
+pub(super) fn add_spring_words<const N: usize>(
+    entries: &mut [Explained],
+    names: &[&str; N],
+    range: &[(f64, f64)],
+) {
     for e in entries
         .iter_mut()
         .filter(|e| e.kind == EffectKind::JointSpring.name())
@@ -130,11 +137,24 @@ pub(super) fn add_spring_words(entries: &mut [Explained]) {
             continue;
         };
         let rest = -p / k;
-        if k > 0.0 && rest.is_finite() {
-            e.description = Some(format!(
-                "{joint}: a spring of stiffness {k:.4} at rest at q = {rest:.3} (its effort {p:+.3} at q = 0)"
+        if !(k > 0.0 && rest.is_finite()) {
+            continue;
+        }
+        let mut words = format!(
+            "{joint}: a spring of stiffness {k:.4} at rest at q = {rest:.3} (its effort {p:+.3} at q = 0)"
+        );
+        let moved = names
+            .iter()
+            .position(|n| *n == joint)
+            .and_then(|j| range.get(j));
+        if let Some(&(lo, hi)) = moved.filter(|(lo, hi)| rest < *lo || rest > *hi) {
+            words.push_str(&format!(
+                "; it rests outside the range the joint moved ({lo:.3} to {hi:.3}): what the data show is an effort rising {k:.4} per unit of position over that range, from {:+.3} to {:+.3}, which a cable, a hose or a link's inertial error could make as well",
+                k * lo + p,
+                k * hi + p
             ));
         }
+        e.description = Some(words);
     }
 }
 
@@ -178,13 +198,32 @@ mod tests {
                 std: 0.01,
             });
         }
-        add_spring_words(&mut entries);
+        add_spring_words(&mut entries, &["j1", "j2"], &[(-0.5, 0.5), (-0.5, 0.5)]);
         let words = entries[0].description.as_deref().unwrap_or("");
         assert_eq!(
             words,
             "j1: a spring of stiffness 0.5000 at rest at q = 0.200 (its effort -0.100 at q = 0)"
         );
         assert!(entries[1].description.is_none());
+    }
+
+    /// The same spring on a joint that moved over 0.5-1.0 rad rests
+    /// outside it: its effort over the range is +0.150 to +0.400 (by hand).
+    #[test]
+    fn a_spring_at_rest_outside_the_range_moved_says_so() {
+        let mut entries = vec![entry(EffectKind::JointSpring, "j1", "stiffness", 0.5)];
+        entries[0].parameters.push(Parameter {
+            name: "preload".into(),
+            value: -0.1,
+            std: 0.01,
+        });
+        add_spring_words(&mut entries, &["j1"], &[(0.5, 1.0)]);
+        let words = entries[0].description.as_deref().unwrap_or("");
+        assert!(
+            words.contains("it rests outside the range the joint moved (0.500 to 1.000)"),
+            "{words}"
+        );
+        assert!(words.contains("from +0.150 to +0.400"), "{words}");
     }
 
     /// An offset larger than the level reads as the sensor's.
