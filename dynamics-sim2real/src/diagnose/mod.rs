@@ -273,6 +273,7 @@ pub fn diagnose<R: Robot<N> + Clone + Sync, const N: usize>(
         &p.basis.friction,
     );
     words::add_spring_words(&mut effects, &R::JOINT_NAMES, &excitation.range);
+    words::add_encoder_words(&mut effects, &R::JOINT_NAMES, &R::JOINT_KINDS);
     window::annotate(&mut effects, &pool, &explanation, &limited);
     // A late effort stream, or a late motion whose channel is unresolved.
     late::warn(
