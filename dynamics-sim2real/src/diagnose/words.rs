@@ -151,7 +151,7 @@ pub(super) fn add_spring_words<const N: usize>(
             .and_then(|j| range.get(j));
         if let Some(&(lo, hi)) = moved.filter(|(lo, hi)| rest < *lo || rest > *hi) {
             words.push_str(&format!(
-                "; it rests outside the range the joint moved ({lo:.3} to {hi:.3}): what the data show is an effort rising {k:.4} per unit of position over that range, from {:+.3} to {:+.3}, which a cable, a hose or a link's inertial error could make as well",
+                "; it rests outside the range the joint moved ({lo:.3} to {hi:.3}): what the data show is an effort rising {k:.4} per unit of position over that range, from {:+.3} to {:+.3}, which a cable or a hose pulling, or gravity on masses the model places wrong, could make as well",
                 k * lo + p,
                 k * hi + p
             ));
