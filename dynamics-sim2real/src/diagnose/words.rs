@@ -10,28 +10,11 @@ use nalgebra::SVector;
 
 use super::candidate::Candidate;
 use super::report::Explained;
-use crate::effects::{Effect, EffectKind};
+use crate::effects::EffectKind;
 
 /// Per joint, the nominal model's Coulomb levels and viscous coefficients
 /// (`nominal_friction.rs`).
 pub type Friction<const N: usize> = (SVector<f64, N>, SVector<f64, N>);
-
-/// Whether `e` is a friction correction that takes away no more of the
-/// nominal model's `friction` than there is.
-pub(super) fn within_nominal<const N: usize>(e: &Effect, friction: &Friction<N>) -> bool {
-    let (coulomb, viscous) = friction;
-    let ok = |x: f64, nominal: Option<&f64>| {
-        nominal.is_some_and(|n| x.is_finite() && x >= -n * (1.0 + 1e-9))
-    };
-    match *e {
-        Effect::CoulombFriction { joint, fc, .. } => ok(fc, coulomb.get(joint)),
-        Effect::ViscousFriction { joint, fv } => ok(fv, viscous.get(joint)),
-        Effect::StribeckFriction { joint, fc, fs, vs } => {
-            ok(fc, coulomb.get(joint)) && ok(fs, coulomb.get(joint)) && vs > 0.0
-        }
-        _ => false,
-    }
-}
 
 /// In words, a friction correction `value` of parameter `name` at joint
 /// `j` (named `joint`) where the nominal model has friction of its own.
