@@ -119,7 +119,7 @@ fn a_plant_takes_away_the_nominal_friction_but_no_more() {
     let mut damped = Arm2Friction::default();
     damped.params_mut().fv = 0.8;
     let away = vec![Effect::ViscousFriction { joint: 0, fv: -0.8 }];
-    let plant = Plant::new(damped.clone(), away.clone()).expect("within the nominal");
+    let plant = Plant::new(damped, away.clone()).expect("within the nominal");
     let bare = Plant::new(Arm2Friction::default(), vec![]).expect("plant");
     let (q0, qd0) = ([0.3, -0.2].into(), [1.5, -0.7].into());
     let (mut a, mut b) = (plant.start(q0, qd0), bare.start(q0, qd0));
@@ -137,9 +137,9 @@ fn a_plant_takes_away_the_nominal_friction_but_no_more() {
         a.state.q,
         b.state.q
     );
-    assert!(Calibrated::new(damped.clone(), away).is_ok());
+    assert!(Calibrated::new(damped, away).is_ok());
     let too_much = vec![Effect::ViscousFriction { joint: 0, fv: -1.0 }];
-    let e = Plant::new(damped.clone(), too_much.clone()).unwrap_err();
+    let e = Plant::new(damped, too_much.clone()).unwrap_err();
     assert!(e.to_string().contains("fv"), "{e}");
     let e = Calibrated::new(damped, too_much).unwrap_err();
     assert!(e.to_string().contains("fv"), "{e}");
