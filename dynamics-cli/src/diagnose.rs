@@ -164,7 +164,7 @@ pub fn diagnose_cmd<R: Robot<N> + Clone + Sync, const N: usize>(
 }
 
 /// The compound explanation as command-line lines: each effect in the
-/// order chosen with its place, share of the training gap, held-out
+/// order of its gains with its place, share of the training gap, held-out
 /// contribution, the held-out gap above noise left once it is added, and
 /// its parameters (or its words, when it has some); then the plain figure.
 /// Nothing when the explanation is empty.
@@ -186,7 +186,7 @@ pub fn diagnose_cmd<R: Robot<N> + Clone + Sync, const N: usize>(
 /// let b = synthesize(&arm, &friction, &run(2)).unwrap();
 /// let report = diagnose(&arm, &a, &b, &Options::default(), &|_, _| {}).unwrap();
 /// let lines = explanation_lines(&report);
-/// assert!(lines[0].starts_with("explanation (1 effect, in the order chosen"));
+/// assert!(lines[0].starts_with("explanation (1 effect, in the order of their gains"));
 /// assert!(lines[1].contains("coulomb_friction"));
 /// ```
 pub fn explanation_lines(report: &dynamics_sim2real::diagnose::Report) -> Vec<String> {
@@ -196,7 +196,7 @@ pub fn explanation_lines(report: &dynamics_sim2real::diagnose::Report) -> Vec<St
     }
     let n = effects.len();
     let mut lines = vec![format!(
-        "explanation ({n} effect{}, in the order chosen; share of the training gap, held-out \
+        "explanation ({n} effect{}, in the order of their gains; share of the training gap, held-out \
          contribution, held-out gap above noise left once added):",
         if n == 1 { "" } else { "s" }
     )];

@@ -1,5 +1,5 @@
 //! The compound explanation in the readable report: a table of the
-//! effects in the order chosen (parameters from the joint fit, share of
+//! effects in the order of their gains (parameters from the joint fit, share of
 //! the training gap, held-out contribution, ambiguous pairs) and a bar
 //! chart of the held-out gap left after each added effect.
 
@@ -39,10 +39,12 @@ pub fn section(report: &Report) -> String {
     }
     let _ = writeln!(
         s,
-        "Chosen one at a time by forward selection over every candidate on every joint, each \
-         fitted jointly with those before it; share = part of the training gap above noise it \
-         explained when added; held-out contribution = how much the held-out gap grows when \
-         it alone is left out (the others refitted).\n"
+        "Chosen over every candidate on every joint (forward selection, and where model error \
+         is left on most joints a search from the full linear model), each fitted jointly with \
+         the others; listed in the order of their gains (each in turn the one that lowers the \
+         criterion most when added to those before it); share = part of the training gap above \
+         noise it explained when added; held-out contribution = how much the held-out gap \
+         grows when it alone is left out (the others refitted).\n"
     );
     let _ = writeln!(
         s,

@@ -1,6 +1,6 @@
 //! The compound explanation in the report's words: each effect with its
 //! parameters from the joint fit, its share of the training gap (in the
-//! order chosen), its held-out contribution (how much the held-out gap
+//! order of the gains), its held-out contribution (how much the held-out gap
 //! grows when it alone is left out of the set, the others refitted), and
 //! the held-out gap left after each added effect.
 

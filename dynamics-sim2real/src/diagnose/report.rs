@@ -61,7 +61,7 @@ pub struct Which {
     pub ranked: Vec<Ranked>,
     /// The verdict.
     pub verdict: Verdict,
-    /// The effects that together explain the gap, in the order chosen
+    /// The effects that together explain the gap, in the order of their gains
     /// (empty when the model explains the data within noise or nothing
     /// explains the gap).
     pub effects: Vec<Explained>,

@@ -96,7 +96,7 @@ fn default_command_diagnoses_the_built_in_case() {
     assert!(text.contains("verdict: coulomb_friction j2"), "{text}");
     // The compound explanation, effect by effect, with the gap it leaves.
     assert!(
-        text.contains("explanation (1 effect, in the order chosen"),
+        text.contains("explanation (1 effect, in the order of their gains"),
         "{text}"
     );
     assert!(text.contains("   1 coulomb_friction         j2 "), "{text}");

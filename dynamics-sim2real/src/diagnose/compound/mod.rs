@@ -65,7 +65,7 @@ pub const MODEL_ERROR_JOINTS: usize = 2;
 /// The chosen set, its joint fit and the rival of each effect.
 #[derive(Debug, Clone)]
 pub struct Explanation {
-    /// Term indices into the pool, in the order chosen.
+    /// Term indices into the pool, in the order of their gains (`order.rs`).
     pub set: Vec<usize>,
     /// The joint fit of the whole set.
     pub sol: Solution,
