@@ -40,9 +40,13 @@ pub fn diagnose_cmd<R: Robot<N> + Clone + Sync, const N: usize>(
     }
     println!("where (training data, nominal model):");
     for j in &report.where_.joints {
+        let prediction = match (j.prediction_rms, j.prediction_ratio) {
+            (Some(e), Some(r)) => format!("{e:.2e} = {r:.1} x an exact model's"),
+            _ => "not made (warnings)".into(),
+        };
         println!(
-            "  {:8} torque residual {:.4} = {:.1} x noise; 0.1 s prediction error {:.2e} = {:.1} x an exact model's",
-            j.joint, j.torque_rms, j.torque_ratio, j.prediction_rms, j.prediction_ratio
+            "  {:8} torque residual {:.4} = {:.1} x noise; 0.1 s prediction error {prediction}",
+            j.joint, j.torque_rms, j.torque_ratio
         );
         for w in j.windows.iter().take(2) {
             println!(
@@ -123,10 +127,13 @@ pub fn diagnose_cmd<R: Robot<N> + Clone + Sync, const N: usize>(
             );
         }
     }
+    let simulation = match report.shrink.simulation_fraction {
+        Some(x) => format!("-{:.1} %", 100.0 * x),
+        None => "not measured (warnings)".into(),
+    };
     println!(
-        "shrink on held-out data: torque gap -{:.1} %, short-horizon simulation error -{:.1} %",
+        "shrink on held-out data: torque gap -{:.1} %, short-horizon simulation error {simulation}",
         100.0 * report.shrink.torque_fraction,
-        100.0 * report.shrink.simulation_fraction
     );
     if let Some(path) = json {
         std::fs::write(&path, serde_json::to_string_pretty(&report)?)

@@ -144,6 +144,15 @@ pub enum Warning {
         /// Its standard deviation, s.
         std: f64,
     },
+    /// The short-horizon simulation of a model could not be made (a
+    /// plant it cannot build, an integrator that stops): its figures are
+    /// left out (`null` in the JSON report).
+    SimulationNotMade {
+        /// Which model: `the nominal model` or `the model with the explanation`.
+        model: String,
+        /// Why.
+        reason: String,
+    },
 }
 
 impl fmt::Display for Warning {
@@ -179,6 +188,10 @@ impl fmt::Display for Warning {
             Warning::NoMotion { joint, peak_speed } => write!(
                 f,
                 "joint {joint}: does not move (peak speed {peak_speed:.2e}): nothing about it can be identified from these data"
+            ),
+            Warning::SimulationNotMade { model, reason } => write!(
+                f,
+                "the 0.1 s simulations of {model} could not be made ({reason}): their figures are left out"
             ),
             Warning::NoReversal { joint } => write!(
                 f,

@@ -4,9 +4,10 @@
 //! reported at its limit, in the single-effect ranking as in the
 //! explanation.
 
+use dynamics_runtime::ode::Tolerances;
 use dynamics_runtime::Robot;
 use dynamics_sim2real::diagnose::{diagnose, Options};
-use dynamics_sim2real::effects::Effect;
+use dynamics_sim2real::effects::{Calibrated, Effect, Plant};
 use dynamics_sim2real::synth::synthesize;
 
 mod common;
@@ -56,6 +57,22 @@ fn made_up_nominal_damping_is_taken_away() {
         .find(|d| d.starts_with("j1: the nominal model's viscous coefficient 0.800 corrected by"));
     assert!(said.is_some(), "{:#?}", r.which.effects);
     assert!(r.shrink.rms_fraction > 0.5, "{:?}", r.shrink);
+    // The short-horizon simulation with the explanation is made (its
+    // plant takes the nominal damping away too) and closes its gap.
+    assert!(
+        r.shrink
+            .joints
+            .iter()
+            .all(|j| j.simulation_after.is_some_and(f64::is_finite)),
+        "{:?}",
+        r.shrink
+    );
+    assert!(
+        r.shrink.simulation_fraction.is_some_and(|x| x > 0.5),
+        "{:?}",
+        r.shrink
+    );
+    assert!(r.warnings.is_empty(), "{:?}", r.warnings);
     // The calibrated model's friction at j1: none left of the 0.8.
     let j1 = &r.which.friction[0];
     assert_eq!(j1.joint, "j1");
@@ -90,4 +107,40 @@ fn an_effort_scale_far_off_is_held_at_its_limit() {
             "{e:?}"
         );
     }
+}
+
+/// A plant (and a calibrated model) takes a friction correction that
+/// removes the nominal model's own friction, no more: the arm with 0.8 N m
+/// s/rad of nominal damping and a correction of -0.8 moves as the arm
+/// without damping (the same integrator, to its tolerance); -1.0 is
+/// refused, naming the parameter.
+#[test]
+fn a_plant_takes_away_the_nominal_friction_but_no_more() {
+    let mut damped = Arm2Friction::default();
+    damped.params_mut().fv = 0.8;
+    let away = vec![Effect::ViscousFriction { joint: 0, fv: -0.8 }];
+    let plant = Plant::new(damped, away.clone()).expect("within the nominal");
+    let bare = Plant::new(Arm2Friction::default(), vec![]).expect("plant");
+    let (q0, qd0) = ([0.3, -0.2].into(), [1.5, -0.7].into());
+    let (mut a, mut b) = (plant.start(q0, qd0), bare.start(q0, qd0));
+    let tol = Tolerances {
+        rtol: 1e-10,
+        atol: 1e-12,
+        ..Default::default()
+    };
+    let tau = [2.0, -1.0].into();
+    a.advance(&plant, 0.5, &tau, tol).expect("advances");
+    b.advance(&bare, 0.5, &tau, tol).expect("advances");
+    assert!(
+        (a.state.q - b.state.q).norm() < 1e-7,
+        "{:?} {:?}",
+        a.state.q,
+        b.state.q
+    );
+    assert!(Calibrated::new(damped, away).is_ok());
+    let too_much = vec![Effect::ViscousFriction { joint: 0, fv: -1.0 }];
+    let e = Plant::new(damped, too_much.clone()).unwrap_err();
+    assert!(e.to_string().contains("fv"), "{e}");
+    let e = Calibrated::new(damped, too_much).unwrap_err();
+    assert!(e.to_string().contains("fv"), "{e}");
 }

@@ -28,6 +28,11 @@ fn pct(v: f64) -> String {
     format!("{:.1} %", 100.0 * v)
 }
 
+/// A simulation's figure, or why there is none (the warnings say more).
+fn made(v: Option<f64>, f: fn(f64) -> String) -> String {
+    v.map(f).unwrap_or_else(|| "not made".into())
+}
+
 fn parameters(r: &Ranked) -> String {
     r.parameters
         .iter()
@@ -209,14 +214,14 @@ pub fn markdown(
         let (u, q) = unit(&j.joint);
         let _ = writeln!(
             s,
-            "| {} | {} {u} | {} {u} | {:.1} | {} {q} | {} {q} | {:.1} | {} |",
+            "| {} | {} {u} | {} {u} | {:.1} | {} {q} | {} {q} | {} | {} |",
             j.joint,
             g(j.torque_rms),
             g(j.torque_noise),
             j.torque_ratio,
-            g(j.prediction_rms),
+            made(j.prediction_rms, g),
             g(j.prediction_noise),
-            j.prediction_ratio,
+            made(j.prediction_ratio, |x| format!("{x:.1}")),
             j.windows.len()
         );
     }
@@ -269,15 +274,30 @@ pub fn markdown(
     // Shrink.
     let sh = &report.shrink;
     let _ = writeln!(s, "## How far it shrinks (held-out data)\n");
+    let simulation = match sh.simulation_fraction {
+        Some(x) => format!("the 0.1 s simulation error by {}", pct(x)),
+        None => "the 0.1 s simulation error could not be measured (warnings)".into(),
+    };
+    let n = report.which.effects.len();
     match chosen {
+        Some(r) if n > 1 => {
+            let _ = writeln!(
+                s,
+                "With the {n} effects of the explanation (below) added to the model, the torque \
+                 gap above noise shrinks by {} and {simulation} (overall figure `shrink.fraction` \
+                 = {:.3}). The figures of this section show the first ranked, {}, alone.\n",
+                pct(sh.torque_fraction),
+                sh.fraction,
+                place(r)
+            );
+        }
         Some(r) => {
             let _ = writeln!(
                 s,
-                "Adding {} to the model shrinks the torque gap above noise by {} and the \
-                 0.1 s simulation error by {} (overall figure `shrink.fraction` = {:.3}).\n",
+                "Adding {} to the model shrinks the torque gap above noise by {} and {simulation} \
+                 (overall figure `shrink.fraction` = {:.3}).\n",
                 place(r),
                 pct(sh.torque_fraction),
-                pct(sh.simulation_fraction),
                 sh.fraction
             );
         }
@@ -302,8 +322,8 @@ pub fn markdown(
             j.joint,
             g(j.torque_before),
             g(j.torque_after),
-            g(j.simulation_before),
-            g(j.simulation_after)
+            made(j.simulation_before, g),
+            made(j.simulation_after, g)
         );
     }
     let _ = writeln!(

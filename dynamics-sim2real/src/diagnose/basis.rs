@@ -7,8 +7,8 @@ use nalgebra::{SMatrix, SVector, Vector3};
 
 use super::candidate::{COULOMB_WIDTHS, STRIBECK_GRID};
 use super::force_filter::through_motion;
-use super::nominal_friction::nominal_friction;
 use super::signals::Signals;
+use crate::effects::nominal_friction;
 use crate::effects::{smooth_sign, Tip, SIGN_SMOOTHING};
 use dynamics_runtime::Robot;
 

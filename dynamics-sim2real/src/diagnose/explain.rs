@@ -13,7 +13,7 @@ use super::links::{combined, delta, words};
 use super::pool::{fixed_column, linear_columns, Pool, Solution};
 use super::rank::ranked_entry;
 use super::report::{Explained, Parameter, Rival, ShrinkStep};
-use super::words::{add_direction_words, nominal_words, within_nominal, Friction};
+use super::words::{add_direction_words, nominal_words, Friction};
 use crate::effects::Effect;
 use crate::inertial::{check, complete, describe};
 use dynamics_runtime::Robot;
@@ -185,7 +185,7 @@ pub fn effects<const N: usize>(
         // (A late effort is a negative delay here, `candidate.rs`.)
         .filter(|e| {
             e.validate().is_ok()
-                || within_nominal(e, friction)
+                || e.within_nominal_friction(friction.0.as_slice(), friction.1.as_slice())
                 || matches!(e, Effect::TimeDelay { delay } if delay.is_finite())
         })
         .collect()

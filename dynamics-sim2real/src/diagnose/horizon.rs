@@ -18,12 +18,13 @@ pub const HORIZON: f64 = 0.1;
 pub const SPACING: f64 = 0.5;
 
 /// RMS position prediction error per joint over windows of [`HORIZON`]
-/// seconds, for the model with `effects` attached (none: the nominal model).
+/// seconds, for the model with `effects` attached (none: the nominal model);
+/// why not, when a plant cannot be built or a window not simulated.
 pub fn prediction_error<R: Robot<N> + Clone + Sync, const N: usize>(
     robot: &R,
     p: &Prepared<N>,
     effects: &[Effect],
-) -> SVector<f64, N> {
+) -> Result<SVector<f64, N>, String> {
     let sig = &p.sig;
     let (mut offset, mut delay) = (SVector::<f64, N>::zeros(), 0.0);
     for e in effects {
@@ -35,9 +36,7 @@ pub fn prediction_error<R: Robot<N> + Clone + Sync, const N: usize>(
     }
     let sensor: Vec<Effect> = effects.iter().copied().filter(Effect::is_sensor).collect();
     let plant_effects: Vec<Effect> = effects.iter().copied().filter(|e| !e.is_sensor()).collect();
-    let Ok(plant) = Plant::new(robot.clone(), plant_effects) else {
-        return SVector::repeat(f64::INFINITY);
-    };
+    let plant = Plant::new(robot.clone(), plant_effects).map_err(|e| e.to_string())?;
     let dt = sig.dt;
     // Samples the motion (`m`) or the efforts (`e`) are read later.
     let shift = (delay / dt).round();
@@ -65,7 +64,7 @@ pub fn prediction_error<R: Robot<N> + Clone + Sync, const N: usize>(
         k0 += step;
     }
     let plant = &plant;
-    let window = |&k0: &usize| -> Option<Vec<SVector<f64, N>>> {
+    let window = |&k0: &usize| -> Result<Vec<SVector<f64, N>>, String> {
         // True state at t0 is what the sensors show `delay` later.
         let q0 = sig.q[k0 + m] - offset;
         let mut sim = plant.start(q0, sig.qd[k0 + m]);
@@ -86,28 +85,30 @@ pub fn prediction_error<R: Robot<N> + Clone + Sync, const N: usize>(
                 &Effect::applied_effort(&sensor, &sig.tau_raw[k + e]),
                 tol,
             )
-            .ok()?;
+            .map_err(|e| format!("the window from t = {:.3} s: {e}", sig.t[k0]))?;
             let predicted = sim.state.q + offset;
             let measured = sig.q[k + 1 + m];
             errors.push((predicted - measured).component_mul(&(predicted - measured)));
         }
-        Some(errors)
+        Ok(errors)
     };
     let windows = super::parallel::map(&starts, 0, window);
     // Summed in the order of the samples, as one pass over them would.
     let mut sum = SVector::<f64, N>::zeros();
     let mut count = 0usize;
     for w in windows {
-        let Some(errors) = w else {
-            return SVector::repeat(f64::INFINITY);
-        };
-        for e in errors {
+        for e in w? {
             sum += e;
             count += 1;
         }
     }
     if count == 0 {
-        return SVector::zeros();
+        return Ok(SVector::zeros());
     }
-    (sum / count as f64).map(f64::sqrt)
+    let rms = (sum / count as f64).map(f64::sqrt);
+    if rms.iter().all(|x| x.is_finite()) {
+        Ok(rms)
+    } else {
+        Err("a simulated position is not finite".into())
+    }
 }

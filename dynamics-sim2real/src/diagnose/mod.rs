@@ -50,7 +50,6 @@ mod motor;
 mod motor_fit;
 mod motor_sim;
 mod noise;
-mod nominal_friction;
 mod options;
 mod parallel;
 mod pool;
@@ -244,7 +243,14 @@ pub fn diagnose<R: Robot<N> + Clone + Sync, const N: usize>(
     let mut verdict = verdict::verdict(&ranked, gap, options);
 
     // Where (training data, nominal model).
-    let pred = horizon::prediction_error(robot, &p, &[]);
+    let pred = horizon::prediction_error(robot, &p, &[])
+        .map_err(|reason| {
+            warnings.push(Warning::SimulationNotMade {
+                model: "the nominal model (training data)".into(),
+                reason,
+            })
+        })
+        .ok();
     let q_noise = yardstick::prediction_floor(robot, train, &p);
     let joints = (0..N)
         .map(|j| {
@@ -254,9 +260,9 @@ pub fn diagnose<R: Robot<N> + Clone + Sync, const N: usize>(
                 torque_rms: rms,
                 torque_noise: p.sig.floor[j],
                 torque_ratio: rms / p.sig.floor[j],
-                prediction_rms: pred[j],
+                prediction_rms: pred.map(|x| x[j]),
                 prediction_noise: q_noise[j],
-                prediction_ratio: pred[j] / q_noise[j],
+                prediction_ratio: pred.map(|x| x[j] / q_noise[j]),
                 windows: windows::windows(&p, &p.sig.residual, j, 3.0, 5),
             }
         })
@@ -276,6 +282,7 @@ pub fn diagnose<R: Robot<N> + Clone + Sync, const N: usize>(
         &p.basis.friction,
     );
     words::add_spring_words(&mut effects, &R::JOINT_NAMES, &excitation.range);
+    words::add_encoder_words(&mut effects, &R::JOINT_NAMES, &R::JOINT_KINDS);
     window::annotate(&mut effects, &pool, &explanation, &limited);
     // A late effort stream, or a late motion whose channel is unresolved.
     late::warn(
@@ -313,6 +320,7 @@ pub fn diagnose<R: Robot<N> + Clone + Sync, const N: usize>(
         &explain::effects(&pool, &explanation, &p.basis.friction),
         rms_fraction,
         steps,
+        &mut warnings,
     );
     Ok(Report {
         robot: R::NAME.to_string(),

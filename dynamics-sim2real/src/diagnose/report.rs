@@ -43,12 +43,13 @@ pub struct JointGap {
     pub torque_noise: f64,
     /// `torque_rms / torque_noise`.
     pub torque_ratio: f64,
-    /// RMS short-horizon position prediction error.
-    pub prediction_rms: f64,
+    /// RMS short-horizon position prediction error (`None`: the
+    /// simulation could not be made; a warning says why).
+    pub prediction_rms: Option<f64>,
     /// Its yardstick: the same error for an exact model (`yardstick.rs`).
     pub prediction_noise: f64,
     /// `prediction_rms / prediction_noise`.
-    pub prediction_ratio: f64,
+    pub prediction_ratio: Option<f64>,
     /// Windows where the residual concentrates.
     pub windows: Vec<Window>,
 }
@@ -255,8 +256,9 @@ pub struct Shrink {
     pub joints: Vec<JointShrink>,
     /// 1 - gap after / gap before, torque residual above noise.
     pub torque_fraction: f64,
-    /// 1 - error after / error before, short-horizon simulation.
-    pub simulation_fraction: f64,
+    /// 1 - error after / error before, short-horizon simulation (`None`,
+    /// `null` in JSON: a simulation could not be made; a warning says why).
+    pub simulation_fraction: Option<f64>,
     /// The overall figure (the torque fraction).
     pub fraction: f64,
     /// 1 - RMS of the raw effort residual over all joints after / before
@@ -277,10 +279,11 @@ pub struct JointShrink {
     pub torque_before: f64,
     /// After.
     pub torque_after: f64,
-    /// Short-horizon position error RMS before.
-    pub simulation_before: f64,
-    /// After.
-    pub simulation_after: f64,
+    /// Short-horizon position error RMS before (`None`: the simulation
+    /// could not be made; a warning says why).
+    pub simulation_before: Option<f64>,
+    /// After (`None` likewise).
+    pub simulation_after: Option<f64>,
 }
 
 /// A one-parameter joint effect of the explanation, for unit tests.

@@ -10,12 +10,16 @@ use super::signals::robust_std;
 use super::{horizon, rms};
 use crate::data::Measured;
 use crate::effects::Effect;
+use crate::Warning;
 use dynamics_runtime::Robot;
 
 /// The shrink on `holdout` (prepared as `h`) of the explanation: `after`,
 /// the held-out torque residual it leaves at every sample (`None`: nothing
 /// added, no shrink), `effects` its effects, `rms_fraction` and `steps`
 /// the plain figure and the gap after each added effect (`explain.rs`).
+/// A simulation that cannot be made leaves its figures out and says why
+/// in `warnings`.
+#[allow(clippy::too_many_arguments)]
 pub fn shrink<R: Robot<N> + Clone + Sync, const N: usize>(
     robot: &R,
     holdout: &Measured<N>,
@@ -24,12 +28,29 @@ pub fn shrink<R: Robot<N> + Clone + Sync, const N: usize>(
     effects: &[Effect],
     rms_fraction: f64,
     steps: Vec<ShrinkStep>,
+    warnings: &mut Vec<Warning>,
 ) -> Shrink {
-    let sim_before = horizon::prediction_error(robot, h, &[]);
+    let mut made = |model: &str, r: Result<SVector<f64, N>, String>| match r {
+        Ok(x) => Some(x),
+        Err(reason) => {
+            warnings.push(Warning::SimulationNotMade {
+                model: format!("{model} (held-out data)"),
+                reason,
+            });
+            None
+        }
+    };
+    let sim_before = made(
+        "the nominal model",
+        horizon::prediction_error(robot, h, &[]),
+    );
     let sim_after = if effects.is_empty() {
         sim_before
     } else {
-        horizon::prediction_error(robot, h, effects)
+        made(
+            "the model with the explanation",
+            horizon::prediction_error(robot, h, effects),
+        )
     };
     let hq_noise = position_noise(holdout, h);
     let mut gap = [0.0f64; 4];
@@ -40,14 +61,15 @@ pub fn shrink<R: Robot<N> + Clone + Sync, const N: usize>(
             let above = |x: f64, floor: f64| (x * x - floor * floor).max(0.0).sqrt() / floor;
             gap[0] += above(before, h.sig.floor[j]).powi(2);
             gap[1] += above(aft, h.sig.floor[j]).powi(2);
-            gap[2] += above(sim_before[j], hq_noise[j]).powi(2);
-            gap[3] += above(sim_after[j], hq_noise[j]).powi(2);
+            let (sb, sa) = (sim_before.map(|s| s[j]), sim_after.map(|s| s[j]));
+            gap[2] += sb.map_or(0.0, |x| above(x, hq_noise[j]).powi(2));
+            gap[3] += sa.map_or(0.0, |x| above(x, hq_noise[j]).powi(2));
             JointShrink {
                 joint: R::JOINT_NAMES[j].to_string(),
                 torque_before: before,
                 torque_after: aft,
-                simulation_before: sim_before[j],
-                simulation_after: sim_after[j],
+                simulation_before: sb,
+                simulation_after: sa,
             }
         })
         .collect();
@@ -56,7 +78,8 @@ pub fn shrink<R: Robot<N> + Clone + Sync, const N: usize>(
     Shrink {
         joints: shrink_joints,
         torque_fraction,
-        simulation_fraction: frac(gap[2], gap[3]),
+        simulation_fraction: (sim_before.is_some() && sim_after.is_some())
+            .then(|| frac(gap[2], gap[3])),
         fraction: torque_fraction,
         rms_fraction,
         steps,

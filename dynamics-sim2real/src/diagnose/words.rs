@@ -2,34 +2,19 @@
 //! nominal model's own friction ("the nominal model's viscous coefficient
 //! 0.800 corrected by -0.800 to 0.000"), a Coulomb level that depends on
 //! the direction of motion (a Coulomb friction and an effort offset at the
-//! same joint: forward and backward levels), a spring's rest position.
+//! same joint: forward and backward levels), a spring's rest position, an
+//! encoder offset and the mass placement that gravity cannot tell from it.
 
+use dynamics_runtime::JointKind;
 use nalgebra::SVector;
 
 use super::candidate::Candidate;
 use super::report::Explained;
-use crate::effects::{Effect, EffectKind};
+use crate::effects::EffectKind;
 
 /// Per joint, the nominal model's Coulomb levels and viscous coefficients
 /// (`nominal_friction.rs`).
 pub type Friction<const N: usize> = (SVector<f64, N>, SVector<f64, N>);
-
-/// Whether `e` is a friction correction that takes away no more of the
-/// nominal model's `friction` than there is.
-pub(super) fn within_nominal<const N: usize>(e: &Effect, friction: &Friction<N>) -> bool {
-    let (coulomb, viscous) = friction;
-    let ok = |x: f64, nominal: Option<&f64>| {
-        nominal.is_some_and(|n| x.is_finite() && x >= -n * (1.0 + 1e-9))
-    };
-    match *e {
-        Effect::CoulombFriction { joint, fc, .. } => ok(fc, coulomb.get(joint)),
-        Effect::ViscousFriction { joint, fv } => ok(fv, viscous.get(joint)),
-        Effect::StribeckFriction { joint, fc, fs, vs } => {
-            ok(fc, coulomb.get(joint)) && ok(fs, coulomb.get(joint)) && vs > 0.0
-        }
-        _ => false,
-    }
-}
 
 /// In words, a friction correction `value` of parameter `name` at joint
 /// `j` (named `joint`) where the nominal model has friction of its own.
@@ -149,12 +134,58 @@ pub(super) fn add_spring_words<const N: usize>(
             .and_then(|j| range.get(j));
         if let Some(&(lo, hi)) = moved.filter(|(lo, hi)| rest < *lo || rest > *hi) {
             words.push_str(&format!(
-                "; it rests outside the range the joint moved ({lo:.3} to {hi:.3}): what the data show is an effort rising {k:.4} per unit of position over that range, from {:+.3} to {:+.3}, which a cable, a hose or a link's inertial error could make as well",
+                "; it rests outside the range the joint moved ({lo:.3} to {hi:.3}): what the data show is an effort rising {k:.4} per unit of position over that range, from {:+.3} to {:+.3}, which a cable or a hose pulling, or gravity on masses the model places wrong, could make as well",
                 k * lo + p,
                 k * hi + p
             ));
         }
         e.description = Some(words);
+    }
+}
+
+/// Says what each encoder offset of `entries` (joints `names` of kinds
+/// `kinds`) means and what else looks the same: the encoder reading
+/// `q + offset` places every link beyond the joint turned (moved) by
+/// `-offset` about (along) its axis from where the model puts it, so to
+/// gravity an offset is the same as those links' centres of mass placed
+/// wrong by that much; only the inertial efforts of faster motion tell the
+/// two apart.
+pub(super) fn add_encoder_words<const N: usize>(
+    entries: &mut [Explained],
+    names: &[&str; N],
+    kinds: &[JointKind; N],
+) {
+    for e in entries
+        .iter_mut()
+        .filter(|e| e.kind == EffectKind::EncoderOffset.name())
+    {
+        let offset = e
+            .parameters
+            .iter()
+            .find(|p| p.name == "offset")
+            .map(|p| p.value);
+        let (Some(offset), Some(joint)) = (offset.filter(|x| x.is_finite()), e.joint.as_deref())
+        else {
+            continue;
+        };
+        let Some(j) = names.iter().position(|n| *n == joint) else {
+            continue;
+        };
+        let words = match kinds[j] {
+            JointKind::Revolute => format!(
+                "{joint}: the encoder reads {offset:+.4} rad ({:+.1} deg) off the joint's angle; to gravity this is the same as every link beyond the joint turned by {:+.4} rad about its axis (centres of mass placed wrong in the model), which only the inertial efforts of faster motion tell apart",
+                offset.to_degrees(),
+                -offset
+            ),
+            JointKind::Prismatic => format!(
+                "{joint}: the encoder reads {offset:+.4} m off the joint's position; to gravity this is the same as every link beyond the joint moved by {:+.4} m along its axis (centres of mass placed wrong in the model), which only the inertial efforts of faster motion tell apart",
+                -offset
+            ),
+        };
+        e.description = Some(match e.description.take() {
+            Some(before) => format!("{before}; {words}"),
+            None => words,
+        });
     }
 }
 
@@ -232,5 +263,34 @@ mod tests {
         let w = direction_words("j", 0.1, -0.3);
         assert!(w.contains("-0.200 moving forward"), "{w}");
         assert!(w.contains("more likely the sensor's own"), "{w}");
+    }
+
+    /// An offset of -0.2 rad reads as the links beyond turned by +0.2
+    /// (-11.5 deg by hand); a prismatic joint's in metres; words already
+    /// there (a window's) are kept in front.
+    #[test]
+    fn an_encoder_offset_is_said_with_the_mass_placement_gravity_confuses_it_with() {
+        let mut entries = vec![
+            entry(EffectKind::EncoderOffset, "j1", "offset", -0.2),
+            entry(EffectKind::EncoderOffset, "j2", "offset", 0.01),
+        ];
+        entries[1].description = Some("from t = 1.000 s".into());
+        add_encoder_words(
+            &mut entries,
+            &["j1", "j2"],
+            &[JointKind::Revolute, JointKind::Prismatic],
+        );
+        let w0 = entries[0].description.as_deref().unwrap_or("");
+        assert!(
+            w0.starts_with("j1: the encoder reads -0.2000 rad (-11.5 deg)"),
+            "{w0}"
+        );
+        assert!(w0.contains("turned by +0.2000 rad about its axis"), "{w0}");
+        let w1 = entries[1].description.as_deref().unwrap_or("");
+        assert!(
+            w1.starts_with("from t = 1.000 s; j2: the encoder reads +0.0100 m"),
+            "{w1}"
+        );
+        assert!(w1.contains("moved by -0.0100 m along its axis"), "{w1}");
     }
 }

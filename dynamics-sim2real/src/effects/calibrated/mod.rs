@@ -82,8 +82,11 @@ struct Extra<const N: usize> {
 }
 
 impl<R: Robot<N>, const N: usize> Calibrated<R, N> {
-    /// Folds `effects` into `robot`'s nominal model.
+    /// Folds `effects` into `robot`'s nominal model. A friction correction
+    /// may take away friction the nominal model has (a URDF's `<dynamics
+    /// damping friction>`), no more ([`Effect::within_nominal_friction`]).
     pub fn new(robot: R, effects: Vec<Effect>) -> Result<Self, CalibratedError> {
+        let (coulomb, viscous) = super::nominal_friction(&robot, &SVector::zeros());
         for e in &effects {
             let kind = e.kind().name();
             match e.kind() {
@@ -100,6 +103,11 @@ impl<R: Robot<N>, const N: usize> Calibrated<R, N> {
                 return Err(CalibratedError::Joint { kind, joint, n: N });
             }
             e.validate()
+                .or_else(|reason| {
+                    e.within_nominal_friction(coulomb.as_slice(), viscous.as_slice())
+                        .then_some(())
+                        .ok_or(reason)
+                })
                 .map_err(|reason| CalibratedError::Invalid { kind, reason })?;
         }
         Ok(Calibrated {

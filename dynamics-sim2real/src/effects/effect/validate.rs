@@ -1,5 +1,7 @@
 //! The check that an effect's parameters are physical
-//! ([`Effect::validate`]), naming the offending one.
+//! ([`Effect::validate`]), naming the offending one; and the friction
+//! corrections that are physical only beside a model's own friction
+//! ([`Effect::within_nominal_friction`]).
 
 use super::Effect;
 
@@ -98,6 +100,42 @@ impl Effect {
                     Err("joint_spring: preload must be finite".into())
                 }
             }
+        }
+    }
+}
+
+impl Effect {
+    /// Whether this is a friction correction that takes away no more
+    /// friction than a model with per-joint Coulomb levels `coulomb` and
+    /// viscous coefficients `viscous` has (`coulomb_friction`,
+    /// `stribeck_friction` or `viscous_friction` whose levels may be
+    /// negative down to minus the model's own; their other parameters
+    /// valid). With the model's friction the total stays dissipative: a
+    /// CAD export's made-up damping taken away by the diagnosis.
+    ///
+    /// ```
+    /// use dynamics_sim2real::effects::Effect;
+    /// let less = Effect::ViscousFriction { joint: 0, fv: -0.5 };
+    /// assert!(less.validate().is_err());
+    /// assert!(less.within_nominal_friction(&[0.0], &[0.8]));
+    /// assert!(!less.within_nominal_friction(&[0.0], &[0.3]));
+    /// ```
+    pub fn within_nominal_friction(&self, coulomb: &[f64], viscous: &[f64]) -> bool {
+        let ok = |x: f64, nominal: Option<&f64>| {
+            nominal.is_some_and(|n| x.is_finite() && x >= -n * (1.0 + 1e-9))
+        };
+        match *self {
+            Effect::CoulombFriction { joint, fc, vw } => {
+                ok(fc, coulomb.get(joint)) && vw.is_finite() && vw > 0.0
+            }
+            Effect::ViscousFriction { joint, fv } => ok(fv, viscous.get(joint)),
+            Effect::StribeckFriction { joint, fc, fs, vs } => {
+                ok(fc, coulomb.get(joint))
+                    && ok(fs, coulomb.get(joint))
+                    && vs.is_finite()
+                    && vs > 0.0
+            }
+            _ => false,
         }
     }
 }

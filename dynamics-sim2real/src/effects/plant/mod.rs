@@ -110,7 +110,11 @@ pub struct Plant<R, const N: usize> {
 
 impl<R: Robot<N>, const N: usize> Plant<R, N> {
     /// Attaches `effects` to `robot`, checking joints and parameters.
+    /// A friction correction may take away friction the robot's own model
+    /// has (a URDF's `<dynamics damping friction>`), no more
+    /// ([`Effect::within_nominal_friction`]).
     pub fn new(robot: R, effects: Vec<Effect>) -> Result<Self, PlantError> {
+        let (coulomb, viscous) = super::nominal_friction(&robot, &SVector::zeros());
         let mut motor = [None; N];
         for (index, e) in effects.iter().enumerate() {
             if let Some(joint) = e.joint() {
@@ -130,6 +134,11 @@ impl<R: Robot<N>, const N: usize> Plant<R, N> {
                 }
             }
             e.validate()
+                .or_else(|reason| {
+                    e.within_nominal_friction(coulomb.as_slice(), viscous.as_slice())
+                        .then_some(())
+                        .ok_or(reason)
+                })
                 .map_err(|reason| PlantError::BadParameter { index, reason })?;
             if let Effect::InertialParameters { link, delta } = *e {
                 super::inertial::physical(&robot, link, &delta).map_err(|err| match err {

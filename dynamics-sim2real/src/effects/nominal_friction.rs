@@ -2,8 +2,10 @@
 //! `<dynamics damping friction>`, which CAD exports often fill with
 //! made-up values, and which a joint torque sensor on the link side does
 //! not see at all. A friction correction is the change from it, so it may
-//! take the nominal friction away but not make the total negative
-//! (`pool/build.rs`).
+//! take the nominal friction away but not make the total negative (the
+//! diagnosis's fit, `diagnose/pool/build.rs`; [`Effect::within_nominal_friction`],
+//! which [`Plant`](super::Plant) and [`Calibrated`](super::Calibrated)
+//! accept).
 //!
 //! The levels are read from the model itself, whatever made them: with
 //! one joint moving at speed `v`, the non-conservative part of the
@@ -21,6 +23,17 @@ const SPEED: f64 = 1e3;
 
 /// Per joint, the nominal model's Coulomb level and viscous coefficient
 /// at configuration `q` (0 where it has none; never negative or NaN).
+///
+/// ```
+/// use dynamics_sim2real::effects::nominal_friction;
+/// dynamics_macros::robot! {
+///     pub robot Hinge; gravity = [0.0, 0.0, -9.81];
+///     link base; link door { mass = 2.0; com = [0.4, 0.0, 0.0]; inertia = [0.1, 0.1, 0.1]; }
+///     joint j = revolute(base -> door) { transfer = [rot_z(q)]; damping = 0.3; coulomb = 0.2; }
+/// }
+/// let (coulomb, viscous) = nominal_friction(&Hinge::default(), &[0.0].into());
+/// assert!((coulomb[0] - 0.2).abs() < 1e-9 && (viscous[0] - 0.3).abs() < 1e-9);
+/// ```
 pub fn nominal_friction<R: Robot<N>, const N: usize>(
     robot: &R,
     q: &SVector<f64, N>,
