@@ -83,12 +83,27 @@ pub fn diagnose_cmd<R: Robot<N> + Clone + Sync, const N: usize>(
     if let Some(c) = &v.channel {
         println!("  late channel: {c}");
     }
+    let verdict_place = v.joint.clone().or(v.point.clone());
+    let in_explanation = report
+        .which
+        .effects
+        .iter()
+        .any(|e| e.kind == v.kind && e.joint.clone().or(e.point.clone()) == verdict_place);
+    if v.names_effect() && !report.which.effects.is_empty() && !in_explanation {
+        println!(
+            "  (the best single effect; the explanation below does without it: its effects \
+             account for its part together)"
+        );
+    }
     if let (Some(r), Some(m)) = (&v.rival, &v.separating_motion) {
         println!(
             "  rival: {} {}; to separate them: {m}",
             r.kind,
             r.joint.clone().or(r.point.clone()).unwrap_or_default()
         );
+    }
+    for line in explanation_lines(&report) {
+        println!("{line}");
     }
     for e in &report.which.effects {
         // An effect that starts and stops: where in time.
@@ -146,4 +161,86 @@ pub fn diagnose_cmd<R: Robot<N> + Clone + Sync, const N: usize>(
         eprintln!("wrote the report to {}", dir.join("report.md").display());
     }
     Ok(())
+}
+
+/// The compound explanation as command-line lines: each effect in the
+/// order chosen with its place, share of the training gap, held-out
+/// contribution, the held-out gap above noise left once it is added, and
+/// its parameters (or its words, when it has some); then the plain figure.
+/// Nothing when the explanation is empty.
+///
+/// ```
+/// use dynamics_cli::diagnose::explanation_lines;
+/// use dynamics_sim2real::diagnose::{diagnose, Options};
+/// use dynamics_sim2real::effects::Effect;
+/// use dynamics_sim2real::synth::{synthesize, SynthOptions};
+/// dynamics_macros::robot! {
+///     pub robot Pendulum; gravity = [0.0, -9.81, 0.0];
+///     link base; link rod { mass = 1.0; com = [0.2, 0.0, 0.0]; inertia = [1e-3, 1e-2, 1e-2]; }
+///     joint j = revolute(base -> rod) { transfer = [rot_z(q)]; }
+/// }
+/// let arm = Pendulum::default();
+/// let friction = [Effect::CoulombFriction { joint: 0, fc: 0.3, vw: 0.01 }];
+/// let run = |seed| SynthOptions { duration: 4.0, seed, ..Default::default() };
+/// let a = synthesize(&arm, &friction, &run(1)).unwrap();
+/// let b = synthesize(&arm, &friction, &run(2)).unwrap();
+/// let report = diagnose(&arm, &a, &b, &Options::default(), &|_, _| {}).unwrap();
+/// let lines = explanation_lines(&report);
+/// assert!(lines[0].starts_with("explanation (1 effect, in the order chosen"));
+/// assert!(lines[1].contains("coulomb_friction"));
+/// ```
+pub fn explanation_lines(report: &dynamics_sim2real::diagnose::Report) -> Vec<String> {
+    let effects = &report.which.effects;
+    if effects.is_empty() {
+        return Vec::new();
+    }
+    let n = effects.len();
+    let mut lines = vec![format!(
+        "explanation ({n} effect{}, in the order chosen; share of the training gap, held-out \
+         contribution, held-out gap above noise left once added):",
+        if n == 1 { "" } else { "s" }
+    )];
+    for (i, e) in effects.iter().enumerate() {
+        let place = e.joint.clone().or(e.point.clone()).unwrap_or_default();
+        let left = report
+            .shrink
+            .steps
+            .iter()
+            .find(|s| s.effects == i + 1)
+            .map(|s| format!("{:5.1} %", 100.0 * (1.0 - s.torque_fraction)))
+            .unwrap_or_else(|| "    -".into());
+        let rival = e
+            .ambiguous_with
+            .as_ref()
+            .map(|r| {
+                let at = r.joint.clone().or(r.point.clone()).unwrap_or_default();
+                format!(" (or {} {at}: these data cannot tell them apart)", r.kind)
+            })
+            .unwrap_or_default();
+        lines.push(format!(
+            "  {:2} {:24} {:12} {:5.1} %  {:+6.1} %  {left}{rival}",
+            i + 1,
+            e.kind,
+            place,
+            100.0 * e.share,
+            100.0 * e.holdout_contribution,
+        ));
+        let detail = e.description.clone().unwrap_or_else(|| {
+            e.parameters
+                .iter()
+                .map(|p| format!("{} = {:.4e} +- {:.1e}", p.name, p.value, p.std))
+                .collect::<Vec<_>>()
+                .join(", ")
+        });
+        if !detail.is_empty() {
+            lines.push(format!("       {detail}"));
+        }
+    }
+    lines.push(format!(
+        "  with {}: held-out gap above noise -{:.1} %, plain RMS of the effort residual over all joints -{:.1} %",
+        if n == 1 { "it".to_string() } else { format!("all {n}") },
+        100.0 * report.shrink.torque_fraction,
+        100.0 * report.shrink.rms_fraction
+    ));
+    lines
 }

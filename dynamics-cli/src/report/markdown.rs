@@ -111,6 +111,23 @@ pub fn markdown(
                     rival.aicc - r.aicc
                 );
             }
+            let effects = &report.which.effects;
+            if effects.len() > 1 {
+                let among = effects
+                    .iter()
+                    .any(|e| e.kind == r.kind && e.joint == r.joint && e.point == r.point);
+                let _ = writeln!(
+                    s,
+                    "It is the best single effect. The whole gap takes {} effects together \
+                     (last section), {}.\n",
+                    effects.len(),
+                    if among {
+                        "this one among them"
+                    } else {
+                        "without this one: their effects account for its part"
+                    }
+                );
+            }
         }
         None => {
             if v.kind == "unexplained" {

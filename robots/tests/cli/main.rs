@@ -94,6 +94,16 @@ pub(crate) fn read_json(path: &Path) -> serde_json::Value {
 fn default_command_diagnoses_the_built_in_case() {
     let text = succeeds(&mut dynamics());
     assert!(text.contains("verdict: coulomb_friction j2"), "{text}");
+    // The compound explanation, effect by effect, with the gap it leaves.
+    assert!(
+        text.contains("explanation (1 effect, in the order chosen"),
+        "{text}"
+    );
+    assert!(text.contains("   1 coulomb_friction         j2 "), "{text}");
+    assert!(
+        text.contains("  with it: held-out gap above noise -"),
+        "{text}"
+    );
     assert!(
         text.contains(
             "truth of the built-in case (read after the verdict): coulomb_friction at j2"

@@ -28,8 +28,10 @@
 //! resumes (`weights.rs`); where it leaves half the joints or more at
 //! [`EVERYWHERE`] x their floor (model error, not a missed effect), the
 //! search also starts from the full linear model (`eliminate.rs`) and
-//! keeps the better set.
+//! keeps the better set. The set is read in the order of its gains
+//! (`order.rs`).
 
+mod order;
 mod select;
 
 use nalgebra::SVector;
@@ -231,6 +233,8 @@ pub fn explain<R: Robot<N>, const N: usize>(
             }
         }
     }
+    // Read in the order of the gains (`order.rs`).
+    let set = order::by_gain(pool, &set);
     let sol = pool.solve(&set);
     let full = crit(pool, &sol);
     let rivals = (0..set.len())
