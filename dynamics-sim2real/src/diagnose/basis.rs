@@ -6,6 +6,7 @@
 use nalgebra::{SMatrix, SVector, Vector3};
 
 use super::candidate::{COULOMB_WIDTHS, STRIBECK_GRID};
+use super::force_filter::through_motion;
 use super::signals::Signals;
 use crate::effects::nominal_friction;
 use crate::effects::{smooth_sign, Tip, SIGN_SMOOTHING};
@@ -36,9 +37,9 @@ pub struct Basis<const N: usize> {
     /// acceleration estimate's own noise, which the nominal model's
     /// residual already carries, is not added a second time by a column.
     pub qdd: Vec<SVector<f64, N>>,
-    /// Per joint, the smoothed sign of the (lightly smoothed) velocity:
-    /// the sharp Coulomb column and Stribeck's, smoothed like the efforts
-    /// they are compared with.
+    /// Per joint, the filtered sign of the (lightly smoothed) velocity:
+    /// the sharp Coulomb column and Stribeck's, filtered as the residual
+    /// they are compared with shows a force (`force_filter.rs`).
     pub sign: Vec<SVector<f64, N>>,
     /// The same for `tanh(v / vw)`, one per width of [`COULOMB_WIDTHS`]
     /// (the first, the sharp one, is `sign`).
@@ -78,7 +79,8 @@ fn interval_mean(f: &impl Fn(f64) -> f64, prev: f64, v: f64, next: f64) -> f64 {
 }
 
 /// `f` of the lightly smoothed velocity, averaged over each sample's
-/// interval ([`interval_mean`]), then smoothed like the efforts.
+/// interval ([`interval_mean`]), then filtered as the residual sees a
+/// force of that law ([`through_motion`]).
 fn smoothed_column<const N: usize>(
     sig: &Signals<N>,
     f: impl Fn(f64) -> f64,
@@ -102,7 +104,10 @@ fn smoothed_column<const N: usize>(
                 interval_mean(&f, near(k.checked_sub(1)), x, near(Some(k + 1)))
             })
             .collect();
-        for (o, x) in out.iter_mut().zip(sig.sg.apply(&raw, 0)) {
+        for (o, x) in out
+            .iter_mut()
+            .zip(through_motion(&sig.sg, &raw, sig.dt, sig.qd_measured))
+        {
             o[j] = x;
         }
     }

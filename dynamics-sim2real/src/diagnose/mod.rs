@@ -14,9 +14,11 @@
 //! resistance, encoder offset through the emitted perturbation Jacobian K,
 //! delay through the measured effort's rate) are fitted by sign-constrained
 //! least squares on columns filtered like the efforts: friction laws are
-//! evaluated on a lightly smoothed velocity and then smoothed (the sign of
-//! a smoothed velocity switches sharply where the smoothed effort does
-//! not); columns built from the acceleration estimate are smoothed once
+//! evaluated on a lightly smoothed velocity and then filtered as the
+//! residual shows a force the motion takes (`force_filter.rs`: the
+//! acceleration estimate's filter on the force's integral; the sign of a
+//! smoothed velocity switches sharply where the residual does not);
+//! columns built from the acceleration estimate are smoothed once
 //! more, so that they do not add its noise a second time (rotor inertia
 //! was otherwise taken for a stiff elastic joint). Elasticity and backlash
 //! are fitted by a grid search on a motor-side simulation driven by the
@@ -39,6 +41,7 @@ mod error;
 mod explain;
 mod filter;
 mod fit;
+mod force_filter;
 mod friction_table;
 mod horizon;
 mod late;

@@ -28,9 +28,13 @@ pub struct Signals<const N: usize> {
     pub qd: Vec<SVector<f64, N>>,
     /// Accelerations (derivative of the smoothing fit).
     pub qdd: Vec<SVector<f64, N>>,
+    /// Whether the velocities were measured (the accelerations are then
+    /// the first derivative of their smoothing fit; else the second of
+    /// the positions').
+    pub qd_measured: bool,
     /// Velocities smoothed only lightly (over [`LIGHT_HALF_WIDTH`]): the
     /// argument of effects that are nonlinear in the velocity, whose
-    /// columns are then smoothed like the efforts.
+    /// columns are then filtered as the residual shows them.
     pub qd_light: Vec<SVector<f64, N>>,
     /// Measured efforts, raw.
     pub tau_raw: Vec<SVector<f64, N>>,
@@ -126,6 +130,7 @@ impl<const N: usize> Signals<N> {
             q,
             qd,
             qdd,
+            qd_measured: m.qd_measured,
             qd_light,
             tau_raw: m.tau.clone(),
             tau,

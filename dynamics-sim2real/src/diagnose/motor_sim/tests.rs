@@ -133,6 +133,7 @@ fn signals() -> Signals<1> {
         q,
         qd: qd.clone(),
         qdd,
+        qd_measured: true,
         qd_light: qd,
         tau: tau_raw.clone(),
         tau_raw,

@@ -74,7 +74,9 @@ fn a_motor_side_goes_behind_a_rotor_that_leaves_only_noise() {
 /// backlash predicts the held-out record 40 better (and stays first at
 /// 20), and a Stribeck friction 8 ahead of Coulomb (under the margin
 /// of 10) goes first when it predicts the held-out record 5 better; a
-/// motor side ahead of its rotor by less than the margin does not.
+/// motor side ahead of its rotor by less than the margin does not, and
+/// one ahead by more goes behind its rotor when it predicts the held-out
+/// record worse by more than its lead less the margin.
 #[test]
 fn the_held_out_record_adds_its_evidence() {
     let n = 900;
@@ -127,6 +129,18 @@ fn the_held_out_record_adds_its_evidence() {
     ];
     assert!(aicc_of(1000.0, n, 1) - aicc_of(986.0, n, 4) > 0.0);
     assert_eq!(rank(motor, 100.0, 0.0), Candidate::Armature(1));
+    // A motor side 25 ahead of its rotor on training goes behind it when
+    // it predicts the held-out record 40 worse, and stays first at 10.
+    let motor = || {
+        vec![
+            fit(Candidate::Armature(1), 1030.0, 1),
+            fit(Candidate::Backlash(1), 1000.0, 4),
+        ]
+    };
+    let lead = aicc_of(1030.0, n, 1) - aicc_of(1000.0, n, 4);
+    assert!(lead > 20.0 && lead < 30.0, "{lead}");
+    assert_eq!(rank(motor(), -40.0, 0.0), Candidate::Armature(1));
+    assert_eq!(rank(motor(), -10.0, 0.0), Candidate::Backlash(1));
 }
 
 fn aicc_of(sse: f64, n: usize, k: usize) -> f64 {
