@@ -28,7 +28,8 @@ pub fn identify_cmd<R: Robot<N>, const N: usize>(
 ) -> Res {
     let a = read_csv(&train, &R::JOINT_NAMES)?;
     let b = read_csv(&holdout, &R::JOINT_NAMES)?;
-    for w in a.warnings.iter().chain(&b.warnings) {
+    let all: Vec<_> = a.warnings.iter().chain(&b.warnings).cloned().collect();
+    for w in crate::warnings::lines(&all) {
         eprintln!("warning: {w}");
     }
     let id = identify(robot, &a, &b, &Options::default())?;

@@ -6,7 +6,8 @@
 //! model (`tune`: `--set`, `--baseline`), evaluation at given
 //! states and comparison with reference values (`eval`, `states`,
 //! `compare`), synthetic data and the diagnosis of data files (`gap`), the
-//! readable diagnosis report (`report`) and SVG plots (`plot`).
+//! readable diagnosis report (`report`) and SVG plots (`plot`), warnings
+//! as lines (`warnings`).
 //!
 //! Nothing here knows a particular robot: the built-in robots and their
 //! by-name dispatch live in the crate `robots`.
@@ -24,6 +25,7 @@ pub mod scaffold;
 pub mod simulate;
 pub mod states;
 pub mod tune;
+pub mod warnings;
 
 pub use program::{run, run_set, run_with, RobotInfo, RobotSet, RobotVisitor};
 

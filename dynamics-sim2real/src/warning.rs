@@ -183,7 +183,8 @@ impl fmt::Display for Warning {
                 if *sigmas < 1e6 { format!("{sigmas:.0}") } else { format!("{sigmas:.1e}") }
             ),
             Warning::MoreGlitches { file, count } => {
-                write!(f, "{file}: {count} more glitches, excluded from every fit")
+                let what = if *count == 1 { "glitch" } else { "glitches" };
+                write!(f, "{file}: {count} more {what}, excluded from every fit")
             }
             Warning::NoMotion { joint, peak_speed } => write!(
                 f,

@@ -11,7 +11,8 @@ use super::{DataFile, GapError};
 
 /// Diagnoses `train` against `holdout` (CSV files) for `robot`; the
 /// report's warnings (reading and preparing the files, what the data
-/// cannot show) come back beside it as the sentences to print.
+/// cannot show) come back beside it as the sentences to print (a row's
+/// glitches as one: [`crate::warnings::lines`]).
 pub fn diagnose_files<R: Robot<N> + Clone + Sync, const N: usize>(
     robot: &R,
     train: &Path,
@@ -39,7 +40,7 @@ pub fn diagnose_data<R: Robot<N> + Clone + Sync, const N: usize>(
     let a = train.read(&R::JOINT_NAMES)?;
     let b = holdout.read(&R::JOINT_NAMES)?;
     let report = diagnose(robot, &a, &b, options, progress)?;
-    let warnings = report.warnings.iter().map(ToString::to_string).collect();
+    let warnings = crate::warnings::lines(&report.warnings);
     Ok((report, warnings))
 }
 

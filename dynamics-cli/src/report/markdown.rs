@@ -163,7 +163,7 @@ pub fn markdown(
     // What the data preparation repaired and what the data cannot show.
     if !report.warnings.is_empty() {
         let _ = writeln!(s, "## Warnings (the data as recorded)\n");
-        for w in &report.warnings {
+        for w in crate::warnings::lines(&report.warnings) {
             let _ = writeln!(s, "- {w}");
         }
         let _ = writeln!(s);
