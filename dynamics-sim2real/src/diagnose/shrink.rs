@@ -94,3 +94,52 @@ fn position_noise<const N: usize>(m: &Measured<N>, p: &Prepared<N>) -> SVector<f
         robust_std(&d).max(1e-12)
     })
 }
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::synth::{synthesize, SynthOptions};
+
+    dynamics_macros::robot! {
+        robot Pendulum;
+        gravity = [0.0, -9.81, 0.0];
+        link base;
+        link rod { mass = 1.0; com = [0.2, 0.0, 0.0]; inertia = [1e-3, 1e-2, 1e-2]; }
+        joint j = revolute(base -> rod) { transfer = [rot_z(q)]; }
+    }
+
+    /// Effects no plant can take (taking away damping the pendulum does
+    /// not have): the simulation after is left out, the fraction too, and
+    /// a warning says why; the one before is made.
+    #[test]
+    fn a_simulation_that_cannot_be_made_is_left_out_and_said() {
+        let arm = Pendulum::default();
+        let opts = SynthOptions {
+            duration: 2.0,
+            seed: 4,
+            ..Default::default()
+        };
+        let m = synthesize(&arm, &[], &opts).expect("synthesizes");
+        let h = Prepared::new(&arm, &m);
+        let away = [Effect::ViscousFriction { joint: 0, fv: -0.5 }];
+        let mut warnings = Vec::new();
+        let s = shrink(&arm, &m, &h, None, &away, 0.0, vec![], &mut warnings);
+        assert!(s.joints[0].simulation_before.is_some_and(f64::is_finite));
+        assert_eq!(s.joints[0].simulation_after, None);
+        assert_eq!(s.simulation_fraction, None);
+        match &warnings[..] {
+            [Warning::SimulationNotMade { model, reason }] => {
+                assert!(
+                    model.starts_with("the model with the explanation"),
+                    "{model}"
+                );
+                assert!(reason.contains("fv"), "{reason}");
+            }
+            other => panic!("{other:?}"),
+        }
+        // Nothing made: no warning, both figures.
+        let mut none = Vec::new();
+        let s = shrink(&arm, &m, &h, None, &[], 0.0, vec![], &mut none);
+        assert!(none.is_empty() && s.simulation_fraction.is_some());
+    }
+}
