@@ -184,8 +184,8 @@ pub fn effects<const N: usize>(
         .filter_map(|(i, &t)| joint_fit(pool, t, &e.sol.theta[i], &e.sol.std[i]).effect())
         // (A late effort is a negative delay here, `candidate.rs`.)
         .filter(|e| {
-            e.validate().is_ok()
-                || e.within_nominal_friction(friction.0.as_slice(), friction.1.as_slice())
+            e.validate_beside_friction(friction.0.as_slice(), friction.1.as_slice())
+                .is_ok()
                 || matches!(e, Effect::TimeDelay { delay } if delay.is_finite())
         })
         .collect()

@@ -13,7 +13,7 @@ use super::report::Explained;
 use crate::effects::EffectKind;
 
 /// Per joint, the nominal model's Coulomb levels and viscous coefficients
-/// (`nominal_friction.rs`).
+/// ([`crate::effects::nominal_friction`]).
 pub type Friction<const N: usize> = (SVector<f64, N>, SVector<f64, N>);
 
 /// In words, a friction correction `value` of parameter `name` at joint

@@ -102,12 +102,7 @@ impl<R: Robot<N>, const N: usize> Calibrated<R, N> {
             if let Some(joint) = e.joint().filter(|&j| j >= N) {
                 return Err(CalibratedError::Joint { kind, joint, n: N });
             }
-            e.validate()
-                .or_else(|reason| {
-                    e.within_nominal_friction(coulomb.as_slice(), viscous.as_slice())
-                        .then_some(())
-                        .ok_or(reason)
-                })
+            e.validate_beside_friction(coulomb.as_slice(), viscous.as_slice())
                 .map_err(|reason| CalibratedError::Invalid { kind, reason })?;
         }
         Ok(Calibrated {

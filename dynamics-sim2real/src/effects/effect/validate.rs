@@ -105,6 +105,25 @@ impl Effect {
 }
 
 impl Effect {
+    /// [`Effect::validate`] beside a model with per-joint Coulomb levels
+    /// `coulomb` and viscous coefficients `viscous`: a friction correction
+    /// that takes away no more than the model's own friction
+    /// ([`Effect::within_nominal_friction`]) passes too.
+    ///
+    /// ```
+    /// use dynamics_sim2real::effects::Effect;
+    /// let less = Effect::ViscousFriction { joint: 0, fv: -0.5 };
+    /// assert!(less.validate_beside_friction(&[0.0], &[0.8]).is_ok());
+    /// assert!(less.validate_beside_friction(&[0.0], &[0.3]).unwrap_err().contains("fv"));
+    /// ```
+    pub fn validate_beside_friction(&self, coulomb: &[f64], viscous: &[f64]) -> Result<(), String> {
+        self.validate().or_else(|reason| {
+            self.within_nominal_friction(coulomb, viscous)
+                .then_some(())
+                .ok_or(reason)
+        })
+    }
+
     /// Whether this is a friction correction that takes away no more
     /// friction than a model with per-joint Coulomb levels `coulomb` and
     /// viscous coefficients `viscous` has (`coulomb_friction`,

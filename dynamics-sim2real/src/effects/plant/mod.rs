@@ -133,12 +133,7 @@ impl<R: Robot<N>, const N: usize> Plant<R, N> {
                     motor[joint] = Some(index);
                 }
             }
-            e.validate()
-                .or_else(|reason| {
-                    e.within_nominal_friction(coulomb.as_slice(), viscous.as_slice())
-                        .then_some(())
-                        .ok_or(reason)
-                })
+            e.validate_beside_friction(coulomb.as_slice(), viscous.as_slice())
                 .map_err(|reason| PlantError::BadParameter { index, reason })?;
             if let Effect::InertialParameters { link, delta } = *e {
                 super::inertial::physical(&robot, link, &delta).map_err(|err| match err {
