@@ -1,8 +1,15 @@
-//! Least squares with sign constraints, and the information criterion.
+//! The numerics every stage shares: plain least squares, least squares
+//! with sign constraints, and the corrected information criterion.
 
 use nalgebra::{DMatrix, DVector};
 
-use super::filter::least_squares;
+/// Plain least squares: the solution of the normal equations of
+/// `x theta = y`, if `x^T x` is positive definite.
+pub(crate) fn least_squares(x: &DMatrix<f64>, y: &DVector<f64>) -> Option<DVector<f64>> {
+    let xtx = x.transpose() * x;
+    let xty = x.transpose() * y;
+    xtx.cholesky().map(|c| c.solve(&xty))
+}
 
 /// A linear fit: parameters, their standard deviations, the residual sum
 /// of squares.

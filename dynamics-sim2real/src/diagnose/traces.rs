@@ -10,11 +10,12 @@
 use crate::effects::SIGN_SMOOTHING;
 use thiserror::Error;
 
-use super::analysis::{fit, Prepared};
-use super::candidate::Candidate;
-use super::noise::SensorNoise;
-use super::report::Ranked;
 use crate::data::Measured;
+use crate::diagnose::candidates::Candidate;
+use crate::diagnose::candidates::Prepared;
+use crate::diagnose::explain::report::Ranked;
+use crate::diagnose::fit::fit;
+use crate::diagnose::signals::SensorNoise;
 use crate::effects::EffectKind;
 use dynamics_runtime::{JointKind, Robot};
 
@@ -33,7 +34,7 @@ pub enum TracesError {
     },
     /// The stated sensor noise cannot be used.
     #[error(transparent)]
-    Noise(#[from] super::DiagnoseError),
+    Noise(#[from] crate::diagnose::DiagnoseError),
 }
 
 /// One data set's series (samples with a full smoothing window only).

@@ -5,12 +5,16 @@
 
 use nalgebra::{SMatrix, SVector, Vector3};
 
-use super::candidate::{COULOMB_WIDTHS, STRIBECK_GRID};
-use super::force_filter::through_motion;
-use super::signals::Signals;
+use super::grids::{COULOMB_WIDTHS, STRIBECK_GRID};
+use crate::diagnose::candidates::force_filter::through_motion;
+use crate::diagnose::signals::Signals;
 use crate::effects::nominal_friction;
 use crate::effects::{smooth_sign, Tip, SIGN_SMOOTHING};
 use dynamics_runtime::Robot;
+
+/// Per joint, the nominal model's Coulomb levels and viscous coefficients
+/// ([`crate::effects::nominal_friction`]).
+pub type Friction<const N: usize> = (SVector<f64, N>, SVector<f64, N>);
 
 /// Shared model quantities along one data set (valid inside the signals'
 /// range).
@@ -50,7 +54,7 @@ pub struct Basis<const N: usize> {
     /// Per joint, the nominal model's own Coulomb level and viscous
     /// coefficient (`nominal_friction.rs`): how far a friction correction
     /// may go below zero.
-    pub friction: (SVector<f64, N>, SVector<f64, N>),
+    pub friction: Friction<N>,
 }
 
 /// Velocity step of the quadrature in [`interval_mean`], rad/s or m/s: an
@@ -117,7 +121,7 @@ fn smoothed_column<const N: usize>(
 /// Smooths every entry of `v` over `range` (zero where the window does not
 /// fit).
 fn smooth_in_place<const R: usize, const C: usize>(
-    sg: &super::filter::SavitzkyGolay,
+    sg: &crate::smoothing::SavitzkyGolay,
     v: &mut [SMatrix<f64, R, C>],
     (a, z): (usize, usize),
 ) {

@@ -7,8 +7,9 @@
 use nalgebra::SVector;
 
 use super::basis::Basis;
-use super::shift::{late_effort_column, late_motion_column};
-use super::signals::Signals;
+use super::grids::{ALPHA_GRID, COULOMB_WIDTHS, STRIBECK_GRID};
+use crate::diagnose::candidates::shift::{late_effort_column, late_motion_column};
+use crate::diagnose::signals::Signals;
 use crate::effects::{Effect, EffectKind, SIGN_SMOOTHING};
 
 /// A candidate: kind, place, and the fixed value of a nonlinear parameter
@@ -58,20 +59,6 @@ pub enum Candidate {
     /// compound explanation.
     Inertial(usize),
 }
-
-/// Coulomb friction's velocity widths searched, rad/s: sharp (the smooth
-/// sign of every friction law, [`SIGN_SMOOTHING`]) to the tenths of a
-/// rad/s over which real joints' friction turns (the Panda's published
-/// sigmoids `1 / (1 + exp(-phi2 v))`, Gaz et al. 2019, are `tanh(v / vw)`
-/// with `vw = 2 / phi2` = 0.12-0.39 rad/s). Not wider: a width of 0.4
-/// rad/s is nearly linear over a joint's usual speeds and took the place of
-/// viscous friction in the compound scoring (its recall of viscous
-/// friction fell from 122 to 113 of 135 at base 0).
-pub const COULOMB_WIDTHS: [f64; 3] = [SIGN_SMOOTHING, 0.05, 0.15];
-/// Stribeck velocities searched, rad/s.
-pub const STRIBECK_GRID: [f64; 4] = [0.01, 0.03, 0.1, 0.3];
-/// Resistance exponents searched.
-pub const ALPHA_GRID: [f64; 5] = [1.0, 1.5, 2.0, 2.5, 3.0];
 
 impl Candidate {
     /// Every candidate for a robot with N joints.

@@ -26,11 +26,10 @@
 //! positions and velocities late together are the same data, and a delay
 //! of channel `all` is then warned as such ([`warn`]), not guessed.
 
-use super::analysis::Prepared;
-use super::candidate::Candidate;
-use super::report::{Explained, Parameter, Ranked, Verdict};
-use super::shift::late_effort_column;
 use crate::data::Measured;
+use crate::diagnose::candidates::candidate::Candidate;
+use crate::diagnose::candidates::shift::late_effort_column;
+use crate::diagnose::candidates::Prepared;
 use crate::Warning;
 
 /// How many standard deviations the kinematic delay must stand from zero.
@@ -99,7 +98,7 @@ pub fn kinematic<const N: usize>(m: &Measured<N>, p: &Prepared<N>) -> Option<Kin
 /// The `effort` candidate added to `candidates` whenever delays are asked
 /// for, and the `positions` candidate when the positions of `m` are late
 /// by their kinematic consistency, with a warning saying by how much.
-pub fn offer<const N: usize>(
+pub fn offer_delays<const N: usize>(
     candidates: &mut Vec<Candidate>,
     m: &Measured<N>,
     p: &Prepared<N>,
@@ -159,52 +158,4 @@ pub fn effort_secant<const N: usize>(p: &Prepared<N>) -> f64 {
         }
     }
     d0
-}
-
-/// The late channel a delay candidate names: `all` (positions and
-/// velocities late together against the effort), `positions` or `effort`.
-pub fn channel(c: Candidate) -> Option<String> {
-    match c {
-        Candidate::TimeDelay => Some("all".into()),
-        Candidate::LatePositions => Some("positions".into()),
-        Candidate::LateEffort(_) => Some("effort".into()),
-        _ => None,
-    }
-}
-
-/// Warnings on the delay the diagnosis names (in the explanation
-/// `effects`, else the verdict's first ranked entry): the effort late
-/// (channel `effort`), or, when the velocities were derived from the
-/// positions (`qd_measured` false), the motion late (channel `all`), which
-/// these data cannot tell from the position stream alone late.
-pub fn warn(
-    qd_measured: bool,
-    effects: &[Explained],
-    verdict: &Verdict,
-    ranked: &[Ranked],
-    warnings: &mut Vec<Warning>,
-) {
-    const KIND: &str = "time_delay";
-    let named = effects
-        .iter()
-        .find(|e| e.kind == KIND)
-        .map(|e| (e.channel.as_deref(), &e.parameters))
-        .or_else(|| {
-            (verdict.kind == KIND)
-                .then(|| ranked.first())
-                .flatten()
-                .map(|r| (r.channel.as_deref(), &r.parameters))
-        });
-    let Some((channel, parameters)) = named else {
-        return;
-    };
-    let Some(Parameter { value, std, .. }) = parameters.iter().find(|p| p.name == "delay") else {
-        return;
-    };
-    let (delay, std) = (*value, *std);
-    match channel {
-        Some("effort") => warnings.push(Warning::LateEffort { delay, std }),
-        Some("all") if !qd_measured => warnings.push(Warning::LateMotionUnresolved { delay, std }),
-        _ => {}
-    }
 }

@@ -10,12 +10,16 @@
 
 use nalgebra::{DMatrix, SMatrix, SVector};
 
-use super::analysis::Prepared;
+use crate::diagnose::candidates::Prepared;
 use dynamics_runtime::Robot;
 
 /// Relative singular value below which a combination of a link's
 /// parameters counts as not determined by the data.
 pub const IDENTIFIABLE: f64 = 1e-3;
+
+/// Per link, per inertial parameter (Pinocchio's order), the whitened
+/// regressor column over the fit's rows.
+pub type LinkColumns = Vec<Vec<Vec<f64>>>;
 
 /// One link's determined combinations.
 #[derive(Debug, Clone)]
@@ -32,7 +36,7 @@ pub struct LinkBasis {
 pub fn regressor_columns<R: Robot<N>, const N: usize>(
     robot: &R,
     p: &Prepared<N>,
-) -> Option<Vec<Vec<Vec<f64>>>> {
+) -> Option<LinkColumns> {
     let links = R::LINK_NAMES.len();
     if links == 0 {
         return None;
@@ -122,21 +126,4 @@ pub fn delta(basis: &LinkBasis, theta: &[f64]) -> SVector<f64, 10> {
         }
     }
     d
-}
-
-/// A link correction in words: mass, first moments and inertia about the
-/// link frame's origin, as changed.
-pub fn words(link: &str, d: &SVector<f64, 10>) -> String {
-    let names = [
-        "mass", "m c_x", "m c_y", "m c_z", "I_xx", "I_xy", "I_yy", "I_xz", "I_yz", "I_zz",
-    ];
-    let units = [
-        "kg", "kg m", "kg m", "kg m", "kg m^2", "kg m^2", "kg m^2", "kg m^2", "kg m^2", "kg m^2",
-    ];
-    let scale = d.amax().max(1e-300);
-    let parts: Vec<String> = (0..10)
-        .filter(|&i| d[i].abs() >= 0.05 * scale)
-        .map(|i| format!("{} {:+.3e} {}", names[i], d[i], units[i]))
-        .collect();
-    format!("link {link}: {}", parts.join(", "))
 }

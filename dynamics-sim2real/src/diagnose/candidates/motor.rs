@@ -1,14 +1,10 @@
 //! The motor side of elasticity and backlash candidates: the parameters
-//! searched, their grid and physical box, and the simulation of the motor
-//! driven by the measured effort whose transmitted effort replaces the
-//! rigid joint's.
+//! searched, their grid and physical box, and the highest frequency the
+//! data show (the simulation of the motor side is `fit::motor`).
 
 use std::f64::consts::PI;
 
-use super::motor_sim::transmitted_raw_many;
-use super::signals::Signals;
 use crate::effects::Effect;
-use nalgebra::SVector;
 
 /// Motor-side parameters searched for elasticity and backlash.
 #[derive(Debug, Clone, Copy, PartialEq)]
@@ -137,48 +133,3 @@ pub fn motor_feasible(
         && (0.02..=0.3).contains(&zeta)
         && width_ok
 }
-
-/// Simulates the motor side of joint `j` driven by the measured effort
-/// (held per sample) and the link of joint `j` (its acceleration per unit
-/// of its own effort `compliance[k][j]`, `Basis::compliance`); returns the
-/// smoothed effort it passes to the link at every sample (NaN outside the
-/// range). The link follows the measured (smoothed) motion plus what the
-/// transmitted effort adds over the nominal model's (times that
-/// compliance: the joint's own response with the other joints' efforts
-/// held, not one over its mean inertia: on the MAR, q2's and the slide's
-/// response is 1.2 to 2.1 times one over their own inertia, and q2's
-/// inertia runs from 0.9 to 3.0 kg m^2 with the slide),
-/// pulled back to the measurement at [`OBSERVER_HZ`]: a link pinned to
-/// the smoothed motion would meet a stiff contact or spring at positions
-/// the 40 ms smoothing has blurred (a backlash crossing lasts about as
-/// long), and the contact stiffness would turn that blur into effort
-/// (on a generated backlash case, the whitened error of the true
-/// parameters fell from 7258 to 4623, nominal model 20985).
-pub fn motor_transmitted<const N: usize>(
-    sig: &Signals<N>,
-    j: usize,
-    g: &MotorGuess,
-    backlash: bool,
-    compliance: &[SVector<f64, N>],
-) -> Vec<f64> {
-    sig.sg
-        .apply(&motor_transmitted_raw(sig, j, g, backlash, compliance), 0)
-}
-
-/// [`motor_transmitted`] before smoothing (NaN outside the range, and
-/// everywhere when the simulation diverged); `motor_sim/` integrates it.
-pub fn motor_transmitted_raw<const N: usize>(
-    sig: &Signals<N>,
-    j: usize,
-    g: &MotorGuess,
-    backlash: bool,
-    compliance: &[SVector<f64, N>],
-) -> Vec<f64> {
-    transmitted_raw_many(sig, j, std::slice::from_ref(g), backlash, compliance)
-        .pop()
-        .unwrap_or_default()
-}
-
-/// Bandwidth with which the simulated link is pulled back to the measured
-/// motion, Hz.
-pub const OBSERVER_HZ: f64 = 3.0;

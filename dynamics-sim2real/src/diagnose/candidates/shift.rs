@@ -5,7 +5,7 @@
 
 use nalgebra::SVector;
 
-use super::signals::Signals;
+use crate::diagnose::signals::Signals;
 
 /// The smoothed measured effort `delay` seconds after sample `k` (linear
 /// between samples), when every sample from `k` to there has a full

@@ -5,10 +5,10 @@
 //! an error when nothing can be said), and the candidates the data cannot
 //! identify are dropped rather than guessed.
 
-use super::analysis::Prepared;
-use super::candidate::Candidate;
-use super::motor::signature_limit;
-use super::DiagnoseError;
+use crate::diagnose::candidates::candidate::Candidate;
+use crate::diagnose::candidates::motor::signature_limit;
+use crate::diagnose::candidates::Prepared;
+use crate::diagnose::DiagnoseError;
 use crate::effects::{smooth_sign, EffectKind};
 use crate::Warning;
 use nalgebra::{SMatrix, SVector};
@@ -47,7 +47,7 @@ pub struct Excitation {
 
 /// What the training data `p` (joint names `names`) can show; warnings
 /// appended to `warnings`. Errors when no joint moves.
-pub(super) fn excitation<const N: usize>(
+pub fn excitation<const N: usize>(
     p: &Prepared<N>,
     names: &[&str; N],
     warnings: &mut Vec<Warning>,
@@ -102,7 +102,7 @@ pub(super) fn excitation<const N: usize>(
 /// anticorrelate with it (r = -0.67; coefficient +0.20 in the fit);
 /// `lwr_6` measures a spring's effort that anticorrelates with the wrist's
 /// small inertial effort on periodic motion (r = -0.72; coefficient -0.15).
-pub(super) fn effort_sign<const N: usize>(
+pub fn effort_sign<const N: usize>(
     p: &Prepared<N>,
     names: &[&str; N],
     which: &'static str,
@@ -158,7 +158,7 @@ fn coefficient<const N: usize>(p: &Prepared<N>, j: usize) -> Option<f64> {
 /// (no breakaway shows; Coulomb friction stays, named only as ambiguous
 /// with an effort offset: `reversal.rs`); backlash, and
 /// elasticity's resonances, above what the rate shows (interval `dt`).
-pub(super) fn identifiable(
+pub fn identifiable(
     candidates: Vec<Candidate>,
     ex: &Excitation,
     dt: f64,

@@ -5,11 +5,11 @@
 
 use serde::Serialize;
 
-use super::analysis::Prepared;
+use crate::diagnose::candidates::Prepared;
 
 /// A time window where the gap concentrates.
 #[derive(Debug, Clone, PartialEq, Serialize)]
-pub struct Window {
+pub struct GapWindow {
     /// Start, s.
     pub start: f64,
     /// End, s.
@@ -22,13 +22,13 @@ pub struct Window {
 
 /// Windows of joint `j` with residual `r`, ranked by ratio, those above
 /// `threshold` times the noise floor (at most `max`).
-pub fn windows<const N: usize>(
+pub fn gap_windows<const N: usize>(
     p: &Prepared<N>,
     r: &[nalgebra::SVector<f64, N>],
     j: usize,
     threshold: f64,
     max: usize,
-) -> Vec<Window> {
+) -> Vec<GapWindow> {
     let sig = &p.sig;
     let (a, z) = sig.range;
     let h = sig.sg.half();
@@ -79,7 +79,7 @@ pub fn windows<const N: usize>(
         let ms: f64 = (start..end).map(|k| r[k][j].powi(2)).sum::<f64>() / (end - start) as f64;
         let ratio = ms.sqrt() / floor;
         if ratio > threshold && (end - start) as f64 * sig.dt >= 0.01 {
-            out.push(Window {
+            out.push(GapWindow {
                 start: sig.t[start],
                 end: sig.t[end - 1],
                 phase: ph,

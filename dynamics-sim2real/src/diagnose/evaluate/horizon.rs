@@ -6,8 +6,9 @@
 //! later, a negative one (the effort late, `late.rs`) the efforts.
 
 use nalgebra::SVector;
+use rayon::prelude::*;
 
-use super::analysis::Prepared;
+use crate::diagnose::candidates::Prepared;
 use crate::effects::{Effect, Plant};
 use dynamics_runtime::ode::Tolerances;
 use dynamics_runtime::Robot;
@@ -92,7 +93,7 @@ pub fn prediction_error<R: Robot<N> + Clone + Sync, const N: usize>(
         }
         Ok(errors)
     };
-    let windows = super::parallel::map(&starts, 0, window);
+    let windows: Vec<_> = starts.par_iter().with_max_len(1).map(window).collect();
     // Summed in the order of the samples, as one pass over them would.
     let mut sum = SVector::<f64, N>::zeros();
     let mut count = 0usize;

@@ -4,32 +4,51 @@
 
 use nalgebra::SVector;
 
-use super::analysis::Prepared;
-use super::report::{JointShrink, Shrink, ShrinkStep};
-use super::signals::robust_std;
-use super::{horizon, rms};
+use super::horizon;
 use crate::data::Measured;
+use crate::diagnose::candidates::Prepared;
+use crate::diagnose::signals::robust_std;
 use crate::effects::Effect;
 use crate::Warning;
 use dynamics_runtime::Robot;
 
+/// The shrink of one joint: the held-out torque residual's RMS and the
+/// short-horizon simulation error before and after the explanation.
+#[derive(Debug, Clone, Copy)]
+pub struct JointFigures {
+    /// Torque residual RMS, nominal model.
+    pub torque_before: f64,
+    /// Torque residual RMS with the explanation.
+    pub torque_after: f64,
+    /// Simulation error, nominal model (`None`: not made).
+    pub simulation_before: Option<f64>,
+    /// Simulation error with the explanation (`None`: not made).
+    pub simulation_after: Option<f64>,
+}
+
+/// How far the gap shrinks on the held-out record.
+#[derive(Debug, Clone)]
+pub struct ShrinkFigures<const N: usize> {
+    /// Per joint.
+    pub joints: [JointFigures; N],
+    /// 1 - after / before of the torque gap above noise.
+    pub torque_fraction: f64,
+    /// The same of the simulation error (`None`: a simulation not made).
+    pub simulation_fraction: Option<f64>,
+}
+
 /// The shrink on `holdout` (prepared as `h`) of the explanation: `after`,
 /// the held-out torque residual it leaves at every sample (`None`: nothing
-/// added, no shrink), `effects` its effects, `rms_fraction` and `steps`
-/// the plain figure and the gap after each added effect (`explain.rs`).
-/// A simulation that cannot be made leaves its figures out and says why
-/// in `warnings`.
-#[allow(clippy::too_many_arguments)]
+/// added, no shrink), `effects` its effects. A simulation that cannot be
+/// made leaves its figures out and says why in `warnings`.
 pub fn shrink<R: Robot<N> + Clone + Sync, const N: usize>(
     robot: &R,
     holdout: &Measured<N>,
     h: &Prepared<N>,
     after: Option<Vec<SVector<f64, N>>>,
     effects: &[Effect],
-    rms_fraction: f64,
-    steps: Vec<ShrinkStep>,
     warnings: &mut Vec<Warning>,
-) -> Shrink {
+) -> ShrinkFigures<N> {
     let mut made = |model: &str, r: Result<SVector<f64, N>, String>| match r {
         Ok(x) => Some(x),
         Err(reason) => {
@@ -54,35 +73,29 @@ pub fn shrink<R: Robot<N> + Clone + Sync, const N: usize>(
     };
     let hq_noise = position_noise(holdout, h);
     let mut gap = [0.0f64; 4];
-    let shrink_joints = (0..N)
-        .map(|j| {
-            let before = rms(h, &h.sig.residual, j);
-            let aft = after.as_ref().map(|a| rms(h, a, j)).unwrap_or(before);
-            let above = |x: f64, floor: f64| (x * x - floor * floor).max(0.0).sqrt() / floor;
-            gap[0] += above(before, h.sig.floor[j]).powi(2);
-            gap[1] += above(aft, h.sig.floor[j]).powi(2);
-            let (sb, sa) = (sim_before.map(|s| s[j]), sim_after.map(|s| s[j]));
-            gap[2] += sb.map_or(0.0, |x| above(x, hq_noise[j]).powi(2));
-            gap[3] += sa.map_or(0.0, |x| above(x, hq_noise[j]).powi(2));
-            JointShrink {
-                joint: R::JOINT_NAMES[j].to_string(),
-                torque_before: before,
-                torque_after: aft,
-                simulation_before: sb,
-                simulation_after: sa,
-            }
-        })
-        .collect();
+    let joints = std::array::from_fn(|j| {
+        let before = h.rms(&h.sig.residual, j);
+        let aft = after.as_ref().map(|a| h.rms(a, j)).unwrap_or(before);
+        let above = |x: f64, floor: f64| (x * x - floor * floor).max(0.0).sqrt() / floor;
+        gap[0] += above(before, h.sig.floor[j]).powi(2);
+        gap[1] += above(aft, h.sig.floor[j]).powi(2);
+        let (sb, sa) = (sim_before.map(|s| s[j]), sim_after.map(|s| s[j]));
+        gap[2] += sb.map_or(0.0, |x| above(x, hq_noise[j]).powi(2));
+        gap[3] += sa.map_or(0.0, |x| above(x, hq_noise[j]).powi(2));
+        JointFigures {
+            torque_before: before,
+            torque_after: aft,
+            simulation_before: sb,
+            simulation_after: sa,
+        }
+    });
     let frac = |b: f64, a: f64| if b > 0.0 { 1.0 - (a / b).sqrt() } else { 0.0 };
     let torque_fraction = frac(gap[0], gap[1]);
-    Shrink {
-        joints: shrink_joints,
+    ShrinkFigures {
+        joints,
         torque_fraction,
         simulation_fraction: (sim_before.is_some() && sim_after.is_some())
             .then(|| frac(gap[2], gap[3])),
-        fraction: torque_fraction,
-        rms_fraction,
-        steps,
     }
 }
 
@@ -123,7 +136,7 @@ mod tests {
         let h = Prepared::new(&arm, &m);
         let away = [Effect::ViscousFriction { joint: 0, fv: -0.5 }];
         let mut warnings = Vec::new();
-        let s = shrink(&arm, &m, &h, None, &away, 0.0, vec![], &mut warnings);
+        let s = shrink(&arm, &m, &h, None, &away, &mut warnings);
         assert!(s.joints[0].simulation_before.is_some_and(f64::is_finite));
         assert_eq!(s.joints[0].simulation_after, None);
         assert_eq!(s.simulation_fraction, None);
@@ -139,7 +152,7 @@ mod tests {
         }
         // Nothing made: no warning, both figures.
         let mut none = Vec::new();
-        let s = shrink(&arm, &m, &h, None, &[], 0.0, vec![], &mut none);
+        let s = shrink(&arm, &m, &h, None, &[], &mut none);
         assert!(none.is_empty() && s.simulation_fraction.is_some());
     }
 }

@@ -17,10 +17,11 @@
 //! these data.
 
 use nalgebra::SVector;
+use rayon::prelude::*;
 
-use super::analysis::Prepared;
-use super::horizon::{HORIZON, SPACING};
 use crate::data::Measured;
+use crate::diagnose::candidates::Prepared;
+use crate::diagnose::evaluate::horizon::{HORIZON, SPACING};
 use crate::effects::Plant;
 use crate::synth::Rng;
 use dynamics_runtime::ode::Tolerances;
@@ -113,8 +114,11 @@ pub fn prediction_floor<R: Robot<N> + Clone + Sync, const N: usize>(
         .take_while(|s0| s0 + seg < z)
         .filter(|&s0| sig.mask.clear(s0, s0 + seg))
         .collect();
-    let results: Vec<Option<(SVector<f64, N>, usize)>> =
-        super::parallel::map(&starts, 0, |&s0| window(s0));
+    let results: Vec<Option<(SVector<f64, N>, usize)>> = starts
+        .par_iter()
+        .with_max_len(1)
+        .map(|&s0| window(s0))
+        .collect();
     let mut sum = SVector::<f64, N>::zeros();
     let mut count = 0usize;
     for r in results {

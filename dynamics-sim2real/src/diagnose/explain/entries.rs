@@ -6,136 +6,15 @@
 
 use nalgebra::{DMatrix, DVector, SVector};
 
-use super::analysis::{Fit, Prepared};
-use super::candidate::Candidate;
-use super::compound::{without_others, Explanation};
-use super::links::{combined, delta, words};
-use super::pool::{fixed_column, linear_columns, Pool, Solution};
-use super::rank::ranked_entry;
-use super::report::{Explained, Parameter, Rival, ShrinkStep};
-use super::words::{add_direction_words, nominal_words, Friction};
-use crate::effects::Effect;
+use super::ranked::ranked_entry;
+use super::report::{EffectWindow, Explained, Parameter, Rival, ShrinkStep};
+use super::words::{add_direction_words, link_words, nominal_words};
+use crate::diagnose::candidates::{delta, Candidate, Friction, LinkBasis};
+use crate::diagnose::evaluate::{fraction, Holdout};
+use crate::diagnose::fit::{window_of, Windows};
+use crate::diagnose::select::{joint_fit, Explanation, Pool, Solution};
 use crate::inertial::{check, complete, describe};
 use dynamics_runtime::Robot;
-
-/// One effect's held-out columns: its free ones and its fixed one.
-type Columns = (Vec<DVector<f64>>, Option<DVector<f64>>);
-
-/// The explanation's held-out side: the set's columns on the held-out rows.
-pub struct Holdout<'a, const N: usize> {
-    h: &'a Prepared<N>,
-    /// Per effect of the set: its free columns and its fixed one.
-    cols: Vec<Columns>,
-    y: DVector<f64>,
-}
-
-/// Effort scale of the plain measure (noise included): the raw effort
-/// minus the model, per row and joint.
-fn raw_residual<const N: usize>(h: &Prepared<N>) -> Vec<f64> {
-    let mut out = Vec::with_capacity(h.n());
-    for &k in &h.rows {
-        for j in 0..N {
-            let x = h.sig.tau_raw[k][j] - h.sig.model[k][j];
-            out.push(if x.is_finite() { x } else { 0.0 });
-        }
-    }
-    out
-}
-
-impl<'a, const N: usize> Holdout<'a, N> {
-    /// The columns of the chosen set on `h`.
-    pub fn new(h: &'a Prepared<N>, links: &[Vec<Vec<f64>>], pool: &Pool, e: &Explanation) -> Self {
-        let hm = without_others(h, pool, &e.set, &e.sol, None);
-        let cols = e
-            .set
-            .iter()
-            .map(|&t| {
-                let term = &pool.terms[t];
-                if let Some(b) = &term.link {
-                    let cols = links
-                        .get(b.link)
-                        .map(|lc| combined(lc, b))
-                        .unwrap_or_else(|| vec![vec![0.0; h.n()]; b.v.ncols()]);
-                    return (cols.into_iter().map(DVector::from_vec).collect(), None);
-                }
-                match term.fixed {
-                    Some(_) => (
-                        vec![],
-                        Some(DVector::from_vec(fixed_column(&term.fit, &hm))),
-                    ),
-                    None => (
-                        linear_columns(term.fit.candidate, h)
-                            .into_iter()
-                            .map(DVector::from_vec)
-                            .collect(),
-                        None,
-                    ),
-                }
-            })
-            .collect();
-        let y = DVector::from_vec(super::pool::whitened(h, |k| h.sig.residual[k]));
-        Holdout { h, cols, y }
-    }
-
-    /// The free held-out columns of the effect at position `i` of the set
-    /// (limited to a window by `window.rs`).
-    pub fn free_mut(&mut self, i: usize) -> &mut [DVector<f64>] {
-        &mut self.cols[i].0
-    }
-
-    /// The whitened held-out residual of the effects at positions `which`
-    /// of the set, with parameters `theta` (one per position).
-    pub fn residual(&self, which: &[usize], theta: &[Vec<f64>]) -> DVector<f64> {
-        let mut r = self.y.clone();
-        for (i, &w) in which.iter().enumerate() {
-            let (free, fixed) = &self.cols[w];
-            for (c, th) in free.iter().zip(&theta[i]) {
-                if th.is_finite() {
-                    r.axpy(-th, c, 1.0);
-                }
-            }
-            if let Some(f) = fixed {
-                r -= f;
-            }
-        }
-        r
-    }
-
-    /// Per joint RMS of a whitened residual, in effort units.
-    pub fn joint_rms(&self, r: &DVector<f64>) -> SVector<f64, N> {
-        let rows = (r.len() / N).max(1);
-        SVector::from_fn(|j, _| {
-            let ms: f64 = (0..rows).map(|i| r[i * N + j].powi(2)).sum::<f64>() / rows as f64;
-            ms.sqrt() * self.h.sig.floor[j]
-        })
-    }
-
-    /// The above-noise torque gap (sum over joints of the squared RMS above
-    /// the floor, in floor units) of a residual.
-    pub fn gap(&self, r: &DVector<f64>) -> f64 {
-        let rms = self.joint_rms(r);
-        (0..N)
-            .map(|j| {
-                let f = self.h.sig.floor[j];
-                (rms[j] * rms[j] - f * f).max(0.0) / (f * f)
-            })
-            .sum()
-    }
-
-    /// The plain RMS of the raw effort residual over all joints once the
-    /// whitened smoothed residual `r` is left (what the effects removed is
-    /// taken from the raw residual).
-    pub fn plain(&self, r: &DVector<f64>) -> f64 {
-        let raw = raw_residual(self.h);
-        let mut s = 0.0;
-        for (i, x) in raw.iter().enumerate() {
-            let j = i % N;
-            let removed = (self.y[i] - r[i]) * self.h.sig.floor[j];
-            s += (x - removed).powi(2);
-        }
-        (s / raw.len().max(1) as f64).sqrt()
-    }
-}
 
 /// Where a candidate sits: its joint, or its point (the tip, or a link).
 fn place_of<R: Robot<N>, const N: usize>(
@@ -149,46 +28,6 @@ fn place_of<R: Robot<N>, const N: usize>(
             (c.kind().place() == crate::effects::PlaceKind::Point).then(|| tip.to_string()),
         ),
     }
-}
-
-/// 1 - after / before, zero when there was nothing before.
-pub fn fraction(before: f64, after: f64) -> f64 {
-    if before > 0.0 && before.is_finite() && after.is_finite() {
-        1.0 - after / before
-    } else {
-        0.0
-    }
-}
-
-/// The fit of term `t` with the joint fit's parameters.
-pub fn joint_fit(pool: &Pool, t: usize, theta: &[f64], std: &[f64]) -> Fit {
-    let mut f = pool.terms[t].fit.clone();
-    if pool.terms[t].fixed.is_none() {
-        f.theta = theta.to_vec();
-        f.std = std.to_vec();
-    }
-    f
-}
-
-/// The effects of the set with their fitted parameters (a friction
-/// correction may take away the nominal model's own `friction`, its
-/// Coulomb levels and viscous coefficients per joint).
-pub fn effects<const N: usize>(
-    pool: &Pool,
-    e: &Explanation,
-    friction: &Friction<N>,
-) -> Vec<Effect> {
-    e.set
-        .iter()
-        .enumerate()
-        .filter_map(|(i, &t)| joint_fit(pool, t, &e.sol.theta[i], &e.sol.std[i]).effect())
-        // (A late effort is a negative delay here, `candidate.rs`.)
-        .filter(|e| {
-            e.validate_beside_friction(friction.0.as_slice(), friction.1.as_slice())
-                .is_ok()
-                || matches!(e, Effect::TimeDelay { delay } if delay.is_finite())
-        })
-        .collect()
 }
 
 /// The report's entries and the held-out steps.
@@ -206,7 +45,7 @@ pub fn entries<R: Robot<N>, const N: usize>(
     let gap0 = (sse0 - n as f64).max(1e-12);
     let all: Vec<usize> = (0..e.set.len()).collect();
     let h_full = hold.residual(&all, &e.sol.theta);
-    let y = &hold.y;
+    let y = hold.observed();
     let (hgap0, plain0) = (hold.gap(y), hold.plain(y));
     let hsse = |r: &DVector<f64>| r.norm_squared();
     let hgap_sse = (hsse(y) - y.len() as f64).max(1e-12);
@@ -327,7 +166,7 @@ pub fn entries<R: Robot<N>, const N: usize>(
 /// `nominal` is a physical body (`inertial::complete`; when no such move
 /// exists the determined part is scaled back, and the words say so).
 fn link_parameters(
-    b: &super::links::LinkBasis,
+    b: &LinkBasis,
     theta: &[f64],
     std: &[f64],
     link: &str,
@@ -380,21 +219,33 @@ fn link_parameters(
         }
         (Some(nom), None) => format!(
             "{}; the nominal link is not a physical body ({})",
-            words(link, &d),
+            link_words(link, &d),
             check(nom, 1e-9)
                 .err()
                 .map_or(String::new(), |e| e.to_string())
         ),
-        (None, _) => words(link, &d),
+        (None, _) => link_words(link, &d),
     };
     (params, Some(text))
 }
 
 /// An orthonormal basis of the combinations of a link's ten parameters
 /// the data do not determine (the complement of `b.v`).
-fn free_combinations(b: &super::links::LinkBasis) -> DMatrix<f64> {
+fn free_combinations(b: &LinkBasis) -> DMatrix<f64> {
     let p = DMatrix::<f64>::identity(10, 10) - &b.v * b.v.transpose();
     let eig = p.symmetric_eigen();
     let keep: Vec<usize> = (0..10).filter(|&i| eig.eigenvalues[i] > 0.5).collect();
     eig.eigenvectors.select_columns(&keep)
+}
+
+/// The training windows on the report's entries of the explanation.
+pub fn annotate(effects: &mut [Explained], pool: &Pool, e: &Explanation, windows: &Windows) {
+    for (entry, &t) in effects.iter_mut().zip(&e.set) {
+        if let Some(w) = window_of(windows, pool.terms[t].fit.candidate) {
+            entry.window = Some(EffectWindow {
+                start: w.start,
+                end: w.end,
+            });
+        }
+    }
 }

@@ -9,7 +9,7 @@
 
 use nalgebra::SVector;
 
-use super::report::{Explained, JointFriction};
+use crate::diagnose::explain::report::{Explained, JointFriction};
 use crate::effects::EffectKind;
 
 /// The friction of every joint (`names`) with the nominal Coulomb levels
@@ -73,7 +73,7 @@ fn finite(x: f64) -> f64 {
 #[cfg(test)]
 mod tests {
     use super::*;
-    use crate::diagnose::report::test_entry as entry;
+    use crate::diagnose::explain::report::test_entry as entry;
 
     /// By hand: j1 nominal 0.8 N m s/rad, corrected by -0.8 (all taken
     /// away), Coulomb 0 + 0.3; j2 keeps its nominal 0.2 / 0.5; j3 has a

@@ -4,7 +4,7 @@ use serde::Serialize;
 
 use crate::Warning;
 
-pub use super::windows::Window;
+pub use crate::diagnose::evaluate::GapWindow;
 
 /// The whole report.
 #[derive(Debug, Clone, Serialize)]
@@ -51,7 +51,7 @@ pub struct JointGap {
     /// `prediction_rms / prediction_noise`.
     pub prediction_ratio: Option<f64>,
     /// Windows where the residual concentrates.
-    pub windows: Vec<Window>,
+    pub windows: Vec<GapWindow>,
 }
 
 /// Which: ranking, verdict and the compound explanation.

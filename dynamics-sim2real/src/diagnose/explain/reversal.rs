@@ -6,8 +6,8 @@
 //! ("Coulomb friction or an effort offset; these data cannot tell them
 //! apart").
 
-use super::report::{Explained, Ranked, Rival, Verdict};
-use super::visibility::Excitation;
+use crate::diagnose::candidates::Excitation;
+use crate::diagnose::explain::report::{Explained, Ranked, Rival, Verdict};
 
 const PAIR: [&str; 2] = ["coulomb_friction", "effort_offset"];
 
@@ -25,7 +25,7 @@ fn other<'a>(kind: &str, joint: Option<&str>, names: &[&str], ex: &Excitation) -
 
 /// Marks the verdict and the explanation's entries that name one of the
 /// pair at a joint whose velocity never reverses.
-pub fn mark(
+pub fn mark_reversals(
     verdict: &mut Verdict,
     effects: &mut [Explained],
     ranked: &[Ranked],

@@ -2,8 +2,8 @@
 //! the held-out data (`ambiguous` with a rival close behind), else `none`
 //! within noise or `unexplained` when the gap is real.
 
-use super::report::{Ranked, Verdict};
-use super::Options;
+use crate::diagnose::explain::report::{Ranked, Verdict};
+use crate::diagnose::Options;
 
 /// The verdict on `ranked` (best first); `gap` is the largest torque
 /// residual RMS over noise of the training data.

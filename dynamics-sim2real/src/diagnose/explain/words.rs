@@ -8,17 +8,14 @@
 use dynamics_runtime::JointKind;
 use nalgebra::SVector;
 
-use super::candidate::Candidate;
 use super::report::Explained;
+use crate::diagnose::candidates::Candidate;
+use crate::diagnose::candidates::Friction;
 use crate::effects::EffectKind;
-
-/// Per joint, the nominal model's Coulomb levels and viscous coefficients
-/// ([`crate::effects::nominal_friction`]).
-pub type Friction<const N: usize> = (SVector<f64, N>, SVector<f64, N>);
 
 /// In words, a friction correction `value` of parameter `name` at joint
 /// `j` (named `joint`) where the nominal model has friction of its own.
-pub(super) fn nominal_words<const N: usize>(
+pub fn nominal_words<const N: usize>(
     c: Candidate,
     value: f64,
     joint: &str,
@@ -48,7 +45,7 @@ pub(super) fn nominal_words<const N: usize>(
 /// offset `o` of the measured effort are a level `L + o` moving forward and
 /// `L - o` moving backward. Only samples at standstill tell the two
 /// readings apart, so the words give both.
-pub(super) fn direction_words(joint: &str, level: f64, offset: f64) -> String {
+pub fn direction_words(joint: &str, level: f64, offset: f64) -> String {
     let (forward, backward) = (level + offset, level - offset);
     let reading = if forward < 0.0 || backward < 0.0 {
         "the offset is larger than the friction: more likely the sensor's own"
@@ -65,7 +62,7 @@ pub(super) fn direction_words(joint: &str, level: f64, offset: f64) -> String {
 /// effort offset at the same joint its direction-dependent levels
 /// ([`direction_words`]); `names` are the joints' names, `coulomb` the
 /// nominal model's Coulomb levels.
-pub(super) fn add_direction_words<const N: usize>(
+pub fn add_direction_words<const N: usize>(
     entries: &mut [Explained],
     names: &[&str; N],
     coulomb: &SVector<f64, N>,
@@ -106,7 +103,7 @@ pub(super) fn add_direction_words<const N: usize>(
 /// lies outside the range the joint moved in the training data (`range`,
 /// per joint of `names`): there the data show an effort that grows with
 /// the position over the range, not where it would vanish.
-pub(super) fn add_spring_words<const N: usize>(
+pub fn add_spring_words<const N: usize>(
     entries: &mut [Explained],
     names: &[&str; N],
     range: &[(f64, f64)],
@@ -150,7 +147,7 @@ pub(super) fn add_spring_words<const N: usize>(
 /// gravity an offset is the same as those links' centres of mass placed
 /// wrong by that much; only the inertial efforts of faster motion tell the
 /// two apart.
-pub(super) fn add_encoder_words<const N: usize>(
+pub fn add_encoder_words<const N: usize>(
     entries: &mut [Explained],
     names: &[&str; N],
     kinds: &[JointKind; N],
@@ -192,7 +189,7 @@ pub(super) fn add_encoder_words<const N: usize>(
 #[cfg(test)]
 mod tests {
     use super::*;
-    use crate::diagnose::report::{test_entry as entry, Parameter};
+    use crate::diagnose::explain::report::{test_entry as entry, Parameter};
 
     /// A Coulomb correction of +0.2 on a nominal level of 0.1 with an
     /// effort offset of +0.05: 0.35 forward, 0.25 backward (by hand); a
@@ -293,4 +290,21 @@ mod tests {
         );
         assert!(w1.contains("moved by -0.0100 m along its axis"), "{w1}");
     }
+}
+
+/// A link correction in words: mass, first moments and inertia about the
+/// link frame's origin, as changed.
+pub fn link_words(link: &str, d: &SVector<f64, 10>) -> String {
+    let names = [
+        "mass", "m c_x", "m c_y", "m c_z", "I_xx", "I_xy", "I_yy", "I_xz", "I_yz", "I_zz",
+    ];
+    let units = [
+        "kg", "kg m", "kg m", "kg m", "kg m^2", "kg m^2", "kg m^2", "kg m^2", "kg m^2", "kg m^2",
+    ];
+    let scale = d.amax().max(1e-300);
+    let parts: Vec<String> = (0..10)
+        .filter(|&i| d[i].abs() >= 0.05 * scale)
+        .map(|i| format!("{} {:+.3e} {}", names[i], d[i], units[i]))
+        .collect();
+    format!("link {link}: {}", parts.join(", "))
 }

@@ -3,12 +3,16 @@
 //! smoothed efforts, the nominal model's efforts along the measured motion,
 //! their difference (the torque residual).
 
+mod noise;
+mod segments;
+
 use nalgebra::SVector;
 
-use super::filter::SavitzkyGolay;
-use super::segments::Mask;
 use crate::data::Measured;
+use crate::smoothing::SavitzkyGolay;
 use dynamics_runtime::Robot;
+pub use noise::{known_floor, sensor_levels, SensorNoise};
+pub use segments::Mask;
 
 /// Half-width of the light smoother of velocities, s.
 pub const LIGHT_HALF_WIDTH: f64 = 0.004;

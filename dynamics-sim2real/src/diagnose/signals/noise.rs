@@ -11,9 +11,9 @@
 
 use nalgebra::{DMatrix, DVector, SVector};
 
-use super::signals::{robust_std, Signals};
-use super::DiagnoseError;
 use crate::data::Measured;
+use crate::diagnose::signals::{robust_std, Signals};
+use crate::diagnose::DiagnoseError;
 use crate::synth::Rng;
 use dynamics_runtime::Robot;
 
@@ -47,7 +47,9 @@ impl SensorNoise {
     /// The three levels per joint, checked: one value or `N`, each finite
     /// and not negative.
     #[allow(clippy::type_complexity)]
-    pub(super) fn per_joint<const N: usize>(&self) -> Result<[SVector<f64, N>; 3], DiagnoseError> {
+    pub(in crate::diagnose) fn per_joint<const N: usize>(
+        &self,
+    ) -> Result<[SVector<f64, N>; 3], DiagnoseError> {
         let one = |name: &'static str, v: &[f64]| -> Result<SVector<f64, N>, DiagnoseError> {
             let bad = |reason: String| DiagnoseError::Noise {
                 sensor: name,
@@ -77,7 +79,7 @@ impl SensorNoise {
 /// The noise floor of the smoothed torque residual per joint that sensor
 /// noise of `levels` (q, qd, tau) makes: the RMS, over the samples in use,
 /// of how far one draw of it added to the data moves `sig`'s residual.
-pub(super) fn known_floor<R: Robot<N>, const N: usize>(
+pub fn known_floor<R: Robot<N>, const N: usize>(
     robot: &R,
     m: &Measured<N>,
     sig: &Signals<N>,
@@ -106,10 +108,7 @@ pub(super) fn known_floor<R: Robot<N>, const N: usize>(
 /// from the data: raw minus smoothed positions and velocities (variance
 /// sigma^2 (1 - w0) for white noise, w0 the smoother's centre weight), and
 /// [`effort_sensor_noise`] for the efforts.
-pub(super) fn sensor_levels<const N: usize>(
-    m: &Measured<N>,
-    sig: &Signals<N>,
-) -> [SVector<f64, N>; 3] {
+pub fn sensor_levels<const N: usize>(m: &Measured<N>, sig: &Signals<N>) -> [SVector<f64, N>; 3] {
     let sg = &sig.sg;
     let h = sg.half();
     let (a, z) = sig.range;

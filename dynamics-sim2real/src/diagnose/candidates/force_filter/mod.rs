@@ -1,7 +1,7 @@
 //! A force as the torque residual shows it: filtered the way the
 //! acceleration estimate filters the motion it causes.
 
-use super::filter::SavitzkyGolay;
+use crate::smoothing::SavitzkyGolay;
 
 /// A force `f` (one value a sample) as the torque residual shows it: the
 /// derivative of the smoothing fit of its running integral where the

@@ -3,13 +3,17 @@
 //! spreads over the motor-side parameters) and the stiff-rotor variant of
 //! armature, which sees a plain rotor the way they see the joint.
 
-use super::analysis::{whitened_nominal, Fit, Prepared};
-use super::candidate::Candidate;
-use super::motor::{motor_feasible, motor_grid, signature_limit, MotorGuess};
+mod refine;
+mod spread;
+
 use super::motor_sim::transmitted_raw_many;
-use super::refine::refine;
-use super::spread::motor_std;
+use super::one::{whitened_nominal, Fit};
+use crate::diagnose::candidates::{
+    motor_feasible, motor_grid, signature_limit, Candidate, MotorGuess, Prepared,
+};
 use dynamics_runtime::{JointKind, Robot};
+use refine::refine;
+use spread::motor_std;
 
 /// Couplings of the stiff rotor, Hz (all above the 45 Hz the elastic
 /// candidate may reach), and their damping ratio.

@@ -2,7 +2,7 @@
 //! point: a compass search on the logarithms of the parameters, each step
 //! tried both ways, halved when no direction improves.
 
-use super::motor::MotorGuess;
+use crate::diagnose::candidates::MotorGuess;
 
 /// Largest number of evaluations a refinement spends.
 pub const BUDGET: usize = 120;

@@ -15,8 +15,8 @@
 
 use nalgebra::DMatrix;
 
-use super::motor::MotorGuess;
-use super::refine::scaled;
+use crate::diagnose::candidates::MotorGuess;
+use crate::diagnose::fit::motor::refine::scaled;
 
 /// Rows over which residual correlation is summed (10 rows = 0.4 s at
 /// the 40 ms row spacing: a motion phase).

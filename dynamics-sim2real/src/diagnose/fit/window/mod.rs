@@ -21,16 +21,12 @@ mod search;
 
 use search::{refine, search};
 
-use nalgebra::{DVector, SVector};
+use nalgebra::SVector;
 
-use super::analysis::{Fit, Prepared};
-use super::candidate::Candidate;
-use super::compound::Explanation;
-use super::explain::Holdout;
-use super::fit::aicc;
-use super::pool::{linear_columns, whitened, Pool};
-use super::report::{EffectWindow, Explained};
-use super::Options;
+use super::one::Fit;
+use crate::diagnose::candidates::{linear_columns, whitened, Candidate, Prepared};
+use crate::diagnose::numeric::aicc;
+use crate::diagnose::Options;
 use crate::effects::Window;
 use search::outside_absent;
 
@@ -47,7 +43,7 @@ pub fn windowable(c: Candidate) -> bool {
 }
 
 /// The rows of `p` inside `w`, as a 0/1 mask over the whitened values.
-fn inside<const N: usize>(p: &Prepared<N>, w: &Window) -> Vec<f64> {
+pub fn inside<const N: usize>(p: &Prepared<N>, w: &Window) -> Vec<f64> {
     p.rows
         .iter()
         .flat_map(|&k| std::iter::repeat_n(if w.contains(p.sig.t[k]) { 1.0 } else { 0.0 }, N))
@@ -130,34 +126,8 @@ pub fn windowed<const N: usize>(
 }
 
 /// The training window of candidate `c`, if it is limited in time.
-pub fn of(windows: &Windows, c: Candidate) -> Option<Window> {
+pub fn window_of(windows: &Windows, c: Candidate) -> Option<Window> {
     windows.iter().find(|w| w.0 == c).map(|w| w.1)
-}
-
-/// The pool's columns of the windowed terms limited to their windows (two
-/// more parameters each).
-pub fn limit_pool<const N: usize>(pool: &mut Pool, windows: &Windows, p: &Prepared<N>) {
-    // (The windowed kinds, `windowable`, carry no prior: their rows of the
-    // Gram matrix are their columns' products alone.)
-    for t in 0..pool.terms.len() {
-        let Some(w) = of(windows, pool.terms[t].fit.candidate) else {
-            continue;
-        };
-        if pool.terms[t].fixed.is_some() || pool.terms[t].link.is_some() {
-            continue;
-        }
-        let m = DVector::from_vec(inside(p, &w));
-        for &c in &pool.terms[t].cols.clone() {
-            let col = pool.x.column(c).component_mul(&m);
-            pool.x.set_column(c, &col);
-            let v = pool.x.tr_mul(&pool.x.column(c));
-            pool.gram.set_column(c, &v);
-            pool.gram.set_row(c, &v.transpose());
-            pool.xty[c] = pool.x.column(c).dot(&pool.y);
-        }
-        pool.terms[t].k += 2;
-        pool.terms[t].fit.k = pool.terms[t].k;
-    }
 }
 
 /// The held-out window of windowed candidate `c` (trained coefficient
@@ -179,7 +149,7 @@ pub fn corrected<const N: usize>(
     h: &Prepared<N>,
     windows: &Windows,
 ) -> Vec<SVector<f64, N>> {
-    if of(windows, f.candidate).is_none() {
+    if window_of(windows, f.candidate).is_none() {
         return f.corrected(h);
     }
     let theta = f.theta.first().copied().unwrap_or(0.0);
@@ -193,42 +163,4 @@ pub fn corrected<const N: usize>(
         }
     }
     r
-}
-
-/// The explanation's windowed effects limited to their held-out windows on
-/// the held-out side (found there by the same search, the training fit's
-/// sign kept).
-pub fn limit_holdout<const N: usize>(
-    hold: &mut Holdout<N>,
-    h: &Prepared<N>,
-    pool: &Pool,
-    e: &Explanation,
-    windows: &Windows,
-) {
-    for (i, &t) in e.set.iter().enumerate() {
-        let c = pool.terms[t].fit.candidate;
-        if of(windows, c).is_none() {
-            continue;
-        }
-        let theta = e.sol.theta[i].first().copied().unwrap_or(0.0);
-        let m = match holdout_window(c, h, theta) {
-            Some(w) => DVector::from_vec(inside(h, &w)),
-            None => DVector::zeros(h.n()),
-        };
-        for col in hold.free_mut(i) {
-            col.component_mul_assign(&m);
-        }
-    }
-}
-
-/// The training windows on the report's entries of the explanation.
-pub fn annotate(effects: &mut [Explained], pool: &Pool, e: &Explanation, windows: &Windows) {
-    for (entry, &t) in effects.iter_mut().zip(&e.set) {
-        if let Some(w) = of(windows, pool.terms[t].fit.candidate) {
-            entry.window = Some(EffectWindow {
-                start: w.start,
-                end: w.end,
-            });
-        }
-    }
 }

@@ -5,8 +5,8 @@
 
 use nalgebra::SVector;
 
-use super::super::analysis::Prepared;
-use super::super::candidate::Candidate;
+use crate::diagnose::candidates::Candidate;
+use crate::diagnose::candidates::Prepared;
 use crate::effects::Window;
 
 /// Fewest fit rows inside a window, and outside it.

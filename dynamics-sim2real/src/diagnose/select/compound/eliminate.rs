@@ -15,9 +15,9 @@
 
 use nalgebra::{DMatrix, DVector};
 
-use super::compound::tie_key;
-use super::fit::aicc;
-use super::pool::{independent, Pool};
+use crate::diagnose::numeric::aicc;
+use crate::diagnose::select::criterion::tie_key;
+use crate::diagnose::select::pool::{independent, Pool};
 
 /// Every linear term of `pool`, one per family (kind and place): the
 /// variant whose single fit is best; every link correction.
@@ -108,8 +108,8 @@ pub fn eliminate(pool: &Pool, mut set: Vec<usize>, margin: f64) -> Vec<usize> {
 #[cfg(test)]
 mod tests {
     use super::*;
-    use crate::diagnose::candidate::Candidate;
-    use crate::diagnose::pool::{test_pool, test_term, Term};
+    use crate::diagnose::candidates::Candidate;
+    use crate::diagnose::select::pool::{test_pool, test_term, Term};
 
     fn term(c: Candidate, col: usize) -> Term {
         test_term(c, vec![col], vec![false], None)

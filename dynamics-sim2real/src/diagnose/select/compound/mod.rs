@@ -31,25 +31,30 @@
 //! keeps the better set. The set is read in the order of its gains
 //! (`order.rs`).
 
+mod eliminate;
 mod order;
 mod select;
+mod strength;
+mod validate;
+mod weights;
 
 use nalgebra::SVector;
+use rayon::prelude::*;
 
-use super::analysis::{fit, Prepared};
-use super::eliminate::{eliminate, full};
-use super::parallel;
-use super::pool::{fixed_column, Pool, Solution};
-use super::prior::STRENGTHS;
-use super::strength;
-use super::validate::Folds;
-use super::weights::loud_joints;
-use super::Options;
-use crate::diagnose::candidate::Candidate;
-use select::{crit, explicit_crit, nesting, reweighted, select, simpler};
+use super::criterion::tie_key;
+use super::nesting::{nesting, simpler};
+use super::pool::prior::STRENGTHS;
+use super::pool::{Pool, Solution};
+use crate::diagnose::candidates::{Candidate, Friction, Prepared};
+use crate::diagnose::fit::{fit, fixed_column, Fit};
+use crate::diagnose::Options;
+use crate::effects::Effect;
+use eliminate::{eliminate, full};
+use select::{crit, explicit_crit, reweighted, select};
+use validate::Folds;
+use weights::loud_joints;
 
 use dynamics_runtime::Robot;
-pub use select::tie_key;
 
 /// Rounds of selection and motor-side search.
 pub const ROUNDS: usize = 2;
@@ -109,22 +114,21 @@ pub fn without_others<const N: usize>(
 }
 
 /// Searches the motor sides of terms `todo` again on `q` (the others'
-/// effort removed), on `threads` threads, and puts each in the pool when
-/// its search succeeds.
-fn research<R: Robot<N>, const N: usize>(
-    pool: &mut Pool,
-    todo: &[usize],
-    q: &Prepared<N>,
-    threads: usize,
-) {
+/// effort removed), on the current rayon pool, and puts each in the pool
+/// when its search succeeds.
+fn research<R: Robot<N>, const N: usize>(pool: &mut Pool, todo: &[usize], q: &Prepared<N>) {
     let terms = &pool.terms;
-    let found = parallel::map(todo, threads, |&t| {
-        let f = fit::<R, N>(terms[t].fit.candidate, q);
-        (f.motor.is_some() && f.sse.is_finite()).then(|| {
-            let col = fixed_column(&f, q);
-            (f, col)
+    let found: Vec<_> = todo
+        .par_iter()
+        .with_max_len(1)
+        .map(|&t| {
+            let f = fit::<R, N>(terms[t].fit.candidate, q);
+            (f.motor.is_some() && f.sse.is_finite()).then(|| {
+                let col = fixed_column(&f, q);
+                (f, col)
+            })
         })
-    });
+        .collect();
     for (&t, found) in todo.iter().zip(found) {
         if let Some((f, col)) = found {
             pool.set_fixed(t, f, col);
@@ -190,7 +194,7 @@ pub fn explain<R: Robot<N>, const N: usize>(
             break;
         }
         let base = without_others(p, pool, &set, &sol, None);
-        research::<R, N>(pool, &todo, &base, options.threads);
+        research::<R, N>(pool, &todo, &base);
         let next = select::<N>(pool, set.clone(), options);
         if next == set {
             break;
@@ -260,4 +264,35 @@ pub fn explain<R: Robot<N>, const N: usize>(
         })
         .collect();
     Explanation { set, sol, rivals }
+}
+
+/// The fit of term `t` with the joint fit's parameters.
+pub fn joint_fit(pool: &Pool, t: usize, theta: &[f64], std: &[f64]) -> Fit {
+    let mut f = pool.terms[t].fit.clone();
+    if pool.terms[t].fixed.is_none() {
+        f.theta = theta.to_vec();
+        f.std = std.to_vec();
+    }
+    f
+}
+
+/// The effects of the set with their fitted parameters (a friction
+/// correction may take away the nominal model's own `friction`, its
+/// Coulomb levels and viscous coefficients per joint).
+pub fn effects<const N: usize>(
+    pool: &Pool,
+    e: &Explanation,
+    friction: &Friction<N>,
+) -> Vec<Effect> {
+    e.set
+        .iter()
+        .enumerate()
+        .filter_map(|(i, &t)| joint_fit(pool, t, &e.sol.theta[i], &e.sol.std[i]).effect())
+        // (A late effort is a negative delay here, `candidate.rs`.)
+        .filter(|e| {
+            e.validate_beside_friction(friction.0.as_slice(), friction.1.as_slice())
+                .is_ok()
+                || matches!(e, Effect::TimeDelay { delay } if delay.is_finite())
+        })
+        .collect()
 }

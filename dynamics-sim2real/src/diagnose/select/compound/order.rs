@@ -5,8 +5,9 @@
 //! joint fit most. The gap left after 1, 2, 3, ... effects then falls as
 //! fast as the set allows, and the first effects are the ones that matter.
 
-use super::select::{crit, tie_key};
-use crate::diagnose::pool::Pool;
+use super::select::crit;
+use crate::diagnose::select::criterion::tie_key;
+use crate::diagnose::select::pool::Pool;
 
 /// `set` in the order of its gains (greedy: each prefix refitted jointly;
 /// ties by term index).
@@ -32,8 +33,8 @@ pub(super) fn by_gain(pool: &Pool, set: &[usize]) -> Vec<usize> {
 #[cfg(test)]
 mod tests {
     use super::*;
-    use crate::diagnose::candidate::Candidate;
-    use crate::diagnose::pool::{test_pool, test_term};
+    use crate::diagnose::candidates::Candidate;
+    use crate::diagnose::select::pool::{test_pool, test_term};
     use nalgebra::{DMatrix, DVector};
 
     /// Three terms in the pool's order with effects 0.1, 3.0 and 1.0 on

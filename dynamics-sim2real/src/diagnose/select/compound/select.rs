@@ -4,30 +4,13 @@
 //! backward pass; parsimony between a richer term and the simpler one it
 //! nests; the selection resumed under feasible weights.
 
-use crate::diagnose::candidate::Candidate;
-use crate::diagnose::fit::aicc;
-use crate::diagnose::pool::{Pool, Solution};
-use crate::diagnose::validate::Folds;
-use crate::diagnose::weights::{weights, within_noise, REWEIGHTS};
+use super::validate::Folds;
+use super::weights::{weights, within_noise, REWEIGHTS};
+use crate::diagnose::numeric::aicc;
+use crate::diagnose::select::criterion::tie_key;
+use crate::diagnose::select::nesting::{nesting, simpler};
+use crate::diagnose::select::pool::{Pool, Solution};
 use crate::diagnose::Options;
-
-/// Criteria closer than this (in the criterion's units, where margins are
-/// several units) are a tie, broken by the pool's order of the terms: a
-/// selection must not hang on the last bits of a sum, which differ from
-/// build to build (the model's sums are fused multiply-adds where the CPU
-/// has them, `dynamics_runtime::fma`).
-pub const TIE: f64 = 1e-3;
-
-/// The criterion `c` rounded to [`TIE`], for ordering.
-pub fn tie_key(c: f64) -> i64 {
-    if c.is_finite() {
-        (c / TIE).round() as i64
-    } else if c > 0.0 {
-        i64::MAX
-    } else {
-        i64::MIN
-    }
-}
 
 pub(super) fn crit(pool: &Pool, s: &Solution) -> f64 {
     aicc(s.sse, pool.n(), s.k)
@@ -37,37 +20,6 @@ pub(super) fn crit(pool: &Pool, s: &Solution) -> f64 {
 pub(super) fn explicit_crit(pool: &Pool, set: &[usize]) -> f64 {
     let sol = pool.solve(set);
     aicc(pool.residual(set, &sol).norm_squared(), pool.n(), sol.k)
-}
-
-/// The simpler term a richer one nests at its place.
-pub(super) fn simpler(c: Candidate) -> Option<fn(&Candidate) -> bool> {
-    match c {
-        Candidate::Stribeck(..) => Some(|s| matches!(s, Candidate::Coulomb(..))),
-        // A width is one more parameter than the sharp law.
-        c if c.widened() => Some(|s| matches!(s, Candidate::Coulomb(..)) && !s.widened()),
-        Candidate::Elasticity(_) | Candidate::Backlash(_) => {
-            Some(|s| matches!(s, Candidate::Armature(_)))
-        }
-        // A spring is an effort offset that grows with the position.
-        Candidate::Spring(_) => Some(|s| matches!(s, Candidate::EffortOffset(_))),
-        // A point mass at the tip is an inertial change of the tip's link
-        // with one parameter instead of up to ten.
-        Candidate::Inertial(_) => Some(|s| matches!(s, Candidate::Payload)),
-        _ => None,
-    }
-}
-
-/// What a richer term must gain over the simpler one it nests (or a term
-/// over another of its family it replaces): Stribeck's breakaway level is
-/// one more parameter on top of Coulomb friction, and must earn it like
-/// a first effect (a Stribeck curve at 0.01 rad/s otherwise reshapes
-/// the smooth sign of a large Coulomb friction); the motor sides and link
-/// corrections the nesting margin.
-pub(super) fn nesting(c: Candidate, options: &Options) -> f64 {
-    match c {
-        Candidate::Stribeck(..) => options.none_margin.max(options.nesting_margin),
-        _ => options.nesting_margin,
-    }
 }
 
 /// Moves tried, best first by the criterion, for one that also passes the

@@ -16,10 +16,10 @@
 //! scaling of the links are the one direction no block of data can tell
 //! apart.
 
-use super::compound::tie_key;
-use super::pool::Pool;
-use super::prior::STRENGTHS;
-use super::validate::Folds;
+use crate::diagnose::select::compound::validate::Folds;
+use crate::diagnose::select::criterion::tie_key;
+use crate::diagnose::select::pool::prior::STRENGTHS;
+use crate::diagnose::select::pool::Pool;
 
 /// Whether `set` has a term the links' prior holds: the others are the
 /// same at every strength.
@@ -60,8 +60,8 @@ pub fn choose<const N: usize>(pool: &mut Pool, set: &[usize]) -> f64 {
 #[cfg(test)]
 mod tests {
     use super::*;
-    use crate::diagnose::candidate::Candidate;
-    use crate::diagnose::pool::{test_pool, test_term};
+    use crate::diagnose::candidates::Candidate;
+    use crate::diagnose::select::pool::{test_pool, test_term};
     use nalgebra::{DMatrix, DVector};
 
     /// A link's parameter off by two prior spreads (-0.4 on a spread of
@@ -79,7 +79,8 @@ mod tests {
         let link = test_term(Candidate::Inertial(0), vec![0], vec![false], None);
         let mut pool = test_pool(x, DVector::from_vec(y), vec![link], 1);
         pool.prior.links = DMatrix::from_element(1, 1, 1.0 / 0.04);
-        pool.gram = crate::diagnose::pool::penalised(&pool.x, &pool.prior, pool.yy, pool.strength);
+        pool.gram =
+            crate::diagnose::select::pool::penalised(&pool.x, &pool.prior, pool.yy, pool.strength);
         let strong = pool.solve(&[0]).theta[0][0];
         let s = choose::<1>(&mut pool, &[0]);
         let weak = pool.solve(&[0]).theta[0][0];
@@ -102,7 +103,8 @@ mod tests {
         let link = test_term(Candidate::Inertial(0), vec![0], vec![false], None);
         let mut pool = test_pool(x, DVector::from_vec(y), vec![link], 1);
         pool.prior.links = DMatrix::from_element(1, 1, 1.0 / 0.04);
-        pool.gram = crate::diagnose::pool::penalised(&pool.x, &pool.prior, pool.yy, pool.strength);
+        pool.gram =
+            crate::diagnose::select::pool::penalised(&pool.x, &pool.prior, pool.yy, pool.strength);
         let mut folds = Folds::new(&pool, 1).expect("enough rows");
         for &s in &STRENGTHS[1..] {
             pool.set_strength(s);

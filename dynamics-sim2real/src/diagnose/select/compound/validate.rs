@@ -12,7 +12,7 @@
 
 use nalgebra::{DMatrix, DVector};
 
-use super::pool::Pool;
+use crate::diagnose::select::pool::Pool;
 
 /// Contiguous blocks of time.
 pub const FOLDS: usize = 4;
@@ -127,8 +127,8 @@ impl Folds {
 #[cfg(test)]
 mod tests {
     use super::*;
-    use crate::diagnose::candidate::Candidate;
-    use crate::diagnose::pool::{test_pool, test_term, Term};
+    use crate::diagnose::candidates::Candidate;
+    use crate::diagnose::select::pool::{test_pool, test_term, Term};
 
     fn term(c: Candidate, col: usize) -> Term {
         test_term(c, vec![col], vec![false], None)

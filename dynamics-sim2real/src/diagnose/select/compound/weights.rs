@@ -12,7 +12,7 @@
 //! resumes under these weights until they settle. A set that leaves every
 //! joint within its floor (a complete model) is not touched.
 
-use super::pool::{Pool, Solution};
+use crate::diagnose::select::pool::{Pool, Solution};
 
 /// Reweighting rounds at most.
 pub const REWEIGHTS: usize = 3;

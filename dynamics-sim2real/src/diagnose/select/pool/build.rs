@@ -5,56 +5,13 @@
 
 use nalgebra::{DMatrix, DVector, SVector};
 
+use super::prior;
 use super::{penalised, Pool, Term};
-use crate::diagnose::analysis::{Fit, Prepared};
-use crate::diagnose::candidate::Candidate;
-use crate::diagnose::links::{combined, link_basis};
-use crate::diagnose::prior;
-
-/// Whitened column of the rows of `p` from per-sample efforts `f`.
-pub fn whitened<const N: usize>(p: &Prepared<N>, f: impl Fn(usize) -> SVector<f64, N>) -> Vec<f64> {
-    let mut out = Vec::with_capacity(p.n());
-    for &k in &p.rows {
-        let v = f(k);
-        for j in 0..N {
-            let x = v[j] / p.sig.floor[j];
-            out.push(if x.is_finite() { x } else { 0.0 });
-        }
-    }
-    out
-}
-
-/// The free columns of a linear candidate on the rows of `p`.
-pub fn linear_columns<const N: usize>(c: Candidate, p: &Prepared<N>) -> Vec<Vec<f64>> {
-    (0..c.linear_parameters().len())
-        .map(|i| whitened(p, |k| c.columns(&p.sig, &p.basis, k)[i]))
-        .collect()
-}
-
-/// The fixed column of a motor-side fit on the rows of `p`: the residual
-/// minus the residual it leaves.
-pub fn fixed_column<const N: usize>(f: &Fit, p: &Prepared<N>) -> Vec<f64> {
-    let after = f.corrected(p);
-    whitened(p, |k| p.sig.residual[k] - after[k])
-}
-
-/// The least values of a linear candidate's parameters: none, or 0 for a
-/// sign-constrained one, except that a friction correction may take away
-/// the friction the nominal model carries at its joint (its Coulomb level
-/// for Coulomb and Stribeck's `fc`, its viscous coefficient for viscous).
-fn lower_bounds<const N: usize>(c: Candidate, p: &Prepared<N>) -> Vec<f64> {
-    let (coulomb, viscous) = &p.basis.friction;
-    c.linear_parameters()
-        .iter()
-        .enumerate()
-        .map(|(i, &(_, nonneg))| match (c, i) {
-            _ if !nonneg => f64::NEG_INFINITY,
-            (Candidate::Coulomb(j, _) | Candidate::Stribeck(j, _), 0) => -coulomb[j],
-            (Candidate::Viscous(j), 0) => -viscous[j],
-            _ => 0.0,
-        })
-        .collect()
-}
+use crate::diagnose::candidates::{
+    combined, linear_columns, link_basis, lower_bounds, whitened, Candidate, Prepared,
+    EFFORT_SCALE_LIMIT,
+};
+use crate::diagnose::fit::{fixed_column, Fit};
 
 impl Pool {
     /// The pool of `fits` on `p` (every single fit, grid variants too) and
@@ -105,7 +62,7 @@ impl Pool {
                         .linear_parameters()
                         .iter()
                         .map(|_| match c {
-                            Candidate::EffortScale(_) => prior::EFFORT_SCALE_LIMIT,
+                            Candidate::EffortScale(_) => EFFORT_SCALE_LIMIT,
                             _ => f64::INFINITY,
                         })
                         .collect(),

@@ -13,15 +13,14 @@
 
 use nalgebra::{DMatrix, DVector};
 
-use super::analysis::Fit;
-use super::candidate::Candidate;
-use super::links::LinkBasis;
-use super::prior::{weight, Prior};
+use crate::diagnose::candidates::{Candidate, LinkBasis};
+use crate::diagnose::fit::Fit;
+use prior::{weight, Prior};
 
 mod build;
+pub mod prior;
 mod solve;
-
-pub use build::{fixed_column, linear_columns, whitened};
+mod windows;
 pub(in crate::diagnose) use solve::independent;
 
 /// One term of the pool: a fitted single candidate and its columns.
@@ -89,10 +88,10 @@ pub struct Pool {
     /// noise floor (1: the floor alone; `reweight`).
     pub weights: Vec<f64>,
     /// The prior toward the nominal model (`prior.rs`), added to the Gram
-    /// matrix at its weight ([`weight`](super::prior::weight)).
+    /// matrix at its weight ([`weight`](crate::diagnose::select::pool::prior::weight)).
     pub prior: Prior,
     /// How many rows of the nominal gap one spread of the links' prior is
-    /// worth ([`STRENGTHS`](super::prior::STRENGTHS), chosen by cross-validation:
+    /// worth ([`STRENGTHS`](crate::diagnose::select::pool::prior::STRENGTHS), chosen by cross-validation:
     /// `strength.rs`).
     pub strength: f64,
 }
@@ -254,7 +253,7 @@ pub(crate) fn test_pool(x: DMatrix<f64>, y: DVector<f64>, terms: Vec<Term>, join
         terms,
         weights: vec![1.0; joints],
         prior: Prior::none(),
-        strength: super::prior::STRENGTHS[0],
+        strength: crate::diagnose::select::pool::prior::STRENGTHS[0],
     }
 }
 

@@ -29,16 +29,8 @@ use nalgebra::{DMatrix, SVector};
 
 use crate::inertial::units;
 
-use super::candidate::Candidate;
-use super::pool::Term;
-
-/// The largest `|s - 1|` an effort scale may take. A torque constant or a
-/// gear ratio in a robot's configuration is off by some per cent, a
-/// motor's torque constant by up to 10-20 % with temperature and
-/// saturation; one off by more than half (or of the wrong sign) is not an
-/// effort scale but a wrong unit, a wrong channel or a wrong sign, which
-/// the data should not be bent to explain.
-pub const EFFORT_SCALE_LIMIT: f64 = 0.5;
+use crate::diagnose::candidates::Candidate;
+use crate::diagnose::select::pool::Term;
 
 /// The prior's spread of an effort scale's `s - 1`.
 pub const EFFORT_SCALE_SIGMA: f64 = 0.2;
@@ -163,8 +155,9 @@ pub fn weight(yy: f64, n: usize, strength: f64) -> f64 {
 #[cfg(test)]
 mod tests {
     use super::*;
-    use crate::diagnose::pool::{test_term, Pool};
+    use crate::diagnose::select::pool::{test_term, Pool};
     use crate::inertial::{LIGHTEST, SMALLEST};
+    use crate::diagnose::candidates::EFFORT_SCALE_LIMIT;
     use nalgebra::DVector;
 
     fn pool(cols: &[Vec<f64>], y: Vec<f64>, terms: Vec<Term>, prior: Prior) -> Pool {
@@ -173,7 +166,7 @@ mod tests {
         let yv = DVector::from_vec(y);
         let yy = yv.norm_squared();
         Pool {
-            gram: crate::diagnose::pool::penalised(&x, &prior, yy, STRENGTHS[0]),
+            gram: crate::diagnose::select::pool::penalised(&x, &prior, yy, STRENGTHS[0]),
             xty: x.tr_mul(&yv),
             yy,
             x,

@@ -1,7 +1,7 @@
 use super::test_pool;
 use super::test_term as term;
 use super::*;
-use crate::diagnose::fit::constrained_least_squares;
+use crate::diagnose::numeric::constrained_least_squares;
 use crate::effects::SIGN_SMOOTHING;
 
 /// The Gram route against a direct least-squares fit of the same

@@ -1,13 +1,11 @@
 //! Ranking the fitted candidates: the best grid variant per (kind, place)
-//! by AICc, parsimony between nested models, rival motor sides, and the
-//! report's entries.
+//! by AICc, parsimony between nested models (`nesting.rs`), rival motor
+//! sides.
 
-use super::analysis::{Fit, Prepared};
-use super::candidate::Candidate;
-use super::motor::MotorGuess;
-use super::report::{Parameter, Ranked};
-use crate::effects::SIGN_SMOOTHING;
-use dynamics_runtime::Robot;
+use super::nesting::simpler;
+use crate::diagnose::candidates::{Candidate, Prepared};
+use crate::diagnose::fit::{Fit, Windows};
+use crate::diagnose::Options;
 
 /// What the ranking asks of the data beyond a fit's training AICc.
 pub struct Judge<'a> {
@@ -101,15 +99,15 @@ pub fn best_per_place(fits: Vec<Fit>, n: usize, nesting_margin: f64, judge: &Jud
             best.insert(0, f);
         }
     }
-    // Parsimony.
-    let simpler = match best[0].candidate {
-        Candidate::Stribeck(j, _) => Some(Candidate::Coulomb(j, SIGN_SMOOTHING)),
-        Candidate::Elasticity(j) | Candidate::Backlash(j) => Some(Candidate::Armature(j)),
-        Candidate::Spring(j) => Some(Candidate::EffortOffset(j)),
-        _ => None,
-    };
-    if let Some(s) = simpler {
-        if let Some(i) = find(&best, s) {
+    // Parsimony (one variant per place here, so the nested one is found by
+    // its kind and joint).
+    let top = best[0].candidate;
+    if let Some(is_simpler) = simpler(top) {
+        if let Some(i) = best
+            .iter()
+            .position(|f| is_simpler(&f.candidate) && f.candidate.joint() == top.joint())
+        {
+            let s = best[i].candidate;
             let motor_side = matches!(s, Candidate::Armature(_));
             let trained = best[i].aicc(n) - best[0].aicc(n);
             let both = evidence(&best[i]) - evidence(&best[0]);
@@ -154,89 +152,25 @@ pub fn within_floor<const N: usize>(f: &Fit, p: &Prepared<N>, ratio: f64) -> boo
     ms.is_finite() && ms.sqrt() <= ratio
 }
 
-/// The report's entry of a fit: parameters with their spreads, share of
-/// the gap explained (training and held-out), AICc and its gain.
-pub fn ranked_entry<R: Robot<N>, const N: usize>(
-    f: &Fit,
-    tip: &str,
-    aicc0: f64,
-    n: usize,
-    share: f64,
-    holdout_share: f64,
-) -> Ranked {
-    let c = f.candidate;
-    let mut parameters: Vec<Parameter> = c
-        .linear_parameters()
-        .iter()
-        .zip(f.theta.iter().zip(&f.std))
-        .map(|((name, _), (v, s))| match *name {
-            // Fitted as scale - 1, reported as the scale.
-            "scale_minus_one" => Parameter {
-                name: "scale".into(),
-                value: 1.0 + *v,
-                std: *s,
-            },
-            _ => Parameter {
-                name: name.to_string(),
-                value: *v,
-                std: *s,
-            },
-        })
-        .collect();
-    match c {
-        // (A grid value: its spread is the grid's step.)
-        Candidate::Coulomb(_, vw) => parameters.push(Parameter {
-            name: "vw".into(),
-            value: vw,
-            std: vw * 0.5,
-        }),
-        Candidate::Stribeck(_, vs) => parameters.push(Parameter {
-            name: "vs".into(),
-            value: vs,
-            std: vs * 0.5,
-        }),
-        Candidate::Environment(alpha) => parameters.push(Parameter {
-            name: "alpha".into(),
-            value: alpha,
-            std: 0.25,
-        }),
-        _ => {}
-    }
-    if let (Some(g), false) = (f.motor, matches!(c, Candidate::Armature(_))) {
-        let mut push = |name: &str, value: f64, std: f64| {
-            parameters.push(Parameter {
-                name: name.into(),
-                value,
-                std,
-            })
-        };
-        let sd = f.motor_std.unwrap_or(MotorGuess {
-            jm: f64::INFINITY,
-            stiffness: f64::INFINITY,
-            damping: f64::INFINITY,
-            half_width: f64::INFINITY,
-        });
-        push("motor_inertia", g.jm, sd.jm);
-        if matches!(c, Candidate::Backlash(_)) {
-            push("half_width", g.half_width, sd.half_width);
-            push("contact_stiffness", g.stiffness, sd.stiffness);
-        } else {
-            push("stiffness", g.stiffness, sd.stiffness);
-            push("damping", g.damping, sd.damping);
-        }
-    }
-    let a = f.aicc(n);
-    Ranked {
-        channel: super::late::channel(c),
-        kind: c.kind().name().to_string(),
-        joint: c.joint().map(|j| R::JOINT_NAMES[j].to_string()),
-        point: matches!(c, Candidate::Payload | Candidate::Environment(_)).then(|| tip.to_string()),
-        parameters,
-        share,
-        aicc: a,
-        delta_aicc: aicc0 - a,
-        holdout_share,
-    }
+/// The best variant per (kind, place) of `fits` on training record `p`,
+/// best first ([`best_per_place`]), the held-out record `h` adding its
+/// evidence where the ranking asks it.
+pub fn rank<const N: usize>(
+    fits: Vec<Fit>,
+    p: &Prepared<N>,
+    h: &Prepared<N>,
+    windows: &Windows,
+    options: &Options,
+) -> Vec<Fit> {
+    best_per_place(
+        fits,
+        p.n(),
+        options.nesting_margin,
+        &Judge {
+            quiet: &|f| within_floor(f, p, options.floor_ratio),
+            held_out: &|f| super::held_out_deviance(f, h, windows),
+        },
+    )
 }
 
 #[cfg(test)]

@@ -2,6 +2,7 @@
 //! leaves only noise, the held-out record's evidence.
 
 use super::*;
+use crate::effects::SIGN_SMOOTHING;
 
 fn fit(candidate: Candidate, sse: f64, k: usize) -> Fit {
     Fit {
@@ -144,5 +145,5 @@ fn the_held_out_record_adds_its_evidence() {
 }
 
 fn aicc_of(sse: f64, n: usize, k: usize) -> f64 {
-    crate::diagnose::fit::aicc(sse, n, k)
+    crate::diagnose::numeric::aicc(sse, n, k)
 }

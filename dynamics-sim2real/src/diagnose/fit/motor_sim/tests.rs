@@ -1,7 +1,7 @@
 //! The lanes against the simulation of one guess at a time.
 
 use super::*;
-use crate::diagnose::filter::SavitzkyGolay;
+use crate::smoothing::SavitzkyGolay;
 use nalgebra::SVector;
 
 /// The simulation of one guess as it was written before lanes: the

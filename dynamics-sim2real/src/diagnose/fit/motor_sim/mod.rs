@@ -1,5 +1,5 @@
 //! The motor-side simulation behind elasticity, backlash and the stiff
-//! rotor (`motor.rs` says what it models), run for several guesses at
+//! rotor (`transmitted.rs` says what it models), run for several guesses at
 //! once: the guesses of a grid, of a compass step or of a finite
 //! difference share the measured signals and differ only in their
 //! parameters, and one integration step is a chain of dependent
@@ -9,6 +9,7 @@
 //! its result does not depend on its companions.
 //!
 //! - here: the lanes' integration (two Runge-Kutta steps a sample);
+//! - `transmitted.rs`: one guess's transmitted effort, raw or smoothed;
 //! - `derivative.rs`: the coupling's force (spring or dead zone) and the
 //!   lanes' state derivative, the link pulled back to the measured motion;
 //! - `tests.rs`: the one-at-a-time simulation each lane must reproduce.
@@ -16,18 +17,23 @@
 mod derivative;
 #[cfg(test)]
 mod tests;
+pub mod transmitted;
 
 use std::f64::consts::PI;
 
-use super::motor::{MotorGuess, OBSERVER_HZ};
-use super::signals::Signals;
+use crate::diagnose::candidates::MotorGuess;
+use crate::diagnose::signals::Signals;
 use derivative::{add, force, Lanes};
 use nalgebra::SVector;
+
+/// Bandwidth with which the simulated link is pulled back to the measured
+/// motion, Hz.
+pub const OBSERVER_HZ: f64 = 3.0;
 
 /// Lanes integrated side by side.
 pub const LANES: usize = 4;
 
-/// The raw transmitted effort (see `motor::motor_transmitted_raw`) of
+/// The raw transmitted effort (see `transmitted::motor_transmitted_raw`) of
 /// every guess of `gs` at joint `j`, in their order; `compliance` per
 /// sample is the link's acceleration per unit of its own effort
 /// (`Basis::compliance`).

@@ -1,0 +1,46 @@
+//! The values searched for a candidate's nonlinear parameters (grids) and
+//! the bounds its linear parameters are held within.
+
+use crate::diagnose::candidates::candidate::Candidate;
+use crate::diagnose::candidates::prepared::Prepared;
+use crate::effects::SIGN_SMOOTHING;
+
+/// Coulomb friction's velocity widths searched, rad/s: sharp (the smooth
+/// sign of every friction law, [`SIGN_SMOOTHING`]) to the tenths of a
+/// rad/s over which real joints' friction turns (the Panda's published
+/// sigmoids `1 / (1 + exp(-phi2 v))`, Gaz et al. 2019, are `tanh(v / vw)`
+/// with `vw = 2 / phi2` = 0.12-0.39 rad/s). Not wider: a width of 0.4
+/// rad/s is nearly linear over a joint's usual speeds and took the place of
+/// viscous friction in the compound scoring (its recall of viscous
+/// friction fell from 122 to 113 of 135 at base 0).
+pub const COULOMB_WIDTHS: [f64; 3] = [SIGN_SMOOTHING, 0.05, 0.15];
+/// Stribeck velocities searched, rad/s.
+pub const STRIBECK_GRID: [f64; 4] = [0.01, 0.03, 0.1, 0.3];
+/// Resistance exponents searched.
+pub const ALPHA_GRID: [f64; 5] = [1.0, 1.5, 2.0, 2.5, 3.0];
+
+/// The largest `|s - 1|` an effort scale may take. A torque constant or a
+/// gear ratio in a robot's configuration is off by some per cent, a
+/// motor's torque constant by up to 10-20 % with temperature and
+/// saturation; one off by more than half (or of the wrong sign) is not an
+/// effort scale but a wrong unit, a wrong channel or a wrong sign, which
+/// the data should not be bent to explain.
+pub const EFFORT_SCALE_LIMIT: f64 = 0.5;
+
+/// The least values of a linear candidate's parameters: none, or 0 for a
+/// sign-constrained one, except that a friction correction may take away
+/// the friction the nominal model carries at its joint (its Coulomb level
+/// for Coulomb and Stribeck's `fc`, its viscous coefficient for viscous).
+pub fn lower_bounds<const N: usize>(c: Candidate, p: &Prepared<N>) -> Vec<f64> {
+    let (coulomb, viscous) = &p.basis.friction;
+    c.linear_parameters()
+        .iter()
+        .enumerate()
+        .map(|(i, &(_, nonneg))| match (c, i) {
+            _ if !nonneg => f64::NEG_INFINITY,
+            (Candidate::Coulomb(j, _) | Candidate::Stribeck(j, _), 0) => -coulomb[j],
+            (Candidate::Viscous(j), 0) => -viscous[j],
+            _ => 0.0,
+        })
+        .collect()
+}
