@@ -11,8 +11,8 @@ use crate::effects::SIGN_SMOOTHING;
 use thiserror::Error;
 
 use crate::data::Measured;
-use crate::diagnose::candidates::Candidate;
 use crate::diagnose::candidates::Prepared;
+use crate::diagnose::candidates::{Candidate, Channel};
 use crate::diagnose::explain::report::Ranked;
 use crate::diagnose::fit::fit;
 use crate::diagnose::signals::SensorNoise;
@@ -151,11 +151,11 @@ pub fn traces<R: Robot<N> + Clone, const N: usize>(
 fn candidate<R: Robot<N>, const N: usize>(r: &Ranked) -> Result<Candidate, TracesError> {
     let place = r.joint.clone().or(r.point.clone()).unwrap_or_default();
     let err = |cause: String| TracesError::Entry {
-        kind: r.kind.clone(),
+        kind: r.kind.name().to_string(),
         place: place.clone(),
         cause,
     };
-    let kind: EffectKind = r.kind.parse().map_err(|e| err(format!("{e}")))?;
+    let kind = r.kind;
     let joint = || -> Result<usize, TracesError> {
         let name = r
             .joint
@@ -184,9 +184,9 @@ fn candidate<R: Robot<N>, const N: usize>(r: &Ranked) -> Result<Candidate, Trace
         EffectKind::PayloadMass => Candidate::Payload,
         EffectKind::EnvironmentResistance => Candidate::Environment(parameter("alpha")?),
         EffectKind::EncoderOffset => Candidate::EncoderOffset(joint()?),
-        EffectKind::TimeDelay => match r.channel.as_deref() {
-            Some("positions") => Candidate::LatePositions,
-            Some("effort") => Candidate::LateEffort(parameter("delay")?),
+        EffectKind::TimeDelay => match r.channel {
+            Some(Channel::Positions) => Candidate::LatePositions,
+            Some(Channel::Effort) => Candidate::LateEffort(parameter("delay")?),
             _ => Candidate::TimeDelay,
         },
         EffectKind::JointElasticity => Candidate::Elasticity(joint()?),

@@ -120,7 +120,7 @@ fn report_traces_carry_the_fitted_effect() {
         diagnose(&robot, &train, &holdout, &Options::default(), &|_, _| {}).expect("diagnosed");
     let top = &report.which.ranked[0];
     assert_eq!(
-        (top.kind.as_str(), top.joint.as_deref()),
+        (top.kind.name(), top.joint.as_deref()),
         ("coulomb_friction", Some("j3"))
     );
     let fc = top.parameters[0].value;
@@ -197,12 +197,12 @@ fn coulomb_friction_where_the_velocity_never_reverses_is_ambiguous() {
     let v = &report.which.verdict;
     eprintln!("{v:?}");
     assert_eq!(
-        (v.kind.as_str(), v.joint.as_deref(), v.status.as_str()),
+        (v.kind.name(), v.joint.as_deref(), v.status.name()),
         ("coulomb_friction", Some("j3"), "ambiguous")
     );
     let rival = v.rival.as_ref().expect("a rival");
     assert_eq!(
-        (rival.kind.as_str(), rival.joint.as_deref()),
+        (rival.kind.name(), rival.joint.as_deref()),
         ("effort_offset", Some("j3"))
     );
 }

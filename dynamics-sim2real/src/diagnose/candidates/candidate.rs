@@ -12,6 +12,35 @@ use crate::diagnose::candidates::shift::{late_effort_column, late_motion_column}
 use crate::diagnose::signals::Signals;
 use crate::effects::{Effect, EffectKind, SIGN_SMOOTHING};
 
+/// Which stream of a log a delay makes late.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, serde::Serialize)]
+#[serde(rename_all = "snake_case")]
+pub enum Channel {
+    /// Positions and velocities late together against the effort.
+    All,
+    /// The position stream late against velocity and effort.
+    Positions,
+    /// The effort stream late against position and velocity.
+    Effort,
+}
+
+impl Channel {
+    /// The channel's name as the report writes it.
+    pub fn name(self) -> &'static str {
+        match self {
+            Channel::All => "all",
+            Channel::Positions => "positions",
+            Channel::Effort => "effort",
+        }
+    }
+}
+
+impl std::fmt::Display for Channel {
+    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
+        f.write_str(self.name())
+    }
+}
+
 /// A candidate: kind, place, and the fixed value of a nonlinear parameter
 /// searched on a grid (Stribeck velocity, resistance exponent).
 #[derive(Debug, Clone, Copy, PartialEq)]
@@ -61,6 +90,18 @@ pub enum Candidate {
 }
 
 impl Candidate {
+    /// The late channel a delay candidate names: `all` (positions and
+    /// velocities late together against the effort), `positions` or
+    /// `effort`; `None` for every other candidate.
+    pub fn channel(self) -> Option<Channel> {
+        match self {
+            Candidate::TimeDelay => Some(Channel::All),
+            Candidate::LatePositions => Some(Channel::Positions),
+            Candidate::LateEffort(_) => Some(Channel::Effort),
+            _ => None,
+        }
+    }
+
     /// Every candidate for a robot with N joints.
     pub fn all<const N: usize>(kinds: &[EffectKind]) -> Vec<Candidate> {
         let mut out = Vec::new();

@@ -1,5 +1,6 @@
-//! A candidate's columns on the fit's rows, whitened by the noise floor:
-//! what the joint fits of the compound explanation work on.
+//! A candidate's columns on the fit's rows, whitened by the noise floor,
+//! and the least values of their coefficients: what the joint fits of the
+//! compound explanation work on.
 
 use nalgebra::SVector;
 
@@ -23,5 +24,23 @@ pub fn whitened<const N: usize>(p: &Prepared<N>, f: impl Fn(usize) -> SVector<f6
 pub fn linear_columns<const N: usize>(c: Candidate, p: &Prepared<N>) -> Vec<Vec<f64>> {
     (0..c.linear_parameters().len())
         .map(|i| whitened(p, |k| c.columns(&p.sig, &p.basis, k)[i]))
+        .collect()
+}
+
+/// The least values of a linear candidate's parameters: none, or 0 for a
+/// sign-constrained one, except that a friction correction may take away
+/// the friction the nominal model carries at its joint (its Coulomb level
+/// for Coulomb and Stribeck's `fc`, its viscous coefficient for viscous).
+pub fn lower_bounds<const N: usize>(c: Candidate, p: &Prepared<N>) -> Vec<f64> {
+    let (coulomb, viscous) = &p.basis.friction;
+    c.linear_parameters()
+        .iter()
+        .enumerate()
+        .map(|(i, &(_, nonneg))| match (c, i) {
+            _ if !nonneg => f64::NEG_INFINITY,
+            (Candidate::Coulomb(j, _) | Candidate::Stribeck(j, _), 0) => -coulomb[j],
+            (Candidate::Viscous(j), 0) => -viscous[j],
+            _ => 0.0,
+        })
         .collect()
 }

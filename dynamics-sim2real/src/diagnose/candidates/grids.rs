@@ -1,8 +1,6 @@
 //! The values searched for a candidate's nonlinear parameters (grids) and
-//! the bounds its linear parameters are held within.
+//! the limit of an effort scale.
 
-use crate::diagnose::candidates::candidate::Candidate;
-use crate::diagnose::candidates::prepared::Prepared;
 use crate::effects::SIGN_SMOOTHING;
 
 /// Coulomb friction's velocity widths searched, rad/s: sharp (the smooth
@@ -26,21 +24,3 @@ pub const ALPHA_GRID: [f64; 5] = [1.0, 1.5, 2.0, 2.5, 3.0];
 /// effort scale but a wrong unit, a wrong channel or a wrong sign, which
 /// the data should not be bent to explain.
 pub const EFFORT_SCALE_LIMIT: f64 = 0.5;
-
-/// The least values of a linear candidate's parameters: none, or 0 for a
-/// sign-constrained one, except that a friction correction may take away
-/// the friction the nominal model carries at its joint (its Coulomb level
-/// for Coulomb and Stribeck's `fc`, its viscous coefficient for viscous).
-pub fn lower_bounds<const N: usize>(c: Candidate, p: &Prepared<N>) -> Vec<f64> {
-    let (coulomb, viscous) = &p.basis.friction;
-    c.linear_parameters()
-        .iter()
-        .enumerate()
-        .map(|(i, &(_, nonneg))| match (c, i) {
-            _ if !nonneg => f64::NEG_INFINITY,
-            (Candidate::Coulomb(j, _) | Candidate::Stribeck(j, _), 0) => -coulomb[j],
-            (Candidate::Viscous(j), 0) => -viscous[j],
-            _ => 0.0,
-        })
-        .collect()
-}

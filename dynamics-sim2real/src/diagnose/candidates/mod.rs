@@ -33,9 +33,9 @@ mod shift;
 mod visibility;
 
 pub use basis::Friction;
-pub use candidate::Candidate;
-pub use columns::{linear_columns, whitened};
-pub use grids::{lower_bounds, EFFORT_SCALE_LIMIT};
+pub use candidate::{Candidate, Channel};
+pub use columns::{linear_columns, lower_bounds, whitened};
+pub use grids::EFFORT_SCALE_LIMIT;
 pub use late::offer_delays;
 pub use links::{combined, delta, link_basis, regressor_columns, LinkBasis};
 pub use motor::{motor_feasible, motor_grid, signature_limit, MotorGuess};

@@ -129,13 +129,13 @@ pub fn entries<R: Robot<N>, const N: usize>(
                 let c = pool.terms[u].fit.candidate;
                 let (joint, point) = place_of::<R, N>(c, tip);
                 Rival {
-                    kind: c.kind().name().to_string(),
+                    kind: c.kind(),
                     joint,
                     point,
                 }
             });
             Explained {
-                kind: f.candidate.kind().name().to_string(),
+                kind: f.candidate.kind(),
                 joint,
                 point,
                 description,
@@ -151,7 +151,7 @@ pub fn entries<R: Robot<N>, const N: usize>(
                     0.0
                 },
                 window: None,
-                channel: super::late::channel(f.candidate),
+                channel: f.candidate.channel(),
                 ambiguous_with: rival,
             }
         })

@@ -26,7 +26,7 @@ pub fn friction_table<const N: usize>(
         let sum: f64 = effects
             .iter()
             .filter(|e| e.joint.as_deref() == Some(joint))
-            .filter(|e| kinds.iter().any(|k| k.name() == e.kind))
+            .filter(|e| kinds.contains(&e.kind))
             .filter_map(|e| e.parameters.iter().find(|p| p.name == name))
             .map(|p| {
                 found = true;

@@ -1,21 +1,11 @@
-//! Delayed channels in the report's words: the channel a delay names, and
-//! the warnings on a delay the diagnosis names (`candidates/late.rs` finds
+//! Delayed channels in the report's words: the warnings on a delay the
+//! diagnosis names (`candidates/late.rs` finds
 //! and offers the delays).
 
-use crate::diagnose::candidates::Candidate;
-use crate::diagnose::explain::report::{Explained, Parameter, Ranked, Verdict};
+use super::report::{Explained, Parameter, Ranked, Verdict, VerdictKind};
+use crate::diagnose::candidates::Channel;
+use crate::effects::EffectKind;
 use crate::Warning;
-
-/// The late channel a delay candidate names: `all` (positions and
-/// velocities late together against the effort), `positions` or `effort`.
-pub fn channel(c: Candidate) -> Option<String> {
-    match c {
-        Candidate::TimeDelay => Some("all".into()),
-        Candidate::LatePositions => Some("positions".into()),
-        Candidate::LateEffort(_) => Some("effort".into()),
-        _ => None,
-    }
-}
 
 /// Warnings on the delay the diagnosis names (in the explanation
 /// `effects`, else the verdict's first ranked entry): the effort late
@@ -29,16 +19,16 @@ pub fn warn_delays(
     ranked: &[Ranked],
     warnings: &mut Vec<Warning>,
 ) {
-    const KIND: &str = "time_delay";
+    const KIND: EffectKind = EffectKind::TimeDelay;
     let named = effects
         .iter()
         .find(|e| e.kind == KIND)
-        .map(|e| (e.channel.as_deref(), &e.parameters))
+        .map(|e| (e.channel, &e.parameters))
         .or_else(|| {
-            (verdict.kind == KIND)
+            (verdict.kind == VerdictKind::Effect(KIND))
                 .then(|| ranked.first())
                 .flatten()
-                .map(|r| (r.channel.as_deref(), &r.parameters))
+                .map(|r| (r.channel, &r.parameters))
         });
     let Some((channel, parameters)) = named else {
         return;
@@ -48,8 +38,10 @@ pub fn warn_delays(
     };
     let (delay, std) = (*value, *std);
     match channel {
-        Some("effort") => warnings.push(Warning::LateEffort { delay, std }),
-        Some("all") if !qd_measured => warnings.push(Warning::LateMotionUnresolved { delay, std }),
+        Some(Channel::Effort) => warnings.push(Warning::LateEffort { delay, std }),
+        Some(Channel::All) if !qd_measured => {
+            warnings.push(Warning::LateMotionUnresolved { delay, std })
+        }
         _ => {}
     }
 }

@@ -3,7 +3,6 @@
 //! its share of the gap, its AICc and what it gains.
 
 use crate::diagnose::candidates::{Candidate, MotorGuess};
-use crate::diagnose::explain::late::channel;
 use crate::diagnose::explain::report::{Parameter, Ranked};
 use crate::diagnose::fit::Fit;
 use dynamics_runtime::Robot;
@@ -81,8 +80,8 @@ pub fn ranked_entry<R: Robot<N>, const N: usize>(
     }
     let a = f.aicc(n);
     Ranked {
-        channel: channel(c),
-        kind: c.kind().name().to_string(),
+        channel: c.channel(),
+        kind: c.kind(),
         joint: c.joint().map(|j| R::JOINT_NAMES[j].to_string()),
         point: matches!(c, Candidate::Payload | Candidate::Environment(_)).then(|| tip.to_string()),
         parameters,

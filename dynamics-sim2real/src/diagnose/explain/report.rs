@@ -2,8 +2,10 @@
 
 use serde::Serialize;
 
+use crate::effects::EffectKind;
 use crate::Warning;
 
+pub use crate::diagnose::candidates::Channel;
 pub use crate::diagnose::evaluate::GapWindow;
 
 /// The whole report.
@@ -96,7 +98,7 @@ pub struct JointFriction {
 #[derive(Debug, Clone, Serialize)]
 pub struct Explained {
     /// Effect kind.
-    pub kind: String,
+    pub kind: EffectKind,
     /// Joint, for joint effects.
     #[serde(skip_serializing_if = "Option::is_none")]
     pub joint: Option<String>,
@@ -122,7 +124,7 @@ pub struct Explained {
     pub window: Option<EffectWindow>,
     /// For `time_delay`: the late channel (see [`Ranked::channel`]).
     #[serde(skip_serializing_if = "Option::is_none")]
-    pub channel: Option<String>,
+    pub channel: Option<Channel>,
     /// An effect the data cannot tell from this one within the set (the
     /// two are one ambiguous pair).
     #[serde(skip_serializing_if = "Option::is_none")]
@@ -142,7 +144,7 @@ pub struct EffectWindow {
 #[derive(Debug, Clone, Serialize)]
 pub struct Rival {
     /// Effect kind.
-    pub kind: String,
+    pub kind: EffectKind,
     /// Joint, for joint effects.
     #[serde(skip_serializing_if = "Option::is_none")]
     pub joint: Option<String>,
@@ -184,7 +186,7 @@ pub struct Parameter {
 #[derive(Debug, Clone, Serialize)]
 pub struct Ranked {
     /// Effect kind.
-    pub kind: String,
+    pub kind: EffectKind,
     /// Joint, for joint effects.
     #[serde(skip_serializing_if = "Option::is_none")]
     pub joint: Option<String>,
@@ -206,7 +208,7 @@ pub struct Ranked {
     /// position stream late against velocity and effort; `effort`: the
     /// effort stream late against position and velocity).
     #[serde(skip_serializing_if = "Option::is_none")]
-    pub channel: Option<String>,
+    pub channel: Option<Channel>,
 }
 
 /// The verdict.
@@ -214,7 +216,7 @@ pub struct Ranked {
 pub struct Verdict {
     /// Effect kind (`none` when the model explains the data within noise,
     /// `unexplained` when it does not and no candidate explains the gap).
-    pub kind: String,
+    pub kind: VerdictKind,
     /// Joint name, for joint effects.
     #[serde(skip_serializing_if = "Option::is_none")]
     pub joint: Option<String>,
@@ -223,9 +225,9 @@ pub struct Verdict {
     pub point: Option<String>,
     /// For `time_delay`: the late channel (see [`Ranked::channel`]).
     #[serde(skip_serializing_if = "Option::is_none")]
-    pub channel: Option<String>,
+    pub channel: Option<Channel>,
     /// `clear`, `ambiguous`, `within_noise` or `unexplained`.
-    pub status: String,
+    pub status: Status,
     /// The rival that these data cannot tell apart, when ambiguous.
     #[serde(skip_serializing_if = "Option::is_none")]
     pub rival: Option<Box<Ranked>>,
@@ -240,12 +242,97 @@ impl Verdict {
     ///
     /// ```
     /// use dynamics_sim2real::diagnose::Verdict;
-    /// let v = Verdict { kind: "unexplained".into(), joint: None, point: None, channel: None,
-    ///     status: "unexplained".into(), rival: None, separating_motion: None };
+    /// use dynamics_sim2real::diagnose::{Status, Verdict, VerdictKind};
+    /// let v = Verdict { kind: VerdictKind::Unexplained, joint: None, point: None, channel: None,
+    ///     status: Status::Unexplained, rival: None, separating_motion: None };
     /// assert!(!v.names_effect());
     /// ```
     pub fn names_effect(&self) -> bool {
-        !matches!(self.kind.as_str(), "none" | "unexplained")
+        self.effect().is_some()
+    }
+
+    /// The effect the verdict names, if any.
+    ///
+    /// ```
+    /// use dynamics_sim2real::diagnose::VerdictKind;
+    /// use dynamics_sim2real::effects::EffectKind;
+    /// assert_eq!(VerdictKind::Effect(EffectKind::Backlash).effect(), Some(EffectKind::Backlash));
+    /// assert_eq!(VerdictKind::Effect(EffectKind::None).effect(), None);
+    /// ```
+    pub fn effect(&self) -> Option<EffectKind> {
+        self.kind.effect()
+    }
+}
+
+/// What the verdict names: an effect of the vocabulary (`none` when the
+/// model explains the data within noise), or `unexplained`.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub enum VerdictKind {
+    /// An effect kind, or `none`.
+    Effect(EffectKind),
+    /// The gap is real and no candidate explains it.
+    Unexplained,
+}
+
+impl VerdictKind {
+    /// The effect named, if any (`none` and `unexplained` name none).
+    pub fn effect(self) -> Option<EffectKind> {
+        match self {
+            VerdictKind::Effect(EffectKind::None) | VerdictKind::Unexplained => None,
+            VerdictKind::Effect(k) => Some(k),
+        }
+    }
+
+    /// The name the report writes.
+    pub fn name(self) -> &'static str {
+        match self {
+            VerdictKind::Effect(k) => k.name(),
+            VerdictKind::Unexplained => "unexplained",
+        }
+    }
+}
+
+impl Serialize for VerdictKind {
+    fn serialize<S: serde::Serializer>(&self, s: S) -> Result<S::Ok, S::Error> {
+        s.serialize_str(self.name())
+    }
+}
+
+impl std::fmt::Display for VerdictKind {
+    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
+        f.write_str(self.name())
+    }
+}
+
+/// How sure the verdict is.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Serialize)]
+#[serde(rename_all = "snake_case")]
+pub enum Status {
+    /// The top candidate wins clearly.
+    Clear,
+    /// A rival is close behind: these data cannot tell them apart.
+    Ambiguous,
+    /// The model explains the data within noise.
+    WithinNoise,
+    /// The gap is real and no candidate explains it.
+    Unexplained,
+}
+
+impl Status {
+    /// The name the report writes.
+    pub fn name(self) -> &'static str {
+        match self {
+            Status::Clear => "clear",
+            Status::Ambiguous => "ambiguous",
+            Status::WithinNoise => "within_noise",
+            Status::Unexplained => "unexplained",
+        }
+    }
+}
+
+impl std::fmt::Display for Status {
+    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
+        f.write_str(self.name())
     }
 }
 
@@ -295,7 +382,7 @@ pub(crate) fn test_entry(
     value: f64,
 ) -> Explained {
     Explained {
-        kind: kind.name().to_string(),
+        kind,
         joint: Some(joint.to_string()),
         point: None,
         description: None,

@@ -6,13 +6,20 @@
 //! ("Coulomb friction or an effort offset; these data cannot tell them
 //! apart").
 
+use super::report::{Explained, Ranked, Rival, Status, Verdict};
 use crate::diagnose::candidates::Excitation;
-use crate::diagnose::explain::report::{Explained, Ranked, Rival, Verdict};
+use crate::effects::EffectKind;
 
-const PAIR: [&str; 2] = ["coulomb_friction", "effort_offset"];
+const PAIR: [EffectKind; 2] = [EffectKind::CoulombFriction, EffectKind::EffortOffset];
 
 /// The other of the pair, for `kind` at a joint that never reverses.
-fn other<'a>(kind: &str, joint: Option<&str>, names: &[&str], ex: &Excitation) -> Option<&'a str> {
+fn other(
+    kind: Option<EffectKind>,
+    joint: Option<&str>,
+    names: &[&str],
+    ex: &Excitation,
+) -> Option<EffectKind> {
+    let kind = kind?;
     let j = names.iter().position(|n| Some(*n) == joint)?;
     if !ex.moves[j] || ex.reverses[j] {
         return None;
@@ -32,12 +39,12 @@ pub fn mark_reversals(
     names: &[&str],
     ex: &Excitation,
 ) {
-    if let Some(o) = other(&verdict.kind, verdict.joint.as_deref(), names, ex) {
+    if let Some(o) = other(verdict.effect(), verdict.joint.as_deref(), names, ex) {
         let rival = ranked
             .iter()
             .find(|r| r.kind == o && r.joint == verdict.joint);
         if let Some(r) = rival {
-            verdict.status = "ambiguous".into();
+            verdict.status = Status::Ambiguous;
             verdict.rival = Some(Box::new(r.clone()));
             verdict.separating_motion = Some(format!(
                 "reverse joint {}'s velocity (slowly, under load): Coulomb friction changes sign with it, an effort offset does not",
@@ -49,9 +56,9 @@ pub fn mark_reversals(
         if e.ambiguous_with.is_some() {
             continue;
         }
-        if let Some(o) = other(&e.kind, e.joint.as_deref(), names, ex) {
+        if let Some(o) = other(Some(e.kind), e.joint.as_deref(), names, ex) {
             e.ambiguous_with = Some(Rival {
-                kind: o.into(),
+                kind: o,
                 joint: e.joint.clone(),
                 point: None,
             });

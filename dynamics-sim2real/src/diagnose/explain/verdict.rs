@@ -2,8 +2,9 @@
 //! the held-out data (`ambiguous` with a rival close behind), else `none`
 //! within noise or `unexplained` when the gap is real.
 
-use crate::diagnose::explain::report::{Ranked, Verdict};
+use super::report::{Ranked, Status, Verdict, VerdictKind};
 use crate::diagnose::Options;
+use crate::effects::EffectKind;
 
 /// The verdict on `ranked` (best first); `gap` is the largest torque
 /// residual RMS over noise of the training data.
@@ -15,32 +16,31 @@ pub fn verdict(ranked: &[Ranked], gap: f64, options: &Options) -> Verdict {
                 .skip(1)
                 .find(|r| top.aicc - r.aicc > -options.ambiguity_margin);
             Verdict {
-                kind: top.kind.clone(),
+                kind: VerdictKind::Effect(top.kind),
                 joint: top.joint.clone(),
                 point: top.point.clone(),
-                channel: top.channel.clone(),
+                channel: top.channel,
                 status: if rival.is_some() {
-                    "ambiguous"
+                    Status::Ambiguous
                 } else {
-                    "clear"
-                }
-                .into(),
-                separating_motion: rival.map(|r| separating_motion(&top.kind, &r.kind)),
+                    Status::Clear
+                },
+                separating_motion: rival.map(|r| separating_motion(top.kind, r.kind)),
                 rival: rival.map(|r| Box::new(r.clone())),
             }
         }
         _ => {
-            let word = if gap >= options.unexplained_ratio {
-                "unexplained"
+            let (kind, status) = if gap >= options.unexplained_ratio {
+                (VerdictKind::Unexplained, Status::Unexplained)
             } else {
-                "none"
+                (VerdictKind::Effect(EffectKind::None), Status::WithinNoise)
             };
             Verdict {
-                kind: word.into(),
+                kind,
                 joint: None,
                 point: None,
                 channel: None,
-                status: if word == "none" { "within_noise" } else { word }.into(),
+                status,
                 rival: None,
                 separating_motion: None,
             }
@@ -49,20 +49,20 @@ pub fn verdict(ranked: &[Ranked], gap: f64, options: &Options) -> Verdict {
 }
 
 /// A motion that would tell `a` and `b` apart.
-fn separating_motion(a: &str, b: &str) -> String {
-    let pair = |x: &str, y: &str| (a == x && b == y) || (a == y && b == x);
-    if pair("viscous_friction", "armature") {
+fn separating_motion(a: EffectKind, b: EffectKind) -> String {
+    use EffectKind::*;
+    let pair = |x: EffectKind, y: EffectKind| (a == x && b == y) || (a == y && b == x);
+    if pair(ViscousFriction, Armature) {
         "decorrelate speed and acceleration: a chirp, or fast cruising at low acceleration followed by hard starts at low speed".into()
-    } else if pair("coulomb_friction", "encoder_offset") || pair("payload_mass", "encoder_offset") {
+    } else if pair(CoulombFriction, EncoderOffset) || pair(PayloadMass, EncoderOffset) {
         "hold still at several poses across the joint's range and reverse the velocity at different positions: gravity's dependence on the angle separates an offset from friction and mass".into()
-    } else if pair("effort_offset", "joint_spring") {
+    } else if pair(EffortOffset, JointSpring) {
         "move the joint across a wider range of positions: a spring's effort grows with the position, an offset's does not".into()
-    } else if pair("coulomb_friction", "stribeck_friction") {
+    } else if pair(CoulombFriction, StribeckFriction) {
         "slow velocity reversals (below 0.1 rad/s) where the breakaway level shows".into()
-    } else if a == "joint_elasticity"
-        || b == "joint_elasticity"
-        || a == "backlash"
-        || b == "backlash"
+    } else if [a, b]
+        .iter()
+        .any(|k| matches!(k, JointElasticity | Backlash))
     {
         "quick effort reversals and steps at the joint, so that the motor side rings (elasticity) or crosses its gap (backlash)".into()
     } else {

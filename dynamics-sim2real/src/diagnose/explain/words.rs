@@ -69,7 +69,7 @@ pub fn add_direction_words<const N: usize>(
 ) {
     let offset = |joint: &str| {
         entries.iter().find_map(|e| {
-            (e.kind == EffectKind::EffortOffset.name() && e.joint.as_deref() == Some(joint))
+            (e.kind == EffectKind::EffortOffset && e.joint.as_deref() == Some(joint))
                 .then(|| e.parameters.first().map(|p| p.value))
                 .flatten()
         })
@@ -77,9 +77,10 @@ pub fn add_direction_words<const N: usize>(
     let words: Vec<Option<String>> = entries
         .iter()
         .map(|e| {
-            let friction = [EffectKind::CoulombFriction, EffectKind::StribeckFriction]
-                .iter()
-                .any(|k| k.name() == e.kind);
+            let friction = matches!(
+                e.kind,
+                EffectKind::CoulombFriction | EffectKind::StribeckFriction
+            );
             let joint = e.joint.as_deref().filter(|_| friction)?;
             let j = names.iter().position(|n| *n == joint)?;
             let fc = e.parameters.iter().find(|p| p.name == "fc")?.value;
@@ -110,7 +111,7 @@ pub fn add_spring_words<const N: usize>(
 ) {
     for e in entries
         .iter_mut()
-        .filter(|e| e.kind == EffectKind::JointSpring.name())
+        .filter(|e| e.kind == EffectKind::JointSpring)
     {
         let get = |n: &str| e.parameters.iter().find(|p| p.name == n).map(|p| p.value);
         let (Some(k), Some(p), Some(joint)) =
@@ -154,7 +155,7 @@ pub fn add_encoder_words<const N: usize>(
 ) {
     for e in entries
         .iter_mut()
-        .filter(|e| e.kind == EffectKind::EncoderOffset.name())
+        .filter(|e| e.kind == EffectKind::EncoderOffset)
     {
         let offset = e
             .parameters

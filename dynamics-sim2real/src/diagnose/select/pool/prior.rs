@@ -155,9 +155,9 @@ pub fn weight(yy: f64, n: usize, strength: f64) -> f64 {
 #[cfg(test)]
 mod tests {
     use super::*;
+    use crate::diagnose::candidates::EFFORT_SCALE_LIMIT;
     use crate::diagnose::select::pool::{test_term, Pool};
     use crate::inertial::{LIGHTEST, SMALLEST};
-    use crate::diagnose::candidates::EFFORT_SCALE_LIMIT;
     use nalgebra::DVector;
 
     fn pool(cols: &[Vec<f64>], y: Vec<f64>, terms: Vec<Term>, prior: Prior) -> Pool {
