@@ -64,7 +64,7 @@ pub mod traces;
 
 pub use crate::smoothing::SavitzkyGolay;
 pub use candidates::MotorGuess;
-pub use candidates::{Candidate, Prepared};
+pub use candidates::{Candidate, Channel, Prepared, Unnamed};
 pub use error::DiagnoseError;
 pub use evaluate::GapWindow;
 pub use explain::report::*;
@@ -116,7 +116,7 @@ fn stages<R: Robot<N> + Clone + Sync, const N: usize>(
     // Both records prepared: signals, noise floors, what they can show.
     let mut records = Records::new(robot, train, holdout, options)?;
     // Every candidate the data can identify, fitted on its own.
-    let candidates = candidates::offer::<R, N>(&mut records, options);
+    let candidates = candidates::offer(&mut records, options);
     let fitted = fit::fit_candidates::<R, N>(&candidates, &records.p, options, progress);
     // The single-effect ranking and the compound explanation.
     let selection = select::select(robot, &records.p, &records.h, fitted, options);

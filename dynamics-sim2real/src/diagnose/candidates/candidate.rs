@@ -35,6 +35,34 @@ impl Channel {
     }
 }
 
+impl std::str::FromStr for Channel {
+    type Err = Unnamed;
+    fn from_str(s: &str) -> Result<Self, Self::Err> {
+        [Channel::All, Channel::Positions, Channel::Effort]
+            .into_iter()
+            .find(|c| c.name() == s)
+            .ok_or_else(|| Unnamed::Channel(s.to_string()))
+    }
+}
+
+/// Why a report entry names no candidate ([`Candidate::named`]).
+#[derive(Debug, Clone, PartialEq, thiserror::Error)]
+pub enum Unnamed {
+    /// A kind with no single-effect candidate (`none`, link inertial
+    /// corrections).
+    #[error("`{0}` has no single-effect candidate")]
+    Kind(EffectKind),
+    /// A joint effect without a joint of the robot.
+    #[error("no joint of the robot named")]
+    Joint,
+    /// A grid value the kind needs is missing or not finite.
+    #[error("parameter `{0}` is missing or not a finite number")]
+    Missing(&'static str),
+    /// A late channel that is none of `all`, `positions`, `effort`.
+    #[error("channel `{0}` is none of all, positions, effort")]
+    Channel(String),
+}
+
 impl std::fmt::Display for Channel {
     fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
         f.write_str(self.name())
@@ -90,6 +118,60 @@ pub enum Candidate {
 }
 
 impl Candidate {
+    /// The candidate a report entry names (the inverse of the report's
+    /// entries: every place that reads an entry back goes through here):
+    /// its `kind`, its `joint` (index; `None`: none named, or not the
+    /// robot's), the late `channel` of a delay (`None`: `all`), and its
+    /// parameters by name through `value` for the values searched on a
+    /// grid: Coulomb friction's `vw` (sharp when absent), Stribeck's `vs`,
+    /// the resistance's `alpha`, and a late effort's `delay`.
+    ///
+    /// ```
+    /// use dynamics_sim2real::diagnose::{Candidate, Channel};
+    /// use dynamics_sim2real::effects::EffectKind;
+    /// let vw = |n: &str| (n == "vw").then_some(0.15);
+    /// let c = Candidate::named(EffectKind::CoulombFriction, Some(1), None, &vw);
+    /// assert_eq!(c, Ok(Candidate::Coulomb(1, 0.15)));
+    /// let d = |n: &str| (n == "delay").then_some(0.01);
+    /// let late = Candidate::named(EffectKind::TimeDelay, None, Some(Channel::Effort), &d);
+    /// assert_eq!(late, Ok(Candidate::LateEffort(0.01)));
+    /// ```
+    pub fn named(
+        kind: EffectKind,
+        joint: Option<usize>,
+        channel: Option<Channel>,
+        value: &dyn Fn(&str) -> Option<f64>,
+    ) -> Result<Candidate, Unnamed> {
+        let j = || joint.ok_or(Unnamed::Joint);
+        let grid = |name: &'static str| {
+            value(name)
+                .filter(|v| v.is_finite())
+                .ok_or(Unnamed::Missing(name))
+        };
+        Ok(match kind {
+            EffectKind::None | EffectKind::InertialParameters => return Err(Unnamed::Kind(kind)),
+            EffectKind::CoulombFriction => {
+                Candidate::Coulomb(j()?, grid("vw").unwrap_or(SIGN_SMOOTHING))
+            }
+            EffectKind::ViscousFriction => Candidate::Viscous(j()?),
+            EffectKind::StribeckFriction => Candidate::Stribeck(j()?, grid("vs")?),
+            EffectKind::Armature => Candidate::Armature(j()?),
+            EffectKind::PayloadMass => Candidate::Payload,
+            EffectKind::EnvironmentResistance => Candidate::Environment(grid("alpha")?),
+            EffectKind::EncoderOffset => Candidate::EncoderOffset(j()?),
+            EffectKind::TimeDelay => match channel {
+                None | Some(Channel::All) => Candidate::TimeDelay,
+                Some(Channel::Positions) => Candidate::LatePositions,
+                Some(Channel::Effort) => Candidate::LateEffort(grid("delay")?),
+            },
+            EffectKind::JointElasticity => Candidate::Elasticity(j()?),
+            EffectKind::Backlash => Candidate::Backlash(j()?),
+            EffectKind::EffortScale => Candidate::EffortScale(j()?),
+            EffectKind::EffortOffset => Candidate::EffortOffset(j()?),
+            EffectKind::JointSpring => Candidate::Spring(j()?),
+        })
+    }
+
     /// The late channel a delay candidate names: `all` (positions and
     /// velocities late together against the effort), `positions` or
     /// `effort`; `None` for every other candidate.

@@ -33,7 +33,7 @@ mod shift;
 mod visibility;
 
 pub use basis::Friction;
-pub use candidate::{Candidate, Channel};
+pub use candidate::{Candidate, Channel, Unnamed};
 pub use columns::{linear_columns, lower_bounds, whitened};
 pub use grids::EFFORT_SCALE_LIMIT;
 pub use late::offer_delays;
@@ -48,10 +48,7 @@ use crate::diagnose::Options;
 /// The candidates of `options.kinds` the training record of `records` can
 /// identify, with the late channels it shows (what is left out, and why,
 /// goes to the records' warnings).
-pub fn offer<R: dynamics_runtime::Robot<N>, const N: usize>(
-    records: &mut Records<N>,
-    options: &Options,
-) -> Vec<Candidate> {
+pub fn offer<const N: usize>(records: &mut Records<N>, options: &Options) -> Vec<Candidate> {
     let mut candidates = identifiable(
         Candidate::all::<N>(&options.kinds),
         &records.excitation,

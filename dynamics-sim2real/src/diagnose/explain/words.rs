@@ -187,6 +187,23 @@ pub fn add_encoder_words<const N: usize>(
     }
 }
 
+/// A link correction in words: mass, first moments and inertia about the
+/// link frame's origin, as changed.
+pub fn link_words(link: &str, d: &SVector<f64, 10>) -> String {
+    let names = [
+        "mass", "m c_x", "m c_y", "m c_z", "I_xx", "I_xy", "I_yy", "I_xz", "I_yz", "I_zz",
+    ];
+    let units = [
+        "kg", "kg m", "kg m", "kg m", "kg m^2", "kg m^2", "kg m^2", "kg m^2", "kg m^2", "kg m^2",
+    ];
+    let scale = d.amax().max(1e-300);
+    let parts: Vec<String> = (0..10)
+        .filter(|&i| d[i].abs() >= 0.05 * scale)
+        .map(|i| format!("{} {:+.3e} {}", names[i], d[i], units[i]))
+        .collect();
+    format!("link {link}: {}", parts.join(", "))
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;
@@ -291,21 +308,4 @@ mod tests {
         );
         assert!(w1.contains("moved by -0.0100 m along its axis"), "{w1}");
     }
-}
-
-/// A link correction in words: mass, first moments and inertia about the
-/// link frame's origin, as changed.
-pub fn link_words(link: &str, d: &SVector<f64, 10>) -> String {
-    let names = [
-        "mass", "m c_x", "m c_y", "m c_z", "I_xx", "I_xy", "I_yy", "I_xz", "I_yz", "I_zz",
-    ];
-    let units = [
-        "kg", "kg m", "kg m", "kg m", "kg m^2", "kg m^2", "kg m^2", "kg m^2", "kg m^2", "kg m^2",
-    ];
-    let scale = d.amax().max(1e-300);
-    let parts: Vec<String> = (0..10)
-        .filter(|&i| d[i].abs() >= 0.05 * scale)
-        .map(|i| format!("{} {:+.3e} {}", names[i], d[i], units[i]))
-        .collect();
-    format!("link {link}: {}", parts.join(", "))
 }

@@ -27,7 +27,9 @@ use crate::diagnose::Options;
 use dynamics_runtime::Robot;
 
 pub use one::{fixed_column, Fit};
-pub use window::{corrected, holdout_window, inside, window_of, windowed, Windows};
+pub use window::{
+    corrected, corrected_in, fit_windowed, holdout_window, inside, window_of, windowed, Windows,
+};
 
 /// Fits `c` to the residual of `p`.
 pub fn fit<R: Robot<N>, const N: usize>(c: Candidate, p: &Prepared<N>) -> Fit {

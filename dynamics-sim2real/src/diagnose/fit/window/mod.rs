@@ -153,13 +153,23 @@ pub fn corrected<const N: usize>(
         return f.corrected(h);
     }
     let theta = f.theta.first().copied().unwrap_or(0.0);
-    let w = holdout_window(f.candidate, h, theta);
-    let mut r = h.sig.residual.clone();
+    corrected_in(f, h, holdout_window(f.candidate, h, theta))
+}
+
+/// The smoothed residual of `p` once windowed fit `f` is added within
+/// window `w` (`None`: nowhere).
+pub fn corrected_in<const N: usize>(
+    f: &Fit,
+    p: &Prepared<N>,
+    w: Option<Window>,
+) -> Vec<SVector<f64, N>> {
+    let theta = f.theta.first().copied().unwrap_or(0.0);
+    let mut r = p.sig.residual.clone();
     let Some(w) = w else { return r };
-    let (a, z) = h.sig.range;
+    let (a, z) = p.sig.range;
     for (k, rk) in r.iter_mut().enumerate().take(z).skip(a) {
-        if w.contains(h.sig.t[k]) {
-            *rk -= f.candidate.columns(&h.sig, &h.basis, k)[0] * theta;
+        if w.contains(p.sig.t[k]) {
+            *rk -= f.candidate.columns(&p.sig, &p.basis, k)[0] * theta;
         }
     }
     r
