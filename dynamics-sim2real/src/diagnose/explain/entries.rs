@@ -41,7 +41,7 @@ pub fn entries<R: Robot<N>, const N: usize>(
     friction: &Friction<N>,
 ) -> (Vec<Explained>, Vec<ShrinkStep>) {
     let n = pool.n();
-    let sse0 = pool.yy;
+    let sse0 = pool.yy();
     let gap0 = (sse0 - n as f64).max(1e-12);
     let all: Vec<usize> = (0..e.set.len()).collect();
     let h_full = hold.residual(&all, &e.sol.theta);

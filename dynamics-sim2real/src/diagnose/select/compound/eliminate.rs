@@ -60,7 +60,7 @@ pub fn eliminate(pool: &Pool, mut set: Vec<usize>, margin: f64) -> Vec<usize> {
                 owner.push(i);
             }
         }
-        let active = independent(&pool.gram, &cols);
+        let active = independent(&pool.gram(), &cols);
         let idx: Vec<usize> = (0..cols.len()).filter(|&i| active[i]).collect();
         let m = idx.len();
         if m == 0 {
@@ -68,18 +68,18 @@ pub fn eliminate(pool: &Pool, mut set: Vec<usize>, margin: f64) -> Vec<usize> {
         }
         let d: Vec<f64> = idx
             .iter()
-            .map(|&i| pool.gram[(cols[i], cols[i])].sqrt())
+            .map(|&i| pool.gram()[(cols[i], cols[i])].sqrt())
             .collect();
         let g = DMatrix::from_fn(m, m, |r, c| {
-            pool.gram[(cols[idx[r]], cols[idx[c]])] / (d[r] * d[c])
+            pool.gram()[(cols[idx[r]], cols[idx[c]])] / (d[r] * d[c])
         });
-        let b = DVector::from_fn(m, |r, _| pool.xty[cols[idx[r]]] / d[r]);
+        let b = DVector::from_fn(m, |r, _| pool.xty()[cols[idx[r]]] / d[r]);
         let Some(ch) = g.cholesky() else {
             return set;
         };
         let z = ch.solve(&b);
         let inv = ch.inverse();
-        let sse = (pool.yy - z.dot(&b)).max(1e-12 * pool.yy.max(1e-300));
+        let sse = (pool.yy() - z.dot(&b)).max(1e-12 * pool.yy().max(1e-300));
         let now = aicc(sse, n, m);
         let mut weakest: Option<(usize, f64)> = None;
         for i in 0..set.len() {
@@ -140,7 +140,7 @@ mod tests {
             .collect();
         let pool = test_pool(x, yv, terms, 1);
         // One at a time, neither a nor b earns 40 against nothing.
-        let none = aicc(pool.yy, n, 0);
+        let none = aicc(pool.yy(), n, 0);
         for t in [0, 1] {
             let alone = pool.solve(&[t]);
             assert!(none - aicc(alone.sse, n, 1) < 40.0, "{t}");

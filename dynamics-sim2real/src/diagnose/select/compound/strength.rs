@@ -25,7 +25,7 @@ use crate::diagnose::select::pool::Pool;
 /// same at every strength.
 fn held(pool: &Pool, set: &[usize]) -> bool {
     set.iter()
-        .any(|&t| pool.prior.holds_links(&pool.terms[t].cols))
+        .any(|&t| pool.prior().holds_links(&pool.terms[t].cols))
 }
 
 /// The strength of [`STRENGTHS`] under which `set` best predicts blocks
@@ -34,9 +34,9 @@ fn held(pool: &Pool, set: &[usize]) -> bool {
 /// the blocks, the pool's strength stays.
 pub fn choose<const N: usize>(pool: &mut Pool, set: &[usize]) -> f64 {
     if !held(pool, set) {
-        return pool.strength;
+        return pool.strength();
     }
-    let start = pool.strength;
+    let start = pool.strength();
     let Some(mut folds) = Folds::new(pool, N) else {
         return start;
     };
@@ -78,14 +78,14 @@ mod tests {
         let x = DMatrix::from_fn(n, 1, |r, _| c[r]);
         let link = test_term(Candidate::Inertial(0), vec![0], vec![false], None);
         let mut pool = test_pool(x, DVector::from_vec(y), vec![link], 1);
-        pool.prior.links = DMatrix::from_element(1, 1, 1.0 / 0.04);
-        pool.gram =
-            crate::diagnose::select::pool::penalised(&pool.x, &pool.prior, pool.yy, pool.strength);
+        let mut prior = pool.prior().clone();
+        prior.links = DMatrix::from_element(1, 1, 1.0 / 0.04);
+        pool.set_prior(prior);
         let strong = pool.solve(&[0]).theta[0][0];
         let s = choose::<1>(&mut pool, &[0]);
         let weak = pool.solve(&[0]).theta[0][0];
         assert!(s < STRENGTHS[0], "{s}");
-        assert_eq!(pool.strength, s);
+        assert_eq!(pool.strength(), s);
         assert!((weak + 0.4).abs() < (strong + 0.4).abs(), "{weak} {strong}");
         assert!((weak + 0.4).abs() < 0.02, "{weak}");
     }
@@ -102,9 +102,9 @@ mod tests {
         let x = DMatrix::from_fn(n, 1, |r, _| c[r]);
         let link = test_term(Candidate::Inertial(0), vec![0], vec![false], None);
         let mut pool = test_pool(x, DVector::from_vec(y), vec![link], 1);
-        pool.prior.links = DMatrix::from_element(1, 1, 1.0 / 0.04);
-        pool.gram =
-            crate::diagnose::select::pool::penalised(&pool.x, &pool.prior, pool.yy, pool.strength);
+        let mut prior = pool.prior().clone();
+        prior.links = DMatrix::from_element(1, 1, 1.0 / 0.04);
+        pool.set_prior(prior);
         let mut folds = Folds::new(&pool, 1).expect("enough rows");
         for &s in &STRENGTHS[1..] {
             pool.set_strength(s);
@@ -125,8 +125,10 @@ mod tests {
         let y = DVector::from_fn(n, |r, _| 0.3 * c[r]);
         let t = test_term(Candidate::EffortScale(0), vec![0], vec![false], None);
         let mut pool = test_pool(x, y, vec![t], 1);
-        pool.prior.links = DMatrix::zeros(1, 1);
-        pool.prior.scales = DMatrix::from_element(1, 1, 25.0);
+        let mut prior = pool.prior().clone();
+        prior.links = DMatrix::zeros(1, 1);
+        prior.scales = DMatrix::from_element(1, 1, 25.0);
+        pool.set_prior(prior);
         assert_eq!(choose::<1>(&mut pool, &[0]), STRENGTHS[0]);
     }
 }

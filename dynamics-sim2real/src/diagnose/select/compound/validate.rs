@@ -10,18 +10,14 @@
 //! `y_b^T y_b`), built once per selection from the pool's columns: the
 //! fit on the other blocks subtracts one block's Gram from the whole.
 
-use nalgebra::{DMatrix, DVector};
-
-use crate::diagnose::select::pool::Pool;
+use crate::diagnose::select::pool::{Pool, RowsGram};
 
 /// Contiguous blocks of time.
 pub const FOLDS: usize = 4;
 
 /// One block's Gram matrix and the pool fitted on the other blocks.
 struct Block {
-    gram: DMatrix<f64>,
-    xty: DVector<f64>,
-    yy: f64,
+    own: RowsGram,
     rest: Pool,
 }
 
@@ -45,28 +41,9 @@ impl Folds {
                     b * samples / FOLDS * joints,
                     (b + 1) * samples / FOLDS * joints,
                 );
-                let xb = pool.x.rows(a, z - a);
-                let yb = pool.y.rows(a, z - a);
-                let gram = xb.tr_mul(&xb);
-                let xty = xb.tr_mul(&yb);
-                let yy = yb.norm_squared();
-                let rest = Pool {
-                    x: DMatrix::zeros(0, 0),
-                    y: DVector::zeros(pool.n() - (z - a)),
-                    gram: &pool.gram - &gram,
-                    xty: &pool.xty - &xty,
-                    yy: pool.yy - yy,
-                    terms: pool.terms.clone(),
-                    weights: pool.weights.clone(),
-                    prior: pool.prior.clone(),
-                    strength: pool.strength,
-                };
-                Block {
-                    gram,
-                    xty,
-                    yy,
-                    rest,
-                }
+                let own = pool.rows_gram(a, z);
+                let rest = pool.without(&own, z - a);
+                Block { own, rest }
             })
             .collect();
         Some(Folds {
@@ -80,8 +57,7 @@ impl Folds {
     /// is the pool's Gram less the block's, not formed from the rows again.
     pub fn follow(&mut self, pool: &Pool) {
         for b in &mut self.blocks {
-            b.rest.gram = &pool.gram - &b.gram;
-            b.rest.strength = pool.strength;
+            pool.follow_without(&mut b.rest, &b.own);
         }
     }
 
@@ -104,11 +80,11 @@ impl Folds {
                     coef.push((f, 1.0));
                 }
             }
-            let mut s = b.yy;
+            let mut s = b.own.yy;
             for &(c, v) in &coef {
-                s -= 2.0 * v * b.xty[c];
+                s -= 2.0 * v * b.own.xty[c];
                 for &(d, w) in &coef {
-                    s += v * w * b.gram[(c, d)];
+                    s += v * w * b.own.gram[(c, d)];
                 }
             }
             total += s.max(0.0);
@@ -129,6 +105,7 @@ mod tests {
     use super::*;
     use crate::diagnose::candidates::Candidate;
     use crate::diagnose::select::pool::{test_pool, test_term, Term};
+    use nalgebra::{DMatrix, DVector};
 
     fn term(c: Candidate, col: usize) -> Term {
         test_term(c, vec![col], vec![false], None)

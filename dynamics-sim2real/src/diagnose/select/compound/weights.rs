@@ -29,7 +29,7 @@ pub fn weights(pool: &Pool, set: &[usize]) -> Option<Vec<f64>> {
     let w: Vec<f64> = rms.iter().map(|r| 1.0 / r.max(1.0)).collect();
     let settled = w
         .iter()
-        .zip(&pool.weights)
+        .zip(pool.weights())
         .all(|(a, b)| (a / b - 1.0).abs() < SETTLED);
     (!settled).then_some(w)
 }

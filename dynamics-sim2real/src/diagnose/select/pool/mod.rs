@@ -73,27 +73,39 @@ impl Term {
 #[derive(Debug, Clone)]
 pub struct Pool {
     /// Columns (rows x joints, whitened by the noise floor).
-    pub x: DMatrix<f64>,
+    x: DMatrix<f64>,
     /// The whitened residual.
-    pub y: DVector<f64>,
+    y: DVector<f64>,
     /// `X^T X`.
-    pub gram: DMatrix<f64>,
+    gram: DMatrix<f64>,
     /// `X^T y`.
-    pub xty: DVector<f64>,
+    xty: DVector<f64>,
     /// `y^T y`.
-    pub yy: f64,
+    yy: f64,
     /// The terms.
     pub terms: Vec<Term>,
     /// Per joint, the weight of its rows on top of the whitening by the
     /// noise floor (1: the floor alone; `reweight`).
-    pub weights: Vec<f64>,
+    weights: Vec<f64>,
     /// The prior toward the nominal model (`prior.rs`), added to the Gram
     /// matrix at its weight ([`weight`](crate::diagnose::select::pool::prior::weight)).
-    pub prior: Prior,
+    prior: Prior,
     /// How many rows of the nominal gap one spread of the links' prior is
     /// worth ([`STRENGTHS`](crate::diagnose::select::pool::prior::STRENGTHS), chosen by cross-validation:
     /// `strength.rs`).
-    pub strength: f64,
+    strength: f64,
+}
+
+/// The Gram matrix of a block of rows: `X_b^T X_b`, `X_b^T y_b`,
+/// `y_b^T y_b`.
+#[derive(Debug, Clone)]
+pub struct RowsGram {
+    /// `X_b^T X_b`.
+    pub gram: DMatrix<f64>,
+    /// `X_b^T y_b`.
+    pub xty: DVector<f64>,
+    /// `y_b^T y_b`.
+    pub yy: f64,
 }
 
 /// A joint fit of a subset of terms.
@@ -172,6 +184,78 @@ impl Pool {
             self.gram += &self.prior.links * change;
         }
         self.strength = strength;
+    }
+
+    /// `X^T X` with the prior.
+    pub fn gram(&self) -> &DMatrix<f64> {
+        &self.gram
+    }
+
+    /// `X^T y`.
+    pub fn xty(&self) -> &DVector<f64> {
+        &self.xty
+    }
+
+    /// `y^T y`: the nominal model's whitened sum of squares.
+    pub fn yy(&self) -> f64 {
+        self.yy
+    }
+
+    /// Per joint, the weight of its rows on top of the whitening.
+    pub fn weights(&self) -> &[f64] {
+        &self.weights
+    }
+
+    /// The prior toward the nominal model.
+    pub fn prior(&self) -> &Prior {
+        &self.prior
+    }
+
+    /// The prior's strength.
+    pub fn strength(&self) -> f64 {
+        self.strength
+    }
+
+    /// The Gram matrix of rows `a..z`.
+    pub fn rows_gram(&self, a: usize, z: usize) -> RowsGram {
+        let xb = self.x.rows(a, z - a);
+        let yb = self.y.rows(a, z - a);
+        RowsGram {
+            gram: xb.tr_mul(&xb),
+            xty: xb.tr_mul(&yb),
+            yy: yb.norm_squared(),
+        }
+    }
+
+    /// The pool of every row but those of `rows` (`n - removed` rows), from
+    /// the Gram matrices alone: what a fit on the other blocks of time
+    /// solves.
+    pub fn without(&self, rows: &RowsGram, removed: usize) -> Pool {
+        Pool {
+            x: DMatrix::zeros(0, 0),
+            y: DVector::zeros(self.n() - removed),
+            gram: &self.gram - &rows.gram,
+            xty: &self.xty - &rows.xty,
+            yy: self.yy - rows.yy,
+            terms: self.terms.clone(),
+            weights: self.weights.clone(),
+            prior: self.prior.clone(),
+            strength: self.strength,
+        }
+    }
+
+    /// Makes `rest` (this pool [`without`](Pool::without) `rows`) follow a
+    /// change of this pool's prior strength.
+    pub fn follow_without(&self, rest: &mut Pool, rows: &RowsGram) {
+        rest.gram = &self.gram - &rows.gram;
+        rest.strength = self.strength;
+    }
+
+    /// Replaces the prior (the Gram matrix follows).
+    #[cfg(test)]
+    pub fn set_prior(&mut self, prior: Prior) {
+        self.prior = prior;
+        self.gram = penalised(&self.x, &self.prior, self.yy, self.strength);
     }
 
     /// Rows in the fit.
