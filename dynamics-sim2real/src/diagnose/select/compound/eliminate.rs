@@ -60,7 +60,7 @@ pub fn eliminate(pool: &Pool, mut set: Vec<usize>, margin: f64) -> Vec<usize> {
                 owner.push(i);
             }
         }
-        let active = independent(&pool.gram(), &cols);
+        let active = independent(pool.gram(), &cols);
         let idx: Vec<usize> = (0..cols.len()).filter(|&i| active[i]).collect();
         let m = idx.len();
         if m == 0 {
