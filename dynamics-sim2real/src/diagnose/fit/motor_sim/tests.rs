@@ -43,8 +43,8 @@ fn one_at_a_time<const N: usize>(
     let (mut ql, mut vl) = (sig.q[a][j], sig.qd[a][j]);
     let wo = 2.0 * PI * OBSERVER_HZ;
     // Two RK4 steps a sample: omega h <= 0.8 up to the 250 Hz stiff rotor,
-    // well inside RK4's stability; the scoring named the same effects on
-    // five seed bases as with four steps.
+    // well inside RK4's stability (|R(z)| < 1 for |z| < 2.78 on the
+    // imaginary axis).
     const SUB: usize = 2;
     // A multiply, not a divide, on the integration's dependent chain.
     let inv_jm = 1.0 / g.jm;

@@ -47,11 +47,10 @@ pub struct Judge<'a> {
 ///   training, 20 on the held-out record), so the held-out record is no
 ///   evidence for it over its rotor; but it is evidence against it: a
 ///   motor side must also beat its rotor by the margin on both records
-///   together. (A generated rotor inertia on the 3R arm at 100 Hz with a
-///   jittered clock, logs scoring base 61000 case 15: a spring of 16 Hz
-///   led the rotor by 49 AICc on training and predicted the held-out
-///   record 189 worse; with the sensors' noise scaled by 1/1000, 53 and
-///   218, so not a draw of the noise.) A motor side also goes behind its
+///   together. (On a generated rotor inertia at 100 Hz with a jittered
+///   clock, a 16 Hz spring can lead the rotor on training and predict
+///   the held-out record far worse, whatever the draw of the noise.) A
+///   motor side also goes behind its
 ///   rotor when `judge.quiet` says the rotor already leaves the joint's
 ///   residual within the noise floor: then the data show no signature left
 ///   for the motor side to explain.
