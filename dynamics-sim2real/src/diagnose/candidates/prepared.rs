@@ -7,7 +7,6 @@ use nalgebra::SVector;
 use super::basis::Basis;
 use crate::data::Measured;
 use crate::diagnose::signals::Signals;
-use crate::diagnose::signals::{known_floor, sensor_levels};
 use dynamics_runtime::Robot;
 
 /// A data set ready for fitting: signals, shared model quantities, and the
@@ -39,12 +38,7 @@ impl<const N: usize> Prepared<N> {
         m: &Measured<N>,
         levels: Option<&[SVector<f64, N>; 3]>,
     ) -> Self {
-        let mut sig = Signals::new(robot, m);
-        let levels = match levels {
-            Some(l) => *l,
-            None => sensor_levels(m, &sig),
-        };
-        sig.floor = known_floor(robot, m, &sig, &levels);
+        let (sig, levels) = Signals::new(robot, m, levels);
         let basis = Basis::new(robot, &sig);
         let h = sig.sg.half();
         let (a, z) = sig.range;

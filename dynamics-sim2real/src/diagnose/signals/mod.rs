@@ -11,7 +11,8 @@ use nalgebra::SVector;
 use crate::data::Measured;
 use crate::smoothing::SavitzkyGolay;
 use dynamics_runtime::Robot;
-pub use noise::{known_floor, sensor_levels, SensorNoise};
+pub use noise::SensorNoise;
+use noise::{known_floor, sensor_levels};
 pub use segments::Mask;
 
 /// Half-width of the light smoother of velocities, s.
@@ -50,8 +51,8 @@ pub struct Signals<const N: usize> {
     pub model_rate: Vec<SVector<f64, N>>,
     /// `tau - model`.
     pub residual: Vec<SVector<f64, N>>,
-    /// Noise floor of the smoothed residual per joint (zero here; set by
-    /// `Prepared` from the sensor noise, `noise.rs`).
+    /// Noise floor of the smoothed residual per joint: what the sensors'
+    /// noise makes of it (`noise.rs`; zero from [`Signals::unfloored`]).
     pub floor: SVector<f64, N>,
     /// The filter.
     pub sg: SavitzkyGolay,
@@ -70,8 +71,28 @@ fn set_column<const N: usize>(v: &mut [SVector<f64, N>], j: usize, x: &[f64]) {
 }
 
 impl<const N: usize> Signals<N> {
-    /// Prepares `m` for `robot`.
-    pub fn new<R: Robot<N>>(robot: &R, m: &Measured<N>) -> Self {
+    /// The signals of `m` for `robot` with the noise floor of the torque
+    /// residual that sensor noise of `levels` (q, qd, tau per joint) makes
+    /// of it, the levels estimated from the data when not known
+    /// (`noise.rs`); and the levels used.
+    pub fn new<R: Robot<N>>(
+        robot: &R,
+        m: &Measured<N>,
+        levels: Option<&[SVector<f64, N>; 3]>,
+    ) -> (Self, [SVector<f64, N>; 3]) {
+        let mut sig = Self::unfloored(robot, m);
+        let levels = match levels {
+            Some(l) => *l,
+            None => sensor_levels(m, &sig),
+        };
+        sig.floor = known_floor(robot, m, &sig, &levels);
+        (sig, levels)
+    }
+
+    /// The signals of `m` for `robot` without a noise floor (zero): what
+    /// an identification by plain least squares, and the floor's own noisy
+    /// twin, work on.
+    pub fn unfloored<R: Robot<N>>(robot: &R, m: &Measured<N>) -> Self {
         let n = m.len();
         let dt = m.sample_interval();
         let sg = SavitzkyGolay::analysis(dt);

@@ -92,7 +92,7 @@ pub fn known_floor<R: Robot<N>, const N: usize>(
         noisy.qd[k] += rng.normal_vec(&levels[1]);
         noisy.tau[k] += rng.normal_vec(&levels[2]);
     }
-    let shaken = Signals::new(robot, &noisy);
+    let shaken = Signals::unfloored(robot, &noisy);
     let (a, z) = sig.range;
     let mut sum = SVector::<f64, N>::zeros();
     let mut count = 0usize;
