@@ -12,6 +12,7 @@ use std::str::FromStr;
 /// let k: EffectKind = "backlash".parse().unwrap();
 /// assert_eq!(k, EffectKind::Backlash);
 /// assert_eq!(k.to_string(), "backlash");
+/// assert_eq!(format!("{k:<10}|"), "backlash  |"); // widths as a string's
 /// assert!("glue".parse::<EffectKind>().is_err());
 /// ```
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Hash, PartialOrd, Ord)]
@@ -131,7 +132,7 @@ impl serde::Serialize for EffectKind {
 
 impl fmt::Display for EffectKind {
     fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
-        f.write_str(self.name())
+        f.pad(self.name())
     }
 }
 
