@@ -15,9 +15,9 @@ use dynamics_sim2real::effects::Plant;
 use dynamics_sim2real::synth::{Excitation, ExcitationKind, Rng};
 use nalgebra::SVector;
 
+use crate::info::RobotInfo;
 use crate::plot::{svg, Series};
-use crate::program::args::{BaselineArgs, ModelArgs};
-use crate::program::RobotInfo;
+use crate::tune::{BaselineArgs, ModelArgs};
 use crate::Res;
 
 /// `simulate`.
