@@ -1,4 +1,4 @@
-//! The planar 3R loading arm of seed 001, sec. 3.1.1 and chapter 4.
+//! The planar 3R loading arm of the dissertation, sec. 3.1.1 and chapter 4.
 //!
 //! Data: l1 = l2 = 0.2 m, payload at l3 = 0.1 m on link 3; centres of mass
 //! c1 = 0.0635, c2 = 0.07475, c3 = 0.06067 m; m1 = 4.08, m2 = 2.34,
@@ -10,7 +10,7 @@
 //! 001 eq. 2.4 (tu = translate along the link, rot = rotate).
 
 dynamics_macros::robot! {
-    /// Planar 3R loading arm (seed 001, sec. 3.1.1; chapter 4 with `b1..b3 = 1`).
+    /// Planar 3R loading arm (dissertation, sec. 3.1.1; chapter 4 with `b1..b3 = 1`).
     ///
     /// ```
     /// use dynamics_runtime::Robot;

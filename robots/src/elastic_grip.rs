@@ -1,4 +1,4 @@
-//! The planar arm with an elastic grip of seed 001, sec. 3.3 (Fig. 3.19):
+//! The planar arm with an elastic grip of the dissertation, sec. 3.3 (Fig. 3.19):
 //! arm OA turns by phi = q1 about O, arm AB by theta = q2 about A, the push
 //! rod CD slides along AB by u = q3 = AC against a spring, and its free end
 //! D, where the object M sits, deflects by y = q4 across the rod (the rod
@@ -18,13 +18,13 @@
 //! seed gives only their inertias; parameter `arm2_mass` at A if wanted).
 
 dynamics_macros::robot! {
-    /// Planar arm with a sliding, elastic push rod carrying M (seed 001, sec. 3.3).
+    /// Planar arm with a sliding, elastic push rod carrying M (dissertation, sec. 3.3).
     ///
     /// ```
     /// use dynamics_runtime::Robot;
     /// use nalgebra::Vector4;
     /// let g = robots::ElasticGrip::default();
-    /// // Rod stiffness 3 E I / l3^3 of the seed's E, I, l3:
+    /// // Rod stiffness 3 E I / l3^3 of the dissertation's E, I, l3:
     /// assert!((g.params.c4 - 3.0 * 6.626e10 * 1.14197e-8 / 0.125).abs() < 1e-9);
     /// // M sits at (l1 + l3 + u, y) when both arms are horizontal.
     /// let d = g.point_position(0, &Vector4::new(0.0, 0.0, 0.1, 0.01)).unwrap();

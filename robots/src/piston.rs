@@ -1,4 +1,4 @@
-//! The planar arm of seed 001, sec. 3.4 (Fig. 3.24): link OA turns by q1
+//! The planar arm of the dissertation, sec. 3.4 (Fig. 3.24): link OA turns by q1
 //! about O, the cylinder turns by q2 about A, the piston slides by q3 in it
 //! against a spring; its end point C works against the environment.
 //!
@@ -12,7 +12,7 @@
 //! about the link axes (1e-5) only keep the 3-D inertia tensors valid.
 
 dynamics_macros::robot! {
-    /// Planar RRP arm whose piston end C follows the line KL (seed 001, sec. 3.4).
+    /// Planar RRP arm whose piston end C follows the line KL (dissertation, sec. 3.4).
     ///
     /// ```
     /// use dynamics_runtime::{Constrained, Robot};

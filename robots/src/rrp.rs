@@ -1,4 +1,4 @@
-//! The planar RRP arm of seed 001, sec. 3.1.2: link OA turns by q1 about O,
+//! The planar RRP arm of the dissertation, sec. 3.1.2: link OA turns by q1 about O,
 //! cylinder AD turns by q2 about A, plunger CB slides by q3 inside it and
 //! carries the load M at l3 + q3 from A.
 //!
@@ -9,9 +9,9 @@
 //! `shared/reference/urdf/rrp.urdf`.
 
 dynamics_macros::robot! {
-    /// Planar RRP arm with plunger spring and viscous drag (seed 001, sec. 3.1.2).
+    /// Planar RRP arm with plunger spring and viscous drag (dissertation, sec. 3.1.2).
     ///
-    /// The spring and drag are run-time parameters with the seed's values;
+    /// The spring and drag are run-time parameters with the dissertation's values;
     /// [`Rrp::rigid`] sets them to zero (the rigid body that Pinocchio models).
     pub robot Rrp;
     gravity = [0.0, -10.0, 0.0];

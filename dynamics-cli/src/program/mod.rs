@@ -38,7 +38,7 @@ pub trait RobotSet {
     fn default_robot(&self) -> Option<String> {
         None
     }
-    /// Subcommands of this set's own (e.g. the seed scenarios).
+    /// Subcommands of this set's own (e.g. the scenarios of the source works).
     fn commands(&self) -> Vec<clap::Command> {
         Vec::new()
     }

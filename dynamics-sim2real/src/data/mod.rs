@@ -1,5 +1,5 @@
 //! Measured data: joint positions, velocities and efforts sampled over time,
-//! in the CSV format of the design notes (`t`, `q_<joint>`, `qd_<joint>`,
+//! in the trajectory CSV format (docs/cli.md) (`t`, `q_<joint>`, `qd_<joint>`,
 //! `tau_<joint>`, matched by name; `.csv.gz` read as well), and recorded
 //! files in other layouts (text matrices, one file per quantity, NumPy
 //! `.npz`) through a column map ([`import`]).

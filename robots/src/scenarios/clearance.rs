@@ -1,4 +1,4 @@
-//! Seed 001, sec. 3.2: a joint with clearance (Figs. 3.12-3.18). The pin of
+//! Dissertation, sec. 3.2: a joint with clearance (Figs. 3.12-3.18). The pin of
 //! link 2 (radius r2) rolls inside the ring of link 1 (radius r1) while the
 //! ring pushes it; when the contact reaction Ru reaches zero the pin leaves
 //! the ring and flies freely inside the clearance until it hits the ring
@@ -13,20 +13,20 @@
 //! `(r1 - r2) (phi1' + psi') + r2 (phi1' + psi' + phi2')` along the ring,
 //! the ring's with `r1 phi1'`; no slip makes them equal, `r1 psi' + r2 phi2' = 0`,
 //! so `f2 = r1 psi + r2 phi2 - c0` with c0 fixed where contact begins.
-//! The motion follows the seed's eq. 3.37, `D A qdd = D (Q + Qqt + U)` with
+//! The motion follows the dissertation's eq. 3.37, `D A qdd = D (Q + Qqt + U)` with
 //! D^T spanning the motions the constraints allow, together with the
 //! second derivatives of (3.25) (Baumgarte-stabilised); the reaction is
 //! `R = A qdd - Q - Qqt - U` and Ru its u-row (sec. 3.2.2). The ring can
 //! only push: contact holds while `Ru < 0` (inward along u).
 //!
 //! Rolling needs a tangential force Ft, which friction can give only up to
-//! `mu |Ru|`: the seed's no-slip assumption holds while `|Ft| <= mu |Ru|`.
+//! `mu |Ru|`: the dissertation's no-slip assumption holds while `|Ft| <= mu |Ru|`.
 //! Where it fails the pin slides on the ring with Coulomb friction (only
 //! f1 holds), and rolls again when the slip stops and friction suffices;
 //! without this the model is inconsistent where Ru -> 0, because the
 //! no-slip force would stay finite while the normal force vanishes. Not in
 //! the seed, chosen here: mu = 0.15 (dry steel on steel, lubricated 0.1).
-//! (A very large mu, near the seed's rolling throughout, runs into
+//! (A very large mu, near the dissertation's rolling throughout, runs into
 //! Painleve's paradox while sliding: the normal force of the sliding
 //! equations changes sign and the integration stops with an error.)
 //!
@@ -101,14 +101,14 @@ pub struct Switch {
     pub g_after: f64,
     /// Energy the impact removed (re-contact), J.
     pub impact_loss: f64,
-    /// The state at the switch in the seed's coordinates, before the
+    /// The state at the switch in the dissertation's coordinates, before the
     /// change (velocities before an impact).
     pub q: Vector4<f64>,
     /// Its rates.
     pub qd: Vector4<f64>,
 }
 
-/// One output sample, in the seed's coordinates in every mode.
+/// One output sample, in the dissertation's coordinates in every mode.
 #[derive(Debug, Clone, Copy, PartialEq)]
 pub struct Sample {
     /// Time, s.
@@ -185,7 +185,7 @@ pub struct Start {
     pub rates: Vector2<f64>,
     /// Direction of the contact point from the ring's centre, world frame, rad.
     pub contact: f64,
-    /// Friction coefficient pin-ring (large: the seed's rolling throughout).
+    /// Friction coefficient pin-ring (large: the dissertation's rolling throughout).
     pub mu: f64,
 }
 

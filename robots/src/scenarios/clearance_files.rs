@@ -1,4 +1,4 @@
-//! Outputs of the clearance scenario (seed 001 sec. 3.2): CSV of the motion
+//! Outputs of the clearance scenario (dissertation, sec. 3.2): CSV of the motion
 //! and of the switches, the plots of Figs. 3.15-3.18, the joint without
 //! clearance for comparison, and the summary.
 

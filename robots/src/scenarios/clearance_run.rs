@@ -275,7 +275,7 @@ pub fn simulate_from(
         };
         (active, x) = match (active, k) {
             (Active::Roll { .. }, _) => {
-                // Leave the seed's coordinates for the Cartesian ones.
+                // Leave the dissertation's coordinates for the Cartesian ones.
                 let r = roll(t, &x.0.q, &x.0.qd, residual_c0(&x.0.q))?.1;
                 psi_last = x.0.q[1];
                 let (q, qd) = to_free(&x.0.q, &x.0.qd);

@@ -1,4 +1,4 @@
-//! Seed 001, sec. 3.3: the arm with an elastic grip (Figs. 3.19-3.21), the
+//! Dissertation, sec. 3.3: the arm with an elastic grip (Figs. 3.19-3.21), the
 //! four-coordinate model (phi, theta, u, y) of eq. 3.57 derived by `robot!`
 //! from the transfer matrices (3.49) and the potential (3.56), under the
 //! constant drives M10 = 0.2 N m, M20 = 0.5 N m, F0 = 7.5 N from rest.

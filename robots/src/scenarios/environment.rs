@@ -1,4 +1,4 @@
-//! Seed 001, sec. 3.4: the piston's end point C follows the line KL
+//! Dissertation, sec. 3.4: the piston's end point C follows the line KL
 //! (eq. 3.89) while the environment resists its motion with the
 //! velocity-dependent force `F = -mu |v|^(alpha-1) v` (mu = 0.05 N s/m,
 //! alpha = 2), under the constant drives M1 = 7.5 N m, M2 = 0.5 N m,

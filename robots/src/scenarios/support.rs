@@ -9,7 +9,7 @@ use dynamics_runtime::{Robot, SimError, Trajectory};
 
 use super::{io, write, ScenarioError};
 
-/// The trajectory as `<name>.csv` in the format of the design notes.
+/// The trajectory as `<name>.csv` in the trajectory CSV format (docs/cli.md).
 pub(crate) fn trajectory_csv<R: Robot<N>, const N: usize>(
     name: &str,
     tr: &Trajectory<N>,

@@ -1,4 +1,4 @@
-//! Seed 001 sec. 3.2: the joint with clearance. Every switch (loss of
+//! Dissertation, sec. 3.2: the joint with clearance. Every switch (loss of
 //! contact at Ru -> 0, re-contact, stick/slip) is located to 1e-9 s on the
 //! dense output; energy balance with the work of drives and friction and
 //! the impact losses; (3.25) held in contact; the rolling condition

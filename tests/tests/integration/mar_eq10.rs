@@ -1,7 +1,7 @@
-//! Seed 000, eq. 10: the matrices [A], [B], [C] of the MAR's inertial
+//! Vibration paper, eq. 10: the matrices [A], [B], [C] of the MAR's inertial
 //! vibrations in the second step of motion (q1 fixed, q1d = q1dd = 0),
 //! printed in the seed, against our A, D = dF/dqd and K = dF/dq (with the
-//! drives of Table 1), term by term, and the seed's [Z] at x1 = 0 against our
+//! drives of Table 1), term by term, and the paper's [Z] at x1 = 0 against our
 //! rigid inverse dynamics.
 //!
 //! Reading of the OCR text (symbols: m2, m3 link masses, L2, L3 link

@@ -1,4 +1,4 @@
-//! The gripper's flat trajectory of seed 000, Table 2 (Q = 0.05, L = 0.35,
+//! The gripper's flat trajectory of the vibration paper, Table 2 (Q = 0.05, L = 0.35,
 //! K = 0.05, R = 0.05 m), with its stops and start-ups, as a function of
 //! time and of the cycle angle beta.
 //!

@@ -1,5 +1,5 @@
 //! The MAR with elastic drives and the inertial vibrations of its second
-//! step of motion (seed 000, eqs. 5-9).
+//! step of motion (vibration paper, eqs. 5-9).
 //!
 //! **The elastic-drive model.** Each joint's motor side and link side are
 //! joined by Table 1's drive stiffness `k_i` and damping `c_i`: the drive
@@ -23,7 +23,7 @@
 //! `D_r + c` and `K_r + k` are exactly the perturbation Jacobians the macro
 //! emits for [`Mar`] with its drive parameters set (the drive's spring and
 //! damper enter `F` linearly), so [`perturbation_response`] integrates the
-//! equation with `dU = -tau_n(t)`: the seed's `[Z]` at `x1 = 0`.
+//! equation with `dU = -tau_n(t)`: the paper's `[Z]` at `x1 = 0`.
 
 use dynamics_runtime::ode::{JointState, Tolerances};
 use dynamics_runtime::{perturbation_response, simulate, Perturbed, Robot, Trajectory};
@@ -54,7 +54,7 @@ pub struct Drives {
 }
 
 impl Drives {
-    /// Table 1 of seed 000.
+    /// Table 1 of the vibration paper.
     pub const TABLE1: Drives = Drives {
         stiffness: DRIVE_STIFFNESS,
         damping: DRIVE_DAMPING,
