@@ -1,6 +1,7 @@
-//! The robots of the source works (docs/references.md) written with `robot!`, the scenarios of the source works, and the
-//! built-in `dynamics` program: the generic program of `dynamics-cli` over
-//! these robots by name (`registry`, `builtin`).
+//! The robots of the source works (docs/references.md) written with
+//! `robot!`, UR5 and Panda from their URDF, the scenarios of the source
+//! works, and the built-in `dynamics` program: the generic program of
+//! `dynamics-cli` over these robots by name (`registry`, `builtin`).
 //!
 //! | name | robot | source |
 //! |---|---|---|
@@ -34,7 +35,17 @@ pub use urdf_robots::{
     Arm3rUrdf, MarUrdf, Panda, PandaArm, PandaParams, PandaPayload, RrpUrdf, Ur5, Ur5Params,
 };
 
-/// The README's example, compiled and run as a doc test.
+/// The README's examples, compiled and run as doc tests.
 #[doc = include_str!("../../README.md")]
 #[cfg(doctest)]
 pub struct ReadmeDoctests;
+
+/// The examples of docs/robot-macro.md, compiled and run as doc tests.
+#[doc = include_str!("../../docs/robot-macro.md")]
+#[cfg(doctest)]
+pub struct RobotMacroDoctests;
+
+/// The examples of docs/runtime.md, compiled and run as doc tests.
+#[doc = include_str!("../../docs/runtime.md")]
+#[cfg(doctest)]
+pub struct RuntimeDoctests;
