@@ -325,7 +325,7 @@ pub trait Robot<const N: usize> {
         crate::check::finite("qd", qd)?;
         crate::check::finite("u", u)?;
         let terms = self.motion_terms(q, qd);
-        crate::solve::accelerations(&terms, u, q)
+        crate::solve::accelerations(&terms.a, &terms.bias(), u, q)
     }
 
     /// `C qd + g`-like bias as other toolkits define it (Pinocchio's `nle`

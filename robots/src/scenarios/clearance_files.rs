@@ -9,7 +9,8 @@ use dynamics_runtime::ode::Tolerances;
 use dynamics_runtime::{simulate_program, Baumgarte};
 use nalgebra::{Vector2, Vector4};
 
-use super::clearance::{drives, simulate, start, ClearanceRun, Mode, GAP};
+use super::clearance::{drives, start, ClearanceRun, Mode, GAP};
+use super::clearance_run::simulate;
 use super::support::trajectory_csv;
 use super::{write, ScenarioError};
 use crate::ClearanceArmFree;

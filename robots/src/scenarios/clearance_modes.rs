@@ -35,7 +35,7 @@ pub fn residual(q: &Vector4<f64>, c0: f64) -> Vector2<f64> {
     Vector2::new(q[2] - GAP, R1 * q[1] + R2 * q[3] - c0)
 }
 
-/// Rolling contact (seed eqs. 3.25, 3.37): accelerations and the reaction
+/// Rolling contact (dissertation, eqs. 3.25, 3.37): accelerations and the reaction
 /// `R = A qdd - Q - Qqt - U`; `R[2]` is the dissertation's Ru, `R[3] / r2` the
 /// tangential force that keeps the pin from slipping.
 ///
@@ -169,7 +169,7 @@ pub fn to_free(q: &Vector4<f64>, qd: &Vector4<f64>) -> (Vector4<f64>, Vector4<f6
     )
 }
 
-/// Cartesian pin -> seed coordinates, psi taken nearest `psi_near`.
+/// Cartesian pin -> the dissertation's coordinates, psi taken nearest `psi_near`.
 pub fn to_seed(q: &Vector4<f64>, qd: &Vector4<f64>, psi_near: f64) -> (Vector4<f64>, Vector4<f64>) {
     let (x, y) = (q[1], q[2]);
     let u = x.hypot(y).max(1e-300);

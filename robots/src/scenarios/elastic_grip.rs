@@ -5,7 +5,7 @@
 //!
 //! Two cases: the handle (push rod CD) massless (sec. 3.3.1, Fig. 3.20) and
 //! with its mass m0 = 0.75 kg lumped into M by the equivalent-kinetic-energy
-//! factor of eq. 3.58 (sec. 3.3.2, Fig. 3.21). The OCR of eq. 3.58 keeps
+//! factor of eq. 3.58 (sec. 3.3.2, Fig. 3.21). The available text of eq. 3.58 keeps
 //! only `km = 1/l3 int_0^l3 (eta_x / eta)^2 dx`; derived again: for a
 //! uniform rod clamped at C with the load at its end D, the static
 //! deflection shape is `eta_x / eta = (3 l3 x^2 - x^3) / (2 l3^3)`, so

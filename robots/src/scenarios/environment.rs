@@ -122,7 +122,7 @@ pub fn run(dir: &Path) -> Result<Vec<String>, ScenarioError> {
     let dt = 1e-3;
     let with = simulate(MU, ALPHA, DURATION, dt)?;
     let without = simulate(0.0, ALPHA, DURATION, dt)?;
-    // Matlab's ode45 default tolerances (the seed computed with Matlab).
+    // Matlab's ode45 default tolerances (the dissertation computed with Matlab).
     let loose = Tolerances {
         rtol: 1e-3,
         atol: 1e-6,

@@ -15,7 +15,7 @@ mod circle;
 pub mod clearance;
 mod clearance_files;
 pub mod clearance_modes;
-mod clearance_run;
+pub mod clearance_run;
 pub mod elastic_grip;
 pub mod environment;
 pub mod mar;

@@ -1,4 +1,4 @@
-//! Pieces shared by the seed-001 scenarios of sec. 3.2-3.4: dense sampling
+//! Pieces shared by the dissertation's scenarios of sec. 3.2-3.4: dense sampling
 //! of an adaptive Dormand-Prince run whose state carries more than a
 //! robot's (q, qd) (work integrals), and the CSV of an N-joint motion.
 

@@ -13,7 +13,7 @@ use robots::scenarios::elastic_grip::{
 };
 use robots::{ElasticGrip, ElasticGripParams};
 
-/// Kinetic and potential energy written from the seed: M at
+/// Kinetic and potential energy written from the dissertation: M at
 /// `R(q1) [l1, 0] + R(q1 + q2) [l3 + q3, q4]`, arms J1 about O, J2 about A.
 fn hand_energies(q: &Vector4<f64>, qd: &Vector4<f64>, m: f64) -> (f64, f64) {
     let (l1, l3, g) = (0.3, 0.5, 10.0);

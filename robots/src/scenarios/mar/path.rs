@@ -2,7 +2,7 @@
 //! K = 0.05, R = 0.05 m), with its stops and start-ups, as a function of
 //! time and of the cycle angle beta.
 //!
-//! The seed shows the path only in its Fig. 2 and gives the formula in its
+//! The vibration paper shows the path only in its Fig. 2 and gives the formula in its
 //! reference [13], which we do not have. The choice made here fits the
 //! description (a flat path of straight runs and circular arcs, "described
 //! with a combination of trigonometric functions", with stops and

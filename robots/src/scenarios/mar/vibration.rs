@@ -4,7 +4,7 @@
 //! **The elastic-drive model.** Each joint's motor side and link side are
 //! joined by Table 1's drive stiffness `k_i` and damping `c_i`: the drive
 //! applies `U_i = k_i (q_m,i - q_i) + c_i (qd_m,i - qd_i)` to the rigid
-//! links. The motor side is not a body of its own: as in the seed, the
+//! links. The motor side is not a body of its own: as in the vibration paper, the
 //! drives *impose the nominal motion*, `q_m(t) = q_n(t)` (q1 held still,
 //! q2 and q3 from the inverse kinematics of the gripper path). The link then
 //! lags behind its motor by the perturbation `x1 = q - q_n`, driven by the
@@ -17,7 +17,7 @@
 //! Fig. 5):
 //!
 //! ```text
-//! A(x_n) x1dd + (D_r + c) x1d + (K_r + k) x1 = -tau_n(t)        (seed eq. 9)
+//! A(x_n) x1dd + (D_r + c) x1d + (K_r + k) x1 = -tau_n(t)        (vibration paper, eq. 9)
 //! ```
 //!
 //! `D_r + c` and `K_r + k` are exactly the perturbation Jacobians the macro
@@ -160,7 +160,7 @@ impl Plan {
     }
 
     /// The rigid inverse dynamics along the plan (the driving quantities of
-    /// the nominal motion, seed Fig. 5): N m, N m, N.
+    /// the nominal motion, vibration paper, Fig. 5): N m, N m, N.
     pub fn driving(&self, t: f64) -> Vector3<f64> {
         let m = self.at(t).1;
         Mar::default().inverse_dynamics(&m.q, &m.qd, &m.qdd)
@@ -201,7 +201,7 @@ pub fn static_deflection(plan: &Plan, drives: &Drives) -> Result<Vector3<f64>, M
         .ok_or(MarError::SingularStiffness)
 }
 
-/// Integrates seed eq. 9 over one cycle, output every `dt`.
+/// Integrates the vibration paper's eq. 9 over one cycle, output every `dt`.
 ///
 /// ```
 /// use robots::scenarios::mar::vibration::{inertial_vibration, peaks, Drives, Plan};
