@@ -84,11 +84,9 @@ pub fn diagnose_cmd<R: Robot<N> + Clone + Sync, const N: usize>(
         println!("  late channel: {c}");
     }
     let verdict_place = v.joint.clone().or(v.point.clone());
-    let in_explanation = report
-        .which
-        .effects
-        .iter()
-        .any(|e| e.kind == v.kind && e.joint.clone().or(e.point.clone()) == verdict_place);
+    let in_explanation = report.which.effects.iter().any(|e| {
+        Some(e.kind) == v.effect() && e.joint.clone().or(e.point.clone()) == verdict_place
+    });
     if v.names_effect() && !report.which.effects.is_empty() && !in_explanation {
         println!(
             "  (the best single effect; the explanation below does without it: its effects \

@@ -222,7 +222,8 @@ fn entries(doc: &Value, file: &str) -> Result<Vec<(String, Entry)>, TuneError> {
     Ok(vec![(at.clone(), entry(top).map_err(|p| shape(&at, &p))?)])
 }
 
-/// One entry: `kind`, `joint` (or none), `parameters[]` of `name`, `value`.
+/// One entry: `kind`, `joint` (or none), `channel` (a delay's; or none),
+/// `parameters[]` of `name`, `value`.
 fn entry(v: &Value) -> Result<Entry, String> {
     let kind = v
         .get("kind")
@@ -233,6 +234,11 @@ fn entry(v: &Value) -> Result<Entry, String> {
         None | Some(Value::Null) => None,
         Some(Value::String(s)) => Some(s.clone()),
         Some(_) => return Err("`joint` is not a string".into()),
+    };
+    let channel = match v.get("channel") {
+        None | Some(Value::Null) => None,
+        Some(Value::String(s)) => Some(s.parse().map_err(|e| format!("`channel`: {e}"))?),
+        Some(_) => return Err("`channel` is not a string".into()),
     };
     let params = match v.get("parameters") {
         None | Some(Value::Null) => Vec::new(),
@@ -261,6 +267,7 @@ fn entry(v: &Value) -> Result<Entry, String> {
     Ok(Entry {
         kind,
         joint,
+        channel,
         parameters,
     })
 }

@@ -4,8 +4,7 @@
 //! diagnosis' own candidate ([`Candidate::effect`]) so that a report reads
 //! back as the model the diagnosis corrected with.
 
-use crate::diagnose::{Candidate, Parameter};
-use crate::effects::SIGN_SMOOTHING;
+use crate::diagnose::{Candidate, Channel, Parameter, Unnamed};
 use crate::effects::{Effect, EffectKind};
 use dynamics_runtime::Robot;
 
@@ -16,6 +15,9 @@ pub struct Entry {
     pub kind: String,
     /// Joint name, for joint effects.
     pub joint: Option<String>,
+    /// For `time_delay`: the late channel (`None`: `all`, the motion late
+    /// against the effort).
+    pub channel: Option<Channel>,
     /// Its parameters by name (`fc`, `mass`, ...); `std` is not used.
     pub parameters: Vec<Parameter>,
 }
@@ -24,7 +26,7 @@ pub struct Entry {
 #[derive(Debug, Clone, PartialEq, thiserror::Error)]
 pub enum BaselineError {
     /// Not a kind of the vocabulary, or one that names no effect.
-    #[error("unknown effect kind `{0}` (known: coulomb_friction, viscous_friction, stribeck_friction, armature, payload_mass, joint_elasticity, backlash, environment_resistance, encoder_offset, time_delay)")]
+    #[error("unknown effect kind `{0}` (known: {known})", known = known_kinds())]
     Kind(String),
     /// A joint effect without a joint, or a joint the robot does not have.
     #[error("effect `{kind}`: joint {joint:?} is not one of the robot's joints ({known})")]
@@ -58,6 +60,21 @@ pub enum BaselineError {
     },
 }
 
+/// The kinds a report entry can name as an effect, comma-separated.
+///
+/// ```
+/// let known = dynamics_sim2real::baseline::known_kinds();
+/// assert!(known.starts_with("coulomb_friction, ") && known.ends_with("joint_spring"));
+/// ```
+pub fn known_kinds() -> String {
+    EffectKind::ALL
+        .iter()
+        .filter(|k| **k != EffectKind::None)
+        .map(|k| k.name())
+        .collect::<Vec<_>>()
+        .join(", ")
+}
+
 /// The parameter names of a kind, as the diagnosis reports them.
 pub fn parameter_names(kind: EffectKind) -> &'static [&'static str] {
     match kind {
@@ -71,7 +88,7 @@ pub fn parameter_names(kind: EffectKind) -> &'static [&'static str] {
         EffectKind::TimeDelay => &["delay"],
         EffectKind::JointElasticity => &["motor_inertia", "stiffness", "damping"],
         EffectKind::Backlash => &["motor_inertia", "half_width", "contact_stiffness"],
-        EffectKind::EffortScale => &["scale_minus_one"],
+        EffectKind::EffortScale => &["scale"],
         EffectKind::EffortOffset => &["offset"],
         EffectKind::JointSpring => &["stiffness", "preload"],
         EffectKind::None | EffectKind::InertialParameters => &[],
@@ -89,7 +106,7 @@ pub fn parameter_names(kind: EffectKind) -> &'static [&'static str] {
 ///     joint j = revolute(base -> rod) { transfer = [rot_z(q)]; }
 /// }
 /// let entry = Entry {
-///     kind: "coulomb_friction".into(), joint: Some("j".into()),
+///     kind: "coulomb_friction".into(), joint: Some("j".into()), channel: None,
 ///     parameters: vec![Parameter { name: "fc".into(), value: 0.3, std: 0.01 }],
 /// };
 /// assert_eq!(effect::<Pendulum, 1>(&entry).unwrap(), Effect::coulomb(0, 0.3));
@@ -127,64 +144,138 @@ pub fn effect<R: Robot<N>, const N: usize>(entry: &Entry) -> Result<Effect, Base
                 expected: list(),
             })
     };
-    let joint = || -> Result<usize, BaselineError> {
-        entry
-            .joint
-            .as_deref()
-            .and_then(R::joint_index)
-            .ok_or_else(|| BaselineError::Joint {
-                kind: entry.kind.clone(),
-                joint: entry.joint.clone(),
-                known: R::JOINT_NAMES.join(", "),
-            })
-    };
-    let candidate = match kind {
-        // Link inertial corrections come from `identify`, not from a
-        // diagnosis report entry.
-        EffectKind::None | EffectKind::InertialParameters => {
-            return Err(BaselineError::Kind(entry.kind.clone()))
-        }
-        // (Reports before the width was searched have none: sharp.)
-        EffectKind::CoulombFriction => {
-            Candidate::Coulomb(joint()?, get("vw").unwrap_or(SIGN_SMOOTHING))
-        }
-        EffectKind::ViscousFriction => Candidate::Viscous(joint()?),
-        EffectKind::StribeckFriction => Candidate::Stribeck(joint()?, get("vs")?),
-        EffectKind::Armature => Candidate::Armature(joint()?),
-        EffectKind::PayloadMass => Candidate::Payload,
-        EffectKind::EnvironmentResistance => Candidate::Environment(get("alpha")?),
-        EffectKind::EncoderOffset => Candidate::EncoderOffset(joint()?),
-        EffectKind::TimeDelay => Candidate::TimeDelay,
-        EffectKind::EffortScale => Candidate::EffortScale(joint()?),
-        EffectKind::EffortOffset => Candidate::EffortOffset(joint()?),
-        EffectKind::JointSpring => Candidate::Spring(joint()?),
-        EffectKind::JointElasticity => {
+    let joint = entry.joint.as_deref().and_then(R::joint_index);
+    let value = |name: &str| get(name).ok();
+    let candidate = Candidate::named(kind, joint, entry.channel, &value).map_err(|e| match e {
+        Unnamed::Kind(_) | Unnamed::Channel(_) => BaselineError::Kind(entry.kind.clone()),
+        Unnamed::Joint => BaselineError::Joint {
+            kind: entry.kind.clone(),
+            joint: entry.joint.clone(),
+            known: R::JOINT_NAMES.join(", "),
+        },
+        Unnamed::Missing(name) => BaselineError::Missing {
+            kind: entry.kind.clone(),
+            name: name.to_string(),
+            expected: list(),
+        },
+    })?;
+    match candidate {
+        Candidate::Elasticity(joint) => {
             return Ok(Effect::JointElasticity {
-                joint: joint()?,
+                joint,
                 stiffness: get("stiffness")?,
                 damping: get("damping")?,
                 motor_inertia: get("motor_inertia")?,
             })
         }
-        EffectKind::Backlash => {
+        Candidate::Backlash(joint) => {
             // The report gives the contact stiffness; its damping is the
             // generator's (`synth::draw`): 10 % of critical on the rotor.
             let (jm, k) = (get("motor_inertia")?, get("contact_stiffness")?);
             return Ok(Effect::Backlash {
-                joint: joint()?,
+                joint,
                 half_width: get("half_width")?,
                 motor_inertia: jm,
                 contact_stiffness: k,
                 contact_damping: 0.2 * (k * jm).sqrt(),
             });
         }
-    };
+        _ => {}
+    }
+    // The report gives an effort scale as the scale; it is fitted as the
+    // scale less one.
     let theta = candidate
         .linear_parameters()
         .iter()
-        .map(|(name, _)| get(name))
+        .map(|(name, _)| match *name {
+            "scale_minus_one" => get("scale").map(|s| s - 1.0),
+            _ => get(name),
+        })
         .collect::<Result<Vec<f64>, _>>()?;
     candidate
         .effect(&theta)
         .ok_or_else(|| BaselineError::Kind(entry.kind.clone()))
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    dynamics_macros::robot! {
+        robot Arm2;
+        gravity = [0.0, -9.81, 0.0];
+        link base;
+        link upper { mass = 1.0; com = [0.2, 0.0, 0.0]; inertia = [1e-4, 0.01, 0.01]; }
+        link lower { mass = 0.5; com = [0.1, 0.0, 0.0]; inertia = [1e-4, 0.005, 0.005]; }
+        joint j1 = revolute(base -> upper) { transfer = [rot_z(q)]; }
+        joint j2 = revolute(upper -> lower) { transfer = [tu(0.4), rot(q)]; }
+    }
+
+    fn entry(kind: &str, channel: Option<Channel>, parameters: &[(&str, f64)]) -> Entry {
+        Entry {
+            kind: kind.into(),
+            joint: Some("j2".into()),
+            channel,
+            parameters: parameters
+                .iter()
+                .map(|&(name, value)| Parameter {
+                    name: name.into(),
+                    value,
+                    std: 0.0,
+                })
+                .collect(),
+        }
+    }
+
+    /// A late effort is the motion early: a negative delay, as the
+    /// diagnosis's own late-effort candidate makes it; positions or the
+    /// whole motion late are a positive one.
+    #[test]
+    fn a_delay_comes_back_on_its_channel() {
+        let delay = [("delay", 0.01)];
+        let of = |channel| effect::<Arm2, 2>(&entry("time_delay", channel, &delay));
+        assert_eq!(of(None), Ok(Effect::TimeDelay { delay: 0.01 }));
+        assert_eq!(
+            of(Some(Channel::All)),
+            Ok(Effect::TimeDelay { delay: 0.01 })
+        );
+        assert_eq!(
+            of(Some(Channel::Positions)),
+            Ok(Effect::TimeDelay { delay: 0.01 })
+        );
+        assert_eq!(
+            of(Some(Channel::Effort)),
+            Ok(Effect::TimeDelay { delay: -0.01 })
+        );
+    }
+
+    /// Every kind the function takes back is one the error for an unknown
+    /// kind lists, and every kind it lists is taken back.
+    #[test]
+    fn the_unknown_kind_error_lists_every_kind_taken() {
+        let message = BaselineError::Kind("glue".into()).to_string();
+        for kind in EffectKind::ALL
+            .into_iter()
+            .filter(|k| *k != EffectKind::None)
+        {
+            let parameters: Vec<(&str, f64)> = parameter_names(kind)
+                .iter()
+                .map(|&n| (n, if n == "scale" { 1.1 } else { 0.5 }))
+                .collect();
+            let e = effect::<Arm2, 2>(&entry(kind.name(), None, &parameters));
+            assert!(e.is_ok(), "{kind}: {e:?}");
+            assert!(message.contains(kind.name()), "{kind} not in: {message}");
+        }
+    }
+
+    /// The report writes an effort scale as the scale; it comes back as
+    /// that scale.
+    #[test]
+    fn an_effort_scale_comes_back_as_the_report_writes_it() {
+        let e = effect::<Arm2, 2>(&entry("effort_scale", None, &[("scale", 1.1)]));
+        match e {
+            Ok(Effect::EffortScale { joint: 1, scale }) => assert!((scale - 1.1).abs() < 1e-12),
+            other => panic!("{other:?}"),
+        }
+    }
 }

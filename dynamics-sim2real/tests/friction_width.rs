@@ -29,7 +29,7 @@ fn named_width(vw: f64) -> (String, Option<f64>, Option<f64>) {
         .which
         .effects
         .iter()
-        .find(|e| e.kind == "coulomb_friction" && e.joint.as_deref() == Some("j2"));
+        .find(|e| e.kind.name() == "coulomb_friction" && e.joint.as_deref() == Some("j2"));
     let get = |name: &str| {
         e.and_then(|e| e.parameters.iter().find(|p| p.name == name))
             .map(|p| p.value)

@@ -7,7 +7,7 @@
 //! stream alone late from the whole motion: a warning says so.
 
 use dynamics_sim2real::diagnose::{diagnose, Options, Report};
-use dynamics_sim2real::effects::Effect;
+use dynamics_sim2real::effects::{Effect, EffectKind};
 use dynamics_sim2real::synth::{synthesize, Damage, SynthOptions};
 
 mod common;
@@ -59,9 +59,13 @@ fn said(r: &Report) -> Vec<String> {
 /// The late channel and delay of the explanation's `time_delay`, with its
 /// standard deviation.
 fn explained_delay(r: &Report) -> Option<(String, f64, f64)> {
-    let e = r.which.effects.iter().find(|e| e.kind == "time_delay")?;
+    let e = r
+        .which
+        .effects
+        .iter()
+        .find(|e| e.kind == EffectKind::TimeDelay)?;
     let p = e.parameters.iter().find(|p| p.name == "delay")?;
-    Some((e.channel.clone()?, p.value, p.std))
+    Some((e.channel?.to_string(), p.value, p.std))
 }
 
 fn delay(r: &Report) -> (String, Option<String>, f64) {
@@ -71,7 +75,11 @@ fn delay(r: &Report) -> (String, Option<String>, f64) {
         "{} {:?}: delay {:.5} s, shrink {:.3}",
         v.kind, v.channel, top.parameters[0].value, r.shrink.fraction
     );
-    (v.kind.clone(), v.channel.clone(), top.parameters[0].value)
+    (
+        v.kind.to_string(),
+        v.channel.map(|c| c.to_string()),
+        top.parameters[0].value,
+    )
 }
 
 #[test]
@@ -84,7 +92,7 @@ fn a_late_position_stream_is_named_as_such() {
     );
     assert!((d - 0.01).abs() < 0.002, "delay {d}");
     let e = &r.which.effects[0];
-    assert_eq!(e.channel.as_deref(), Some("positions"));
+    assert_eq!(e.channel.map(|c| c.name()), Some("positions"));
     let said = said(&r);
     assert!(
         said.iter()
@@ -111,12 +119,12 @@ fn the_whole_motion_late_is_channel_all() {
 fn consistent_channels_offer_no_late_positions() {
     // An effect that is not a delay: no channel is named late.
     let r = diagnosed(&[Effect::ViscousFriction { joint: 0, fv: 0.5 }], 0.0);
-    assert_eq!(r.which.verdict.kind, "viscous_friction");
+    assert_eq!(r.which.verdict.kind.name(), "viscous_friction");
     assert!(r
         .which
         .ranked
         .iter()
-        .all(|e| e.channel.as_deref() != Some("positions")));
+        .all(|e| e.channel.map(|c| c.name()) != Some("positions")));
     assert!(r.warnings.is_empty(), "{:?}", r.warnings);
 }
 
@@ -129,7 +137,7 @@ fn a_late_effort_stream_is_named_as_such() {
         ("time_delay", Some("effort"))
     );
     assert!((d - 0.01).abs() < 0.002, "delay {d}");
-    assert_eq!(r.which.effects[0].channel.as_deref(), Some("effort"));
+    assert_eq!(r.which.effects[0].channel.map(|c| c.name()), Some("effort"));
     let said = said(&r);
     assert!(
         said.iter()
@@ -241,7 +249,7 @@ fn nothing_late_names_no_channel() {
     // A control: no effect, nothing late: no delay explained, no channel,
     // no warning.
     let r = diagnosed_with(&[], Damage::default(), 21, true);
-    assert_eq!(r.which.verdict.kind, "none");
+    assert_eq!(r.which.verdict.kind.name(), "none");
     assert_eq!(r.which.verdict.channel, None);
     assert!(r.which.effects.is_empty(), "{:?}", r.which.effects);
     assert!(r.warnings.is_empty(), "{:?}", r.warnings);

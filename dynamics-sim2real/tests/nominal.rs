@@ -42,7 +42,7 @@ fn made_up_nominal_damping_is_taken_away() {
         .which
         .effects
         .iter()
-        .filter(|e| e.kind == "viscous_friction" && e.joint.as_deref() == Some("j1"))
+        .filter(|e| e.kind.name() == "viscous_friction" && e.joint.as_deref() == Some("j1"))
         .flat_map(|e| e.parameters.iter())
         .map(|p| p.value)
         .sum();
@@ -97,11 +97,16 @@ fn an_effort_scale_far_off_is_held_at_its_limit() {
         .which
         .ranked
         .iter()
-        .find(|e| e.kind == "effort_scale" && e.joint.as_deref() == Some("j1"))
+        .find(|e| e.kind.name() == "effort_scale" && e.joint.as_deref() == Some("j1"))
         .expect("an effort scale at j1 is ranked");
     let s = ranked.parameters[0].value;
     assert!((s - 1.5).abs() < 1e-9, "{:?}", ranked.parameters);
-    for e in r.which.effects.iter().filter(|e| e.kind == "effort_scale") {
+    for e in r
+        .which
+        .effects
+        .iter()
+        .filter(|e| e.kind.name() == "effort_scale")
+    {
         assert!(
             e.parameters.iter().all(|p| (0.5..=1.5).contains(&p.value)),
             "{e:?}"

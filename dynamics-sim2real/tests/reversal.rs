@@ -40,13 +40,13 @@ fn coulomb_friction_where_the_velocity_never_reverses_is_ambiguous_with_an_offse
         .any(|w| *w == Warning::NoReversal { joint: "j2".into() }));
     let v = &r.which.verdict;
     assert_eq!(
-        (v.kind.as_str(), v.joint.as_deref(), v.status.as_str()),
+        (v.kind.name(), v.joint.as_deref(), v.status.name()),
         ("coulomb_friction", Some("j2"), "ambiguous"),
         "{v:?}"
     );
     let rival = v.rival.as_ref().expect("a rival");
     assert_eq!(
-        (rival.kind.as_str(), rival.joint.as_deref()),
+        (rival.kind.name(), rival.joint.as_deref()),
         ("effort_offset", Some("j2"))
     );
     assert!(v
@@ -57,11 +57,11 @@ fn coulomb_friction_where_the_velocity_never_reverses_is_ambiguous_with_an_offse
         .which
         .effects
         .iter()
-        .find(|e| e.kind == "coulomb_friction")
+        .find(|e| e.kind.name() == "coulomb_friction")
         .expect("in the explanation");
     let with = e.ambiguous_with.as_ref().expect("ambiguous");
     assert_eq!(
-        (with.kind.as_str(), with.joint.as_deref()),
+        (with.kind.name(), with.joint.as_deref()),
         ("effort_offset", Some("j2"))
     );
 }

@@ -31,7 +31,8 @@ fn a_spring_at_a_joint_is_named_with_its_stiffness_and_rest() {
     let b = synthesize(&arm, &[spring()], &synth_options(6.0, 107)).expect("synthesizes");
     let r = diagnose(&arm, &a, &b, &Options::default(), &|_, _| {}).expect("diagnoses");
     assert_eq!(
-        r.which.verdict.kind, "joint_spring",
+        r.which.verdict.kind.name(),
+        "joint_spring",
         "{:#?}",
         r.which.ranked
     );
@@ -40,7 +41,7 @@ fn a_spring_at_a_joint_is_named_with_its_stiffness_and_rest() {
         .which
         .effects
         .iter()
-        .find(|e| e.kind == "joint_spring")
+        .find(|e| e.kind.name() == "joint_spring")
         .unwrap_or_else(|| panic!("{:#?}", r.which.effects));
     assert_eq!(e.joint.as_deref(), Some("j2"));
     let get = |n: &str| e.parameters.iter().find(|p| p.name == n).map(|p| p.value);

@@ -45,7 +45,7 @@ fn window(start: f64, end: f64) -> Option<Window> {
 /// truth (an open end: the record's end), and the held-out gap shrinks.
 fn check(report: &Report, kind: &str, start: f64, end: f64) {
     let e = report.which.effects.first().expect("an effect");
-    assert_eq!(e.kind, kind, "{:?}", report.which.effects);
+    assert_eq!(e.kind.name(), kind, "{:?}", report.which.effects);
     let w = e.window.as_ref().expect("a window");
     eprintln!(
         "{kind}: window [{:.3}, {:.3}) for [{start}, {end}), shrink {:.3}",
@@ -57,7 +57,7 @@ fn check(report: &Report, kind: &str, start: f64, end: f64) {
         w.start,
         w.end
     );
-    assert_eq!(report.which.verdict.kind, kind);
+    assert_eq!(report.which.verdict.kind.name(), kind);
     assert!(
         report.shrink.fraction > 0.8,
         "{kind}: held-out shrink {}",
@@ -117,9 +117,9 @@ fn an_effect_on_all_the_time_gets_no_window() {
         // viscous friction at the first joint: the two fit to the last
         // bits, the tie goes to the pool's order, and the other is
         // reported as its ambiguous rival.)
-        let rival = e.ambiguous_with.as_ref().map(|r| r.kind.as_str());
+        let rival = e.ambiguous_with.as_ref().map(|r| r.kind.name());
         assert!(
-            e.kind == effect.kind().name() || rival == Some(effect.kind().name()),
+            e.kind == effect.kind() || rival == Some(effect.kind().name()),
             "{effect:?}: {} ({rival:?})",
             e.kind
         );

@@ -78,8 +78,7 @@ pub fn traces_data<R: Robot<N> + Clone, const N: usize>(
         .names_effect()
         .then(|| report.which.ranked.first())
         .flatten();
-    let noise = options.noise.as_ref();
-    traces_for(robot, train, holdout, chosen, noise)
+    traces_for(robot, train, holdout, chosen, options)
 }
 
 fn traces_for<R: Robot<N> + Clone, const N: usize>(
@@ -87,9 +86,9 @@ fn traces_for<R: Robot<N> + Clone, const N: usize>(
     train: &DataFile,
     holdout: &DataFile,
     chosen: Option<&dynamics_sim2real::diagnose::Ranked>,
-    noise: Option<&dynamics_sim2real::diagnose::SensorNoise>,
+    options: &Options,
 ) -> Result<Traces, GapError> {
     let a = train.read(&R::JOINT_NAMES)?;
     let b = holdout.read(&R::JOINT_NAMES)?;
-    Ok(traces(robot, &a, &b, chosen, noise)?)
+    Ok(traces(robot, &a, &b, chosen, options)?)
 }

@@ -5,7 +5,7 @@
 
 use std::fmt::Write as _;
 
-use dynamics_sim2real::diagnose::Report;
+use dynamics_sim2real::diagnose::{Channel, Report};
 
 use crate::plot::bars;
 
@@ -59,8 +59,8 @@ pub fn section(report: &Report) -> String {
             .unwrap_or("all signals".into());
         // A delay: which channel is late.
         let place = match &e.channel {
-            Some(c) if c == "positions" => format!("{place} (the position stream late)"),
-            Some(c) if c == "effort" => format!("{place} (the effort stream late)"),
+            Some(Channel::Positions) => format!("{place} (the position stream late)"),
+            Some(Channel::Effort) => format!("{place} (the effort stream late)"),
             Some(_) => format!("{place} (positions and velocities late together)"),
             None => place,
         };
@@ -85,7 +85,7 @@ pub fn section(report: &Report) -> String {
                 r.kind,
                 r.joint.clone().or(r.point.clone()).unwrap_or_default()
             ),
-            None => e.kind.clone(),
+            None => e.kind.to_string(),
         };
         let _ = writeln!(
             s,

@@ -24,7 +24,7 @@ fn points(t: &[f64], y: &[f64], a: usize, z: usize) -> Vec<(f64, f64)> {
 pub fn place(r: &Ranked) -> String {
     match r.joint.as_ref().or(r.point.as_ref()) {
         Some(p) => format!("{} at {p}", r.kind),
-        None => r.kind.clone(),
+        None => r.kind.to_string(),
     }
 }
 

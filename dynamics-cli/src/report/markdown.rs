@@ -4,7 +4,7 @@
 use std::fmt::Write as _;
 
 use dynamics_sim2real::diagnose::traces::Traces;
-use dynamics_sim2real::diagnose::{Options, Ranked, Report};
+use dynamics_sim2real::diagnose::{Options, Ranked, Report, VerdictKind};
 
 use super::figures::{place, RANKED_SHOWN};
 
@@ -130,7 +130,7 @@ pub fn markdown(
             }
         }
         None => {
-            if v.kind == "unexplained" {
+            if v.kind == VerdictKind::Unexplained {
                 let _ = write!(
                     s,
                     "**unexplained**: the nominal model misses the data by more than noise \

@@ -34,6 +34,9 @@ pub enum DiagnoseError {
     /// milliseconds, ...).
     #[error(transparent)]
     Data(#[from] DataError),
+    /// The worker threads could not be started.
+    #[error("could not start the diagnosis's threads: {0}")]
+    Threads(String),
     /// No joint moves: there is nothing to identify.
     #[error("training data: no joint moves; nothing about the robot can be identified from them")]
     NoMotion,

@@ -3,19 +3,20 @@
 //! the effort with the chosen effect added, and the two residuals.
 //!
 //! The chosen effect is refitted on the training data from its entry in
-//! the ranking (kind, place and grid parameter), which reproduces the fit
-//! [`diagnose`](super::diagnose) made, and then applied unchanged to the
-//! held-out data.
+//! the ranking (kind, place and grid value, [`Candidate::named`]) as
+//! [`diagnose`](super::diagnose) fitted it: an effect that starts and
+//! stops limited to the window found on the training data, then applied
+//! unchanged to the held-out data (a windowed one in the window found
+//! there).
 
-use crate::effects::SIGN_SMOOTHING;
 use thiserror::Error;
 
-use super::analysis::{fit, Prepared};
-use super::candidate::Candidate;
-use super::noise::SensorNoise;
-use super::report::Ranked;
 use crate::data::Measured;
-use crate::effects::EffectKind;
+use crate::diagnose::candidates::{Candidate, Prepared};
+use crate::diagnose::explain::report::Ranked;
+use crate::diagnose::fit::{corrected, corrected_in, fit, fit_windowed, Windows};
+use crate::diagnose::Options;
+use crate::effects::{Effect, Window};
 use dynamics_runtime::{JointKind, Robot};
 
 /// Why traces could not be made.
@@ -33,7 +34,7 @@ pub enum TracesError {
     },
     /// The stated sensor noise cannot be used.
     #[error(transparent)]
-    Noise(#[from] super::DiagnoseError),
+    Noise(#[from] crate::diagnose::DiagnoseError),
 }
 
 /// One data set's series (samples with a full smoothing window only).
@@ -73,12 +74,17 @@ pub struct Traces {
     pub train: DataTraces,
     /// Held-out data.
     pub holdout: DataTraces,
+    /// The chosen effect as fitted on the training data (`None`: none
+    /// chosen).
+    pub effect: Option<Effect>,
+    /// Its window on the training data, when it starts and stops.
+    pub window: Option<Window>,
 }
 
 /// Series of `train` and `holdout` for `robot`, with `chosen` (normally
 /// `report.which.ranked[0]` when the verdict is not `none`) fitted on
-/// `train`; `noise`: the sensor noise the diagnosis was told
-/// (`Options::noise`), for the same noise floors.
+/// `train` as the diagnosis with `options` fitted it (the same noise
+/// floors, the same windows).
 ///
 /// ```
 /// use dynamics_sim2real::data::Measured;
@@ -87,7 +93,7 @@ pub struct Traces {
 /// fn plot<R: Robot<3> + Clone + Sync>(robot: &R, train: &Measured<3>, holdout: &Measured<3>) {
 ///     let report = diagnose(robot, train, holdout, &Options::default(), &|_, _| {}).expect("enough data");
 ///     let chosen = report.which.verdict.names_effect().then(|| &report.which.ranked[0]);
-///     let t = traces(robot, train, holdout, chosen, None).expect("a candidate of this robot");
+///     let t = traces(robot, train, holdout, chosen, &Options::default()).expect("a candidate of this robot");
 ///     assert_eq!(t.train.joints.len(), 3);
 /// }
 /// ```
@@ -96,15 +102,28 @@ pub fn traces<R: Robot<N> + Clone, const N: usize>(
     train: &Measured<N>,
     holdout: &Measured<N>,
     chosen: Option<&Ranked>,
-    noise: Option<&SensorNoise>,
+    options: &Options,
 ) -> Result<Traces, TracesError> {
     let candidate = chosen.map(candidate::<R, N>).transpose()?;
-    let levels = noise.map(SensorNoise::per_joint::<N>).transpose()?;
+    let levels = options
+        .noise
+        .as_ref()
+        .map(|n| n.per_joint::<N>())
+        .transpose()?;
     let p = Prepared::with_noise(robot, train, levels.as_ref());
     let h = Prepared::with_noise(robot, holdout, levels.as_ref());
-    let fitted = candidate.map(|c| fit::<R, N>(c, &p));
-    let series = |p: &Prepared<N>| -> DataTraces {
-        let after = fitted.as_ref().map(|f| f.corrected(p));
+    let mut windows = Windows::new();
+    let fitted = candidate.map(|c| {
+        let f = fit::<R, N>(c, &p);
+        match fit_windowed(&f, &p, options.nesting_margin) {
+            Some((g, w)) => {
+                windows.push((c, w));
+                g
+            }
+            None => f,
+        }
+    });
+    let series = |p: &Prepared<N>, after: Option<Vec<nalgebra::SVector<f64, N>>>| -> DataTraces {
         let (a, z) = p.sig.range;
         let joints = (0..N)
             .map(|j| {
@@ -140,64 +159,46 @@ pub fn traces<R: Robot<N> + Clone, const N: usize>(
             joints,
         }
     };
+    // The training record's window is the one fitted there.
+    let train = {
+        let after = fitted.as_ref().map(|f| match windows.first() {
+            Some(&(_, w)) => corrected_in(f, &p, Some(w)),
+            None => f.corrected(&p),
+        });
+        series(&p, after)
+    };
+    let holdout = series(&h, fitted.as_ref().map(|f| corrected(f, &h, &windows)));
     Ok(Traces {
-        train: series(&p),
-        holdout: series(&h),
+        train,
+        holdout,
+        effect: fitted.as_ref().and_then(|f| f.effect()),
+        window: windows.first().map(|w| w.1),
     })
 }
 
-/// The candidate a ranked entry stands for.
+/// The candidate a ranked entry stands for ([`Candidate::named`]).
 fn candidate<R: Robot<N>, const N: usize>(r: &Ranked) -> Result<Candidate, TracesError> {
     let place = r.joint.clone().or(r.point.clone()).unwrap_or_default();
     let err = |cause: String| TracesError::Entry {
-        kind: r.kind.clone(),
+        kind: r.kind.name().to_string(),
         place: place.clone(),
         cause,
     };
-    let kind: EffectKind = r.kind.parse().map_err(|e| err(format!("{e}")))?;
-    let joint = || -> Result<usize, TracesError> {
-        let name = r
-            .joint
-            .as_deref()
-            .ok_or_else(|| err("no joint named".into()))?;
-        R::joint_index(name).ok_or_else(|| {
+    let joint = match r.joint.as_deref() {
+        Some(name) => Some(R::joint_index(name).ok_or_else(|| {
             err(format!(
                 "robot `{}` has no joint `{name}` (joints: {})",
                 R::NAME,
                 R::JOINT_NAMES.join(", ")
             ))
-        })
+        })?),
+        None => None,
     };
-    let parameter = |name: &str| -> Result<f64, TracesError> {
+    let value = |name: &str| {
         r.parameters
             .iter()
             .find(|p| p.name == name)
             .map(|p| p.value)
-            .ok_or_else(|| err(format!("no parameter `{name}`")))
     };
-    Ok(match kind {
-        EffectKind::CoulombFriction => Candidate::Coulomb(joint()?, SIGN_SMOOTHING),
-        EffectKind::ViscousFriction => Candidate::Viscous(joint()?),
-        EffectKind::StribeckFriction => Candidate::Stribeck(joint()?, parameter("vs")?),
-        EffectKind::Armature => Candidate::Armature(joint()?),
-        EffectKind::PayloadMass => Candidate::Payload,
-        EffectKind::EnvironmentResistance => Candidate::Environment(parameter("alpha")?),
-        EffectKind::EncoderOffset => Candidate::EncoderOffset(joint()?),
-        EffectKind::TimeDelay => match r.channel.as_deref() {
-            Some("positions") => Candidate::LatePositions,
-            Some("effort") => Candidate::LateEffort(parameter("delay")?),
-            _ => Candidate::TimeDelay,
-        },
-        EffectKind::JointElasticity => Candidate::Elasticity(joint()?),
-        EffectKind::Backlash => Candidate::Backlash(joint()?),
-        EffectKind::EffortScale => Candidate::EffortScale(joint()?),
-        EffectKind::EffortOffset => Candidate::EffortOffset(joint()?),
-        EffectKind::JointSpring => Candidate::Spring(joint()?),
-        EffectKind::InertialParameters => {
-            return Err(err(
-                "`inertial_parameters` has no single-effect candidate".into()
-            ))
-        }
-        EffectKind::None => return Err(err("`none` is not an effect to fit".into())),
-    })
+    Candidate::named(r.kind, joint, r.channel, &value).map_err(|e| err(e.to_string()))
 }

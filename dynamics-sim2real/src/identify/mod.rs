@@ -176,7 +176,7 @@ pub fn identify<R: Robot<N>, const N: usize>(
 ) -> Result<Identification, IdentifyError> {
     let cols = columns::all::<R, N>();
     let prepare = |m: &Measured<N>, which| {
-        let sig = Signals::new(robot, m);
+        let sig = Signals::unfloored(robot, m);
         let stride = (options.row_interval / sig.dt.max(1e-12)).round().max(1.0) as usize;
         let rows = columns::rows(&sig, stride);
         if rows.len() * N <= cols.len() && which == "training" {

@@ -136,7 +136,7 @@ fn an_effort_that_the_model_mostly_lacks_is_not_a_flipped_column() {
             .which
             .effects
             .iter()
-            .any(|e| e.kind == "joint_spring" && e.joint.as_deref() == Some("j1")),
+            .any(|e| e.kind.name() == "joint_spring" && e.joint.as_deref() == Some("j1")),
         "{:?}",
         report.which.effects
     );

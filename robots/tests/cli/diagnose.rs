@@ -120,11 +120,11 @@ fn report_traces_carry_the_fitted_effect() {
         diagnose(&robot, &train, &holdout, &Options::default(), &|_, _| {}).expect("diagnosed");
     let top = &report.which.ranked[0];
     assert_eq!(
-        (top.kind.as_str(), top.joint.as_deref()),
+        (top.kind.name(), top.joint.as_deref()),
         ("coulomb_friction", Some("j3"))
     );
     let fc = top.parameters[0].value;
-    let t = traces(&robot, &train, &holdout, Some(top), None).expect("traces");
+    let t = traces(&robot, &train, &holdout, Some(top), &Options::default()).expect("traces");
     for data in [&t.train, &t.holdout] {
         for (j, jt) in data.joints.iter().enumerate() {
             assert_eq!(jt.measured.len(), data.t.len());
@@ -157,7 +157,8 @@ fn report_traces_carry_the_fitted_effect() {
     // Every ranked entry (every kind of the vocabulary, with its grid
     // parameter) maps back to a candidate whose series are finite.
     for r in &report.which.ranked {
-        let t = traces(&robot, &train, &holdout, Some(r), None).expect("every ranked entry");
+        let t = traces(&robot, &train, &holdout, Some(r), &Options::default())
+            .expect("every ranked entry");
         for jt in t.train.joints.iter().chain(&t.holdout.joints) {
             assert!(
                 jt.corrected.iter().all(|x| x.is_finite()),
@@ -168,12 +169,13 @@ fn report_traces_carry_the_fitted_effect() {
         }
     }
     // Without an effect, "corrected" is the nominal model.
-    let t = traces(&robot, &train, &holdout, None, None).expect("traces");
+    let t = traces(&robot, &train, &holdout, None, &Options::default()).expect("traces");
     assert!(t.holdout.joints.iter().all(|j| j.corrected == j.nominal));
     // A ranked entry naming a joint the robot lacks is an error, not a panic.
     let mut wrong = top.clone();
     wrong.joint = Some("j9".into());
-    let err = traces(&robot, &train, &holdout, Some(&wrong), None).expect_err("no j9");
+    let err =
+        traces(&robot, &train, &holdout, Some(&wrong), &Options::default()).expect_err("no j9");
     assert!(err.to_string().contains("no joint `j9`"), "{err}");
 }
 
@@ -196,12 +198,12 @@ fn coulomb_friction_where_the_velocity_never_reverses_is_ambiguous() {
     let v = &report.which.verdict;
     eprintln!("{v:?}");
     assert_eq!(
-        (v.kind.as_str(), v.joint.as_deref(), v.status.as_str()),
+        (v.kind.name(), v.joint.as_deref(), v.status.name()),
         ("coulomb_friction", Some("j3"), "ambiguous")
     );
     let rival = v.rival.as_ref().expect("a rival");
     assert_eq!(
-        (rival.kind.as_str(), rival.joint.as_deref()),
+        (rival.kind.name(), rival.joint.as_deref()),
         ("effort_offset", Some("j3"))
     );
 }

@@ -165,7 +165,7 @@ fn case_on<R: Robot<N> + Clone + Sync, const N: usize>(
         .which
         .effects
         .iter()
-        .filter(|x| x.kind == "inertial_parameters")
+        .filter(|x| x.kind.name() == "inertial_parameters")
     {
         let name = x.point.clone().unwrap_or_default();
         let l = R::LINK_NAMES
@@ -180,10 +180,10 @@ fn case_on<R: Robot<N> + Clone + Sync, const N: usize>(
     let (mut said, mut rotor) = (Vec::new(), Vec::new());
     for x in &report.which.effects {
         let p = x.joint.clone().or(x.point.clone()).unwrap_or_default();
-        let mut names = vec![(x.kind.clone(), p.clone())];
+        let mut names = vec![(x.kind.to_string(), p.clone())];
         if let Some(r) = &x.ambiguous_with {
             names.push((
-                r.kind.clone(),
+                r.kind.to_string(),
                 r.joint.clone().or(r.point.clone()).unwrap_or_default(),
             ));
         }
@@ -195,10 +195,10 @@ fn case_on<R: Robot<N> + Clone + Sync, const N: usize>(
             }
         }
         rotor.push(
-            !ok && x.kind == "armature"
+            !ok && x.kind.name() == "armature"
                 && rotor_only.iter().zip(&truth).any(|(r, t)| *r && t.1 == p),
         );
-        said.push((x.kind.clone(), p, ok));
+        said.push((x.kind.to_string(), p, ok));
     }
     eprintln!(
         "case {i:3} {name:9} {case:?} {excitation:?} level {level:.2}: shrink {:.3} (rms {:.3}) \n    truth {:?}\n    said  {:?}",

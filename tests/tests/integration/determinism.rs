@@ -19,7 +19,7 @@ fn named(r: &Report) -> Vec<(String, String, Vec<f64>)> {
         .iter()
         .map(|e| {
             (
-                e.kind.clone(),
+                e.kind.to_string(),
                 e.joint.clone().or(e.point.clone()).unwrap_or_default(),
                 e.parameters.iter().map(|p| p.value).collect(),
             )

@@ -48,14 +48,14 @@ fn a_gap_no_candidate_explains_is_unexplained() {
         .fold(0.0, f64::max);
     assert!(gap > 10.0, "the withheld friction is a clear gap: {gap}");
     assert_eq!(
-        (v.kind.as_str(), v.status.as_str()),
+        (v.kind.name(), v.status.name()),
         ("unexplained", "unexplained"),
         "{v:?}"
     );
     assert!(!v.names_effect());
     assert_eq!(offered.shrink.fraction, 0.0);
     let all = only(vec![]);
-    assert_eq!(all.which.verdict.kind, "coulomb_friction");
+    assert_eq!(all.which.verdict.kind.name(), "coulomb_friction");
     let _ = std::fs::remove_dir_all(&dir);
 }
 
@@ -113,7 +113,7 @@ fn stated_sensor_noise_gives_the_floor_the_data_show() {
         assert!((0.8..1.25).contains(&stated), "{}: {stated}", e.joint);
         assert!((0.8..1.25).contains(&from_data), "{}: {from_data}", e.joint);
     }
-    assert_eq!(known.which.verdict.kind, "none");
+    assert_eq!(known.which.verdict.kind.name(), "none");
     let bad = run(Some(SensorNoise {
         tau: vec![0.1, f64::NAN, 0.1],
         ..stated

@@ -149,9 +149,9 @@ fn run_case(i: usize, dir: &Path) -> Outcome {
     let first = report.which.ranked.first();
     // `none` and `unexplained` name no effect: they are said as such.
     let said = if v.names_effect() {
-        first.map(|r| r.kind.clone()).unwrap_or_default()
+        first.map(|r| r.kind.to_string()).unwrap_or_default()
     } else {
-        v.kind.clone()
+        v.kind.to_string()
     };
     let said_joint = if v.names_effect() {
         first.and_then(|r| r.joint.clone())
@@ -169,7 +169,7 @@ fn run_case(i: usize, dir: &Path) -> Outcome {
         truth.distinct_snr,
         report.shrink.fraction,
         truth.effect,
-        report.which.ranked.iter().take(2).map(|r| (r.kind.as_str(), r.delta_aicc.round(), (r.holdout_share * 100.0).round())).collect::<Vec<_>>()
+        report.which.ranked.iter().take(2).map(|r| (r.kind.name(), r.delta_aicc.round(), (r.holdout_share * 100.0).round())).collect::<Vec<_>>()
     );
     // A miss: the top three, with their fitted parameters.
     if said != truth.kind && truth.kind != "none" {

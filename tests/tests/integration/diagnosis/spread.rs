@@ -81,7 +81,8 @@ fn diagnosed_stiffness_spread_matches_a_noise_bootstrap() {
                                 .ranked
                                 .iter()
                                 .find(|r| {
-                                    r.kind == "joint_elasticity" && r.joint.as_deref() == Some("j1")
+                                    r.kind.name() == "joint_elasticity"
+                                        && r.joint.as_deref() == Some("j1")
                                 })
                                 .expect("elasticity at j1 ranked");
                             let p = entry

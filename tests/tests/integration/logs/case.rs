@@ -110,9 +110,9 @@ pub(super) fn run_case(i: usize, dir: &std::path::Path, only: &[usize]) -> Outco
     let v = &report.which.verdict;
     let first = report.which.ranked.first();
     let said = if v.names_effect() {
-        first.map(|r| r.kind.clone()).unwrap_or_default()
+        first.map(|r| r.kind.to_string()).unwrap_or_default()
     } else {
-        v.kind.clone()
+        v.kind.to_string()
     };
     let said_joint = v
         .names_effect()
@@ -136,13 +136,15 @@ pub(super) fn run_case(i: usize, dir: &std::path::Path, only: &[usize]) -> Outco
         .which
         .effects
         .iter()
-        .find(|e| e.kind == truth.kind && e.joint == truth.joint);
+        .find(|e| e.kind.name() == truth.kind && e.joint == truth.joint);
     let found = effect.and_then(|e| e.window.clone());
     let detail = match (&truth.window, said == truth.kind) {
         (Some(w), true) => found.as_ref().is_some_and(|f| {
             (f.start - w.start).abs() < WINDOW_TOLERANCE && (f.end - w.end).abs() < WINDOW_TOLERANCE
         }),
-        (None, true) if late.q > 0.0 || late.tau > 0.0 => v.channel == truth.late,
+        (None, true) if late.q > 0.0 || late.tau > 0.0 => {
+            v.channel.map(|c| c.to_string()) == truth.late
+        }
         _ => true,
     };
     // At 100 Hz, backlash (contact at 40-80 Hz) is beyond what the rate shows.

@@ -1,0 +1,402 @@
+//! The candidate effects, each with the regressor columns it adds to the
+//! torque residual (linear in its parameters), or, for elasticity and
+//! backlash, a motor-side simulation (`motor.rs`) driven by the measured
+//! effort and link motion whose transmitted effort replaces the rigid
+//! joint's.
+
+use nalgebra::SVector;
+
+use super::basis::Basis;
+use super::grids::{ALPHA_GRID, COULOMB_WIDTHS, STRIBECK_GRID};
+use crate::diagnose::candidates::shift::{late_effort_column, late_motion_column};
+use crate::diagnose::signals::Signals;
+use crate::effects::{Effect, EffectKind, SIGN_SMOOTHING};
+
+/// Which stream of a log a delay makes late.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, serde::Serialize)]
+#[serde(rename_all = "snake_case")]
+pub enum Channel {
+    /// Positions and velocities late together against the effort.
+    All,
+    /// The position stream late against velocity and effort.
+    Positions,
+    /// The effort stream late against position and velocity.
+    Effort,
+}
+
+impl Channel {
+    /// The channel's name as the report writes it.
+    pub fn name(self) -> &'static str {
+        match self {
+            Channel::All => "all",
+            Channel::Positions => "positions",
+            Channel::Effort => "effort",
+        }
+    }
+}
+
+impl std::str::FromStr for Channel {
+    type Err = Unnamed;
+    fn from_str(s: &str) -> Result<Self, Self::Err> {
+        [Channel::All, Channel::Positions, Channel::Effort]
+            .into_iter()
+            .find(|c| c.name() == s)
+            .ok_or_else(|| Unnamed::Channel(s.to_string()))
+    }
+}
+
+/// Why a report entry names no candidate ([`Candidate::named`]).
+#[derive(Debug, Clone, PartialEq, thiserror::Error)]
+pub enum Unnamed {
+    /// A kind with no single-effect candidate (`none`, link inertial
+    /// corrections).
+    #[error("`{0}` has no single-effect candidate")]
+    Kind(EffectKind),
+    /// A joint effect without a joint of the robot.
+    #[error("no joint of the robot named")]
+    Joint,
+    /// A grid value the kind needs is missing or not finite.
+    #[error("parameter `{0}` is missing or not a finite number")]
+    Missing(&'static str),
+    /// A late channel that is none of `all`, `positions`, `effort`.
+    #[error("channel `{0}` is none of all, positions, effort")]
+    Channel(String),
+}
+
+impl std::fmt::Display for Channel {
+    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
+        f.write_str(self.name())
+    }
+}
+
+/// A candidate: kind, place, and the fixed value of a nonlinear parameter
+/// searched on a grid (Stribeck velocity, resistance exponent).
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub enum Candidate {
+    /// Coulomb friction at a joint whose sign turns over velocity width
+    /// vw (`tanh(v / vw)`).
+    Coulomb(usize, f64),
+    /// Viscous friction at a joint.
+    Viscous(usize),
+    /// Stribeck friction at a joint with Stribeck velocity vs.
+    Stribeck(usize, f64),
+    /// Rotor inertia at a joint.
+    Armature(usize),
+    /// Point mass at the tip.
+    Payload,
+    /// Resistance at the tip with exponent alpha.
+    Environment(f64),
+    /// Encoder offset at a joint.
+    EncoderOffset(usize),
+    /// Delay of the measured motion (positions and velocities late
+    /// together against the effort).
+    TimeDelay,
+    /// The position channel late against velocity and effort: offered only
+    /// when the measured positions lag the integral of the independently
+    /// measured velocities (`late.rs`).
+    LatePositions,
+    /// The effort channel late against position and velocity (which are
+    /// consistent with each other): the measured effort is the model's
+    /// `delay` earlier (`late.rs`); its column is the secant of the model's
+    /// effort over the delay it holds, s (0: the tangent, its rate).
+    LateEffort(f64),
+    /// Two-mass elastic joint.
+    Elasticity(usize),
+    /// Dead zone between motor and link.
+    Backlash(usize),
+    /// Effort sensor scale at a joint (fitted as scale - 1).
+    EffortScale(usize),
+    /// Effort sensor offset at a joint.
+    EffortOffset(usize),
+    /// A spring at a joint: stiffness and preload (the effort at q = 0). It
+    /// nests the effort offset (stiffness 0) and shares its family.
+    Spring(usize),
+    /// Inertial corrections of a link (index into `Robot::LINK_NAMES`):
+    /// columns from the inertial regressor (`links.rs`), only within the
+    /// compound explanation.
+    Inertial(usize),
+}
+
+impl Candidate {
+    /// The candidate a report entry names (the inverse of the report's
+    /// entries: every place that reads an entry back goes through here):
+    /// its `kind`, its `joint` (index; `None`: none named, or not the
+    /// robot's), the late `channel` of a delay (`None`: `all`), and its
+    /// parameters by name through `value` for the values searched on a
+    /// grid: Coulomb friction's `vw` (sharp when absent), Stribeck's `vs`,
+    /// the resistance's `alpha`, and a late effort's `delay`.
+    ///
+    /// ```
+    /// use dynamics_sim2real::diagnose::{Candidate, Channel};
+    /// use dynamics_sim2real::effects::EffectKind;
+    /// let vw = |n: &str| (n == "vw").then_some(0.15);
+    /// let c = Candidate::named(EffectKind::CoulombFriction, Some(1), None, &vw);
+    /// assert_eq!(c, Ok(Candidate::Coulomb(1, 0.15)));
+    /// let d = |n: &str| (n == "delay").then_some(0.01);
+    /// let late = Candidate::named(EffectKind::TimeDelay, None, Some(Channel::Effort), &d);
+    /// assert_eq!(late, Ok(Candidate::LateEffort(0.01)));
+    /// ```
+    pub fn named(
+        kind: EffectKind,
+        joint: Option<usize>,
+        channel: Option<Channel>,
+        value: &dyn Fn(&str) -> Option<f64>,
+    ) -> Result<Candidate, Unnamed> {
+        let j = || joint.ok_or(Unnamed::Joint);
+        let grid = |name: &'static str| {
+            value(name)
+                .filter(|v| v.is_finite())
+                .ok_or(Unnamed::Missing(name))
+        };
+        Ok(match kind {
+            EffectKind::None | EffectKind::InertialParameters => return Err(Unnamed::Kind(kind)),
+            EffectKind::CoulombFriction => {
+                Candidate::Coulomb(j()?, grid("vw").unwrap_or(SIGN_SMOOTHING))
+            }
+            EffectKind::ViscousFriction => Candidate::Viscous(j()?),
+            EffectKind::StribeckFriction => Candidate::Stribeck(j()?, grid("vs")?),
+            EffectKind::Armature => Candidate::Armature(j()?),
+            EffectKind::PayloadMass => Candidate::Payload,
+            EffectKind::EnvironmentResistance => Candidate::Environment(grid("alpha")?),
+            EffectKind::EncoderOffset => Candidate::EncoderOffset(j()?),
+            EffectKind::TimeDelay => match channel {
+                None | Some(Channel::All) => Candidate::TimeDelay,
+                Some(Channel::Positions) => Candidate::LatePositions,
+                Some(Channel::Effort) => Candidate::LateEffort(grid("delay")?),
+            },
+            EffectKind::JointElasticity => Candidate::Elasticity(j()?),
+            EffectKind::Backlash => Candidate::Backlash(j()?),
+            EffectKind::EffortScale => Candidate::EffortScale(j()?),
+            EffectKind::EffortOffset => Candidate::EffortOffset(j()?),
+            EffectKind::JointSpring => Candidate::Spring(j()?),
+        })
+    }
+
+    /// The late channel a delay candidate names: `all` (positions and
+    /// velocities late together against the effort), `positions` or
+    /// `effort`; `None` for every other candidate.
+    pub fn channel(self) -> Option<Channel> {
+        match self {
+            Candidate::TimeDelay => Some(Channel::All),
+            Candidate::LatePositions => Some(Channel::Positions),
+            Candidate::LateEffort(_) => Some(Channel::Effort),
+            _ => None,
+        }
+    }
+
+    /// Every candidate for a robot with N joints.
+    pub fn all<const N: usize>(kinds: &[EffectKind]) -> Vec<Candidate> {
+        let mut out = Vec::new();
+        let want = |k: EffectKind| kinds.is_empty() || kinds.contains(&k);
+        for j in 0..N {
+            if want(EffectKind::CoulombFriction) {
+                out.extend(COULOMB_WIDTHS.iter().map(|&w| Candidate::Coulomb(j, w)));
+            }
+            if want(EffectKind::ViscousFriction) {
+                out.push(Candidate::Viscous(j));
+            }
+            if want(EffectKind::StribeckFriction) {
+                out.extend(STRIBECK_GRID.iter().map(|&v| Candidate::Stribeck(j, v)));
+            }
+            if want(EffectKind::Armature) {
+                out.push(Candidate::Armature(j));
+            }
+            if want(EffectKind::EncoderOffset) {
+                out.push(Candidate::EncoderOffset(j));
+            }
+            if want(EffectKind::JointElasticity) {
+                out.push(Candidate::Elasticity(j));
+            }
+            if want(EffectKind::Backlash) {
+                out.push(Candidate::Backlash(j));
+            }
+            if want(EffectKind::EffortScale) {
+                out.push(Candidate::EffortScale(j));
+            }
+            if want(EffectKind::EffortOffset) {
+                out.push(Candidate::EffortOffset(j));
+            }
+            if want(EffectKind::JointSpring) {
+                out.push(Candidate::Spring(j));
+            }
+        }
+        if want(EffectKind::PayloadMass) {
+            out.push(Candidate::Payload);
+        }
+        if want(EffectKind::EnvironmentResistance) {
+            out.extend(ALPHA_GRID.iter().map(|&a| Candidate::Environment(a)));
+        }
+        if want(EffectKind::TimeDelay) {
+            out.push(Candidate::TimeDelay);
+        }
+        out
+    }
+
+    /// Its kind.
+    pub fn kind(&self) -> EffectKind {
+        match self {
+            Candidate::Coulomb(..) => EffectKind::CoulombFriction,
+            Candidate::Viscous(_) => EffectKind::ViscousFriction,
+            Candidate::Stribeck(..) => EffectKind::StribeckFriction,
+            Candidate::Armature(_) => EffectKind::Armature,
+            Candidate::Payload => EffectKind::PayloadMass,
+            Candidate::Environment(_) => EffectKind::EnvironmentResistance,
+            Candidate::EncoderOffset(_) => EffectKind::EncoderOffset,
+            Candidate::TimeDelay | Candidate::LatePositions | Candidate::LateEffort(_) => {
+                EffectKind::TimeDelay
+            }
+            Candidate::Elasticity(_) => EffectKind::JointElasticity,
+            Candidate::Backlash(_) => EffectKind::Backlash,
+            Candidate::EffortScale(_) => EffectKind::EffortScale,
+            Candidate::EffortOffset(_) => EffectKind::EffortOffset,
+            Candidate::Spring(_) => EffectKind::JointSpring,
+            Candidate::Inertial(_) => EffectKind::InertialParameters,
+        }
+    }
+
+    /// Whether it is a Coulomb friction wider than the sharp one: its width
+    /// is one more (grid) parameter, which it must earn against the sharp
+    /// one by the nesting margin (`rank.rs`, `compound/select.rs`).
+    pub fn widened(&self) -> bool {
+        matches!(*self, Candidate::Coulomb(_, w) if w > SIGN_SMOOTHING)
+    }
+
+    /// Its joint, for joint effects.
+    pub fn joint(&self) -> Option<usize> {
+        match *self {
+            Candidate::Coulomb(j, _)
+            | Candidate::Viscous(j)
+            | Candidate::Stribeck(j, _)
+            | Candidate::Armature(j)
+            | Candidate::EncoderOffset(j)
+            | Candidate::Elasticity(j)
+            | Candidate::Backlash(j)
+            | Candidate::EffortScale(j)
+            | Candidate::EffortOffset(j)
+            | Candidate::Spring(j) => Some(j),
+            _ => None,
+        }
+    }
+
+    /// Names of its linear parameters and whether each must be >= 0.
+    pub fn linear_parameters(&self) -> &'static [(&'static str, bool)] {
+        match self {
+            Candidate::Coulomb(..) => &[("fc", true)],
+            Candidate::Viscous(_) => &[("fv", true)],
+            Candidate::Stribeck(..) => &[("fc", true), ("fs_minus_fc", true)],
+            Candidate::Armature(_) => &[("inertia", true)],
+            Candidate::Payload => &[("mass", true)],
+            Candidate::Environment(_) => &[("mu", true)],
+            Candidate::EncoderOffset(_) => &[("offset", false)],
+            Candidate::TimeDelay | Candidate::LatePositions | Candidate::LateEffort(_) => {
+                &[("delay", true)]
+            }
+            Candidate::EffortScale(_) => &[("scale_minus_one", false)],
+            Candidate::EffortOffset(_) => &[("offset", false)],
+            Candidate::Spring(_) => &[("stiffness", true), ("preload", false)],
+            Candidate::Elasticity(_) | Candidate::Backlash(_) | Candidate::Inertial(_) => &[],
+        }
+    }
+
+    /// Regressor columns at sample `k`: the extra drive effort per unit of
+    /// each linear parameter.
+    pub fn columns<const N: usize>(
+        &self,
+        sig: &Signals<N>,
+        basis: &Basis<N>,
+        k: usize,
+    ) -> [SVector<f64, N>; 2] {
+        let mut c = [SVector::zeros(); 2];
+        let qd = &sig.qd[k];
+        match *self {
+            Candidate::Coulomb(j, w) => {
+                let i = COULOMB_WIDTHS.iter().position(|&g| g == w).unwrap_or(0);
+                c[0][j] = basis.coulomb[i][k][j];
+            }
+            Candidate::Viscous(j) => c[0][j] = qd[j],
+            Candidate::Stribeck(j, vs) => {
+                c[0][j] = basis.sign[k][j];
+                let i = STRIBECK_GRID.iter().position(|&g| g == vs).unwrap_or(0);
+                c[1][j] = basis.stribeck[i][k][j];
+            }
+            Candidate::Armature(j) => c[0][j] = basis.qdd[k][j],
+            Candidate::Payload => {
+                c[0] = basis.jac[k].transpose() * (basis.tip_acc[k] - basis.gravity)
+            }
+            Candidate::Environment(alpha) => {
+                let v = basis.jac[k] * qd;
+                let s = v.norm();
+                if s > 0.0 {
+                    c[0] = basis.jac[k].transpose() * (v * s.powf(alpha - 1.0));
+                }
+            }
+            Candidate::EncoderOffset(j) => c[0] = -basis.k[k].column(j),
+            // The motion d late: the model misses d times the effort's rate.
+            Candidate::TimeDelay => c[0] = late_motion_column(sig, k),
+            // Positions d late: the model is evaluated at q - d qd, and
+            // misses d K qd.
+            Candidate::LatePositions => c[0] = basis.k[k] * qd,
+            // The effort d late: the model's effort d earlier, which misses
+            // -d times its rate.
+            Candidate::LateEffort(d) => c[0] = late_effort_column(sig, k, d),
+            Candidate::EffortScale(j) => c[0][j] = sig.model[k][j],
+            Candidate::EffortOffset(j) => c[0][j] = 1.0,
+            // The drive holds the spring: stiffness q + preload.
+            Candidate::Spring(j) => {
+                c[0][j] = sig.q[k][j];
+                c[1][j] = 1.0;
+            }
+            Candidate::Elasticity(_) | Candidate::Backlash(_) | Candidate::Inertial(_) => {}
+        }
+        c
+    }
+
+    /// The effect with fitted linear parameters `theta`.
+    pub fn effect(&self, theta: &[f64]) -> Option<Effect> {
+        let p = |i: usize| theta.get(i).copied().unwrap_or(0.0);
+        Some(match *self {
+            Candidate::Coulomb(joint, vw) => Effect::CoulombFriction {
+                joint,
+                fc: p(0),
+                vw,
+            },
+            Candidate::Viscous(joint) => Effect::ViscousFriction { joint, fv: p(0) },
+            Candidate::Stribeck(joint, vs) => Effect::StribeckFriction {
+                joint,
+                fc: p(0),
+                fs: p(0) + p(1),
+                vs,
+            },
+            Candidate::Armature(joint) => Effect::Armature {
+                joint,
+                inertia: p(0),
+            },
+            Candidate::Payload => Effect::PayloadMass { mass: p(0) },
+            Candidate::Environment(alpha) => Effect::EnvironmentResistance { mu: p(0), alpha },
+            Candidate::EncoderOffset(joint) => Effect::EncoderOffset {
+                joint,
+                offset: p(0),
+            },
+            Candidate::TimeDelay | Candidate::LatePositions => Effect::TimeDelay { delay: p(0) },
+            // The motion early against the effort: a negative delay, which
+            // only the held-out simulation reads (`horizon.rs`).
+            Candidate::LateEffort(_) => Effect::TimeDelay { delay: -p(0) },
+            Candidate::EffortScale(joint) => Effect::EffortScale {
+                joint,
+                scale: 1.0 + p(0),
+            },
+            Candidate::EffortOffset(joint) => Effect::EffortOffset {
+                joint,
+                offset: p(0),
+            },
+            Candidate::Spring(joint) => Effect::JointSpring {
+                joint,
+                stiffness: p(0),
+                preload: p(1),
+            },
+            Candidate::Elasticity(_) | Candidate::Backlash(_) | Candidate::Inertial(_) => {
+                return None
+            }
+        })
+    }
+}

@@ -1,0 +1,129 @@
+//! Link inertial corrections as terms of the compound explanation: the
+//! inertial regressor `d tau / d pi_l` of every link (the ten parameters
+//! of `Robot::inertial_regressor`, Pinocchio's order) along the measured
+//! motion, smoothed once more like every column built from the
+//! acceleration estimate, whitened on the fit's rows; reduced per link to
+//! the combinations these data determine (the right singular vectors of
+//! the link's columns whose singular value is at least [`IDENTIFIABLE`]
+//! of the largest): a link's correction is reported as the minimum-norm
+//! parameter change along them.
+
+use nalgebra::{DMatrix, SMatrix, SVector};
+
+use crate::diagnose::candidates::Prepared;
+use dynamics_runtime::Robot;
+
+/// Relative singular value below which a combination of a link's
+/// parameters counts as not determined by the data.
+pub const IDENTIFIABLE: f64 = 1e-3;
+
+/// Per link, per inertial parameter (Pinocchio's order), the whitened
+/// regressor column over the fit's rows.
+pub type LinkColumns = Vec<Vec<Vec<f64>>>;
+
+/// One link's determined combinations.
+#[derive(Debug, Clone)]
+pub struct LinkBasis {
+    /// Link index into `Robot::LINK_NAMES`.
+    pub link: usize,
+    /// 10 x r: the combinations (orthonormal columns).
+    pub v: DMatrix<f64>,
+}
+
+/// Whitened regressor columns of every link on the rows of `p`, each
+/// `[link][parameter]` a column of `p.n()` entries (`None` when the robot
+/// does not give its regressor).
+pub fn regressor_columns<R: Robot<N>, const N: usize>(
+    robot: &R,
+    p: &Prepared<N>,
+) -> Option<LinkColumns> {
+    let links = R::LINK_NAMES.len();
+    if links == 0 {
+        return None;
+    }
+    let sig = &p.sig;
+    let h = sig.sg.half();
+    let w = sig.sg.weights(0);
+    let (a, z) = sig.range;
+    // The regressor at every sample a row's window reaches.
+    let mut y = vec![vec![SMatrix::<f64, N, 10>::zeros(); links]; sig.t.len()];
+    let mut need = vec![false; sig.t.len()];
+    for &k in &p.rows {
+        for m in k.saturating_sub(h)..(k + h + 1).min(sig.t.len()) {
+            need[m] = true;
+        }
+    }
+    for k in a..z {
+        if need[k]
+            && robot
+                .inertial_regressor(&sig.q[k], &sig.qd[k], &sig.qdd[k], &mut y[k])
+                .is_err()
+        {
+            return None;
+        }
+    }
+    let mut out: Vec<Vec<Vec<f64>>> = (0..links)
+        .map(|_| (0..10).map(|_| Vec::with_capacity(p.n())).collect())
+        .collect();
+    for &k in &p.rows {
+        for (l, link) in out.iter_mut().enumerate() {
+            let mut s = SMatrix::<f64, N, 10>::zeros();
+            for (i, wi) in w.iter().enumerate() {
+                let m = k + i;
+                if m >= h && m - h < sig.t.len() {
+                    s += y[m - h][l] * *wi;
+                }
+            }
+            for (c, col) in link.iter_mut().enumerate() {
+                for j in 0..N {
+                    let x = s[(j, c)] / sig.floor[j];
+                    col.push(if x.is_finite() { x } else { 0.0 });
+                }
+            }
+        }
+    }
+    Some(out)
+}
+
+/// A link's determined combinations from its whitened columns.
+pub fn link_basis(link: usize, cols: &[Vec<f64>]) -> Option<LinkBasis> {
+    let n = cols.first()?.len();
+    let x = DMatrix::from_fn(n, 10, |r, c| cols[c][r]);
+    let g = x.tr_mul(&x);
+    let eig = g.symmetric_eigen();
+    let top = eig.eigenvalues.iter().cloned().fold(0.0, f64::max);
+    if !(top > 0.0 && top.is_finite()) {
+        return None;
+    }
+    let keep: Vec<usize> = (0..10)
+        .filter(|&i| eig.eigenvalues[i] >= IDENTIFIABLE * IDENTIFIABLE * top)
+        .collect();
+    if keep.is_empty() {
+        return None;
+    }
+    let v = eig.eigenvectors.select_columns(&keep);
+    Some(LinkBasis { link, v })
+}
+
+/// The link's combinations as columns: `X v`.
+pub fn combined(cols: &[Vec<f64>], basis: &LinkBasis) -> Vec<Vec<f64>> {
+    let n = cols.first().map_or(0, |c| c.len());
+    (0..basis.v.ncols())
+        .map(|r| {
+            (0..n)
+                .map(|i| (0..10).map(|c| cols[c][i] * basis.v[(c, r)]).sum())
+                .collect()
+        })
+        .collect()
+}
+
+/// The parameter change `v theta` of a link.
+pub fn delta(basis: &LinkBasis, theta: &[f64]) -> SVector<f64, 10> {
+    let mut d = SVector::<f64, 10>::zeros();
+    for (r, th) in theta.iter().enumerate().take(basis.v.ncols()) {
+        for c in 0..10 {
+            d[c] += basis.v[(c, r)] * th;
+        }
+    }
+    d
+}

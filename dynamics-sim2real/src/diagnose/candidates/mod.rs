@@ -1,0 +1,65 @@
+//! The candidates: every unmodelled effect of the vocabulary at every place
+//! it can act, with what a fit needs of it.
+//!
+//! - `candidate.rs`: [`Candidate`] (kind, place, grid value) and its
+//!   columns, the regressor it adds to the torque residual;
+//! - `grids.rs`: the values searched for nonlinear parameters and the
+//!   bounds of linear ones;
+//! - `motor.rs`: the motor side's parameters (elasticity, backlash), their
+//!   grid and physical box;
+//! - `records.rs`: both records of a diagnosis prepared and checked;
+//! - `prepared.rs`: one record made ready for fitting ([`Prepared`]):
+//!   signals, the column cache (`basis.rs`), rows, noise levels;
+//! - `columns.rs`: a candidate's whitened columns on the fit's rows;
+//! - `force_filter/`: friction columns filtered as the residual shows a
+//!   force the motion takes;
+//! - `shift.rs`, `late.rs`: late channels (motion, positions, effort);
+//! - `links.rs`: link inertial corrections, the regressor's columns per
+//!   link and the combinations the data determine;
+//! - `visibility.rs`: what the data can show, checked before anything is
+//!   fitted; the candidates they cannot identify are dropped.
+
+mod basis;
+mod candidate;
+mod columns;
+mod force_filter;
+mod grids;
+mod late;
+mod links;
+mod motor;
+mod prepared;
+mod records;
+mod shift;
+mod visibility;
+
+pub use basis::Friction;
+pub use candidate::{Candidate, Channel, Unnamed};
+pub use columns::{linear_columns, lower_bounds, whitened};
+pub use grids::EFFORT_SCALE_LIMIT;
+pub use late::offer_delays;
+pub use links::{combined, delta, link_basis, regressor_columns, LinkBasis};
+pub use motor::{motor_feasible, motor_grid, signature_limit, MotorGuess};
+pub use prepared::Prepared;
+pub use records::Records;
+pub use visibility::{identifiable, Excitation};
+
+use crate::diagnose::Options;
+
+/// The candidates of `options.kinds` the training record of `records` can
+/// identify, with the late channels it shows (what is left out, and why,
+/// goes to the records' warnings).
+pub fn offer<const N: usize>(records: &mut Records<N>, options: &Options) -> Vec<Candidate> {
+    let mut candidates = identifiable(
+        Candidate::all::<N>(&options.kinds),
+        &records.excitation,
+        records.p.sig.dt,
+        &mut records.warnings,
+    );
+    offer_delays(
+        &mut candidates,
+        &records.train,
+        &records.p,
+        &mut records.warnings,
+    );
+    candidates
+}

@@ -1,0 +1,171 @@
+//! The explanation on the held-out record: the chosen set's columns on
+//! its rows (windowed effects limited to the windows found there), the
+//! residual any subset of the set leaves with given parameters, and the
+//! measures of a gap (above the noise floor, plain RMS).
+
+use nalgebra::{DVector, SVector};
+
+use crate::diagnose::candidates::{combined, linear_columns, Prepared};
+use crate::diagnose::fit::{fixed_column, holdout_window, inside, window_of, Windows};
+use crate::diagnose::select::{without_others, Explanation, Pool};
+
+/// One effect's held-out columns: its free ones and its fixed one.
+type Columns = (Vec<DVector<f64>>, Option<DVector<f64>>);
+
+/// The explanation's held-out side: the set's columns on the held-out rows.
+pub struct Holdout<'a, const N: usize> {
+    h: &'a Prepared<N>,
+    /// Per effect of the set: its free columns and its fixed one.
+    cols: Vec<Columns>,
+    y: DVector<f64>,
+}
+
+/// Effort scale of the plain measure (noise included): the raw effort
+/// minus the model, per row and joint.
+fn raw_residual<const N: usize>(h: &Prepared<N>) -> Vec<f64> {
+    let mut out = Vec::with_capacity(h.n());
+    for &k in &h.rows {
+        for j in 0..N {
+            let x = h.sig.tau_raw[k][j] - h.sig.model[k][j];
+            out.push(if x.is_finite() { x } else { 0.0 });
+        }
+    }
+    out
+}
+
+impl<'a, const N: usize> Holdout<'a, N> {
+    /// The columns of the chosen set on `h`.
+    pub fn new(h: &'a Prepared<N>, links: &[Vec<Vec<f64>>], pool: &Pool, e: &Explanation) -> Self {
+        let hm = without_others(h, pool, &e.set, &e.sol, None);
+        let cols = e
+            .set
+            .iter()
+            .map(|&t| {
+                let term = &pool.terms[t];
+                if let Some(b) = &term.link {
+                    let cols = links
+                        .get(b.link)
+                        .map(|lc| combined(lc, b))
+                        .unwrap_or_else(|| vec![vec![0.0; h.n()]; b.v.ncols()]);
+                    return (cols.into_iter().map(DVector::from_vec).collect(), None);
+                }
+                match term.fixed {
+                    Some(_) => (
+                        vec![],
+                        Some(DVector::from_vec(fixed_column(&term.fit, &hm))),
+                    ),
+                    None => (
+                        linear_columns(term.fit.candidate, h)
+                            .into_iter()
+                            .map(DVector::from_vec)
+                            .collect(),
+                        None,
+                    ),
+                }
+            })
+            .collect();
+        let y = DVector::from_vec(crate::diagnose::candidates::whitened(h, |k| {
+            h.sig.residual[k]
+        }));
+        Holdout { h, cols, y }
+    }
+
+    /// The nominal model's whitened held-out residual.
+    pub fn observed(&self) -> &DVector<f64> {
+        &self.y
+    }
+
+    /// The free held-out columns of the effect at position `i` of the set
+    /// (limited to a window by `window.rs`).
+    pub fn free_mut(&mut self, i: usize) -> &mut [DVector<f64>] {
+        &mut self.cols[i].0
+    }
+
+    /// The whitened held-out residual of the effects at positions `which`
+    /// of the set, with parameters `theta` (one per position).
+    pub fn residual(&self, which: &[usize], theta: &[Vec<f64>]) -> DVector<f64> {
+        let mut r = self.y.clone();
+        for (i, &w) in which.iter().enumerate() {
+            let (free, fixed) = &self.cols[w];
+            for (c, th) in free.iter().zip(&theta[i]) {
+                if th.is_finite() {
+                    r.axpy(-th, c, 1.0);
+                }
+            }
+            if let Some(f) = fixed {
+                r -= f;
+            }
+        }
+        r
+    }
+
+    /// Per joint RMS of a whitened residual, in effort units.
+    pub fn joint_rms(&self, r: &DVector<f64>) -> SVector<f64, N> {
+        let rows = (r.len() / N).max(1);
+        SVector::from_fn(|j, _| {
+            let ms: f64 = (0..rows).map(|i| r[i * N + j].powi(2)).sum::<f64>() / rows as f64;
+            ms.sqrt() * self.h.sig.floor[j]
+        })
+    }
+
+    /// The above-noise torque gap (sum over joints of the squared RMS above
+    /// the floor, in floor units) of a residual.
+    pub fn gap(&self, r: &DVector<f64>) -> f64 {
+        let rms = self.joint_rms(r);
+        (0..N)
+            .map(|j| {
+                let f = self.h.sig.floor[j];
+                (rms[j] * rms[j] - f * f).max(0.0) / (f * f)
+            })
+            .sum()
+    }
+
+    /// The plain RMS of the raw effort residual over all joints once the
+    /// whitened smoothed residual `r` is left (what the effects removed is
+    /// taken from the raw residual).
+    pub fn plain(&self, r: &DVector<f64>) -> f64 {
+        let raw = raw_residual(self.h);
+        let mut s = 0.0;
+        for (i, x) in raw.iter().enumerate() {
+            let j = i % N;
+            let removed = (self.y[i] - r[i]) * self.h.sig.floor[j];
+            s += (x - removed).powi(2);
+        }
+        (s / raw.len().max(1) as f64).sqrt()
+    }
+}
+
+/// 1 - after / before, zero when there was nothing before.
+pub fn fraction(before: f64, after: f64) -> f64 {
+    if before > 0.0 && before.is_finite() && after.is_finite() {
+        1.0 - after / before
+    } else {
+        0.0
+    }
+}
+
+/// The explanation's windowed effects limited to their held-out windows on
+/// the held-out side (found there by the same search, the training fit's
+/// sign kept).
+pub fn limit_to_windows<const N: usize>(
+    hold: &mut Holdout<N>,
+    h: &Prepared<N>,
+    pool: &Pool,
+    e: &Explanation,
+    windows: &Windows,
+) {
+    for (i, &t) in e.set.iter().enumerate() {
+        let c = pool.terms[t].fit.candidate;
+        if window_of(windows, c).is_none() {
+            continue;
+        }
+        let theta = e.sol.theta[i].first().copied().unwrap_or(0.0);
+        let m = match holdout_window(c, h, theta) {
+            Some(w) => DVector::from_vec(inside(h, &w)),
+            None => DVector::zeros(h.n()),
+        };
+        for col in hold.free_mut(i) {
+            col.component_mul_assign(&m);
+        }
+    }
+}

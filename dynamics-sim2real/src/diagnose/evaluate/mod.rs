@@ -1,0 +1,121 @@
+//! Evaluation: how the model and the explanation do on data, mostly the
+//! held-out record.
+//!
+//! - `holdout.rs`: the explanation's columns on the held-out record and
+//!   the measures of a gap;
+//! - `horizon.rs`: the short-horizon simulation error;
+//! - `yardstick.rs`: the error the same procedure shows for an exact model
+//!   with noisy sensors;
+//! - `gap_windows.rs`: where in time the residual concentrates, by motion
+//!   phase;
+//! - `shrink.rs`: how far the gap shrinks on the held-out record once the
+//!   explanation's effects are added.
+
+mod gap_windows;
+mod holdout;
+mod horizon;
+mod shrink;
+mod yardstick;
+
+pub use gap_windows::GapWindow;
+pub use holdout::{fraction, limit_to_windows, Holdout};
+pub use shrink::ShrinkFigures;
+
+use nalgebra::{DVector, SVector};
+
+use crate::diagnose::candidates::{regressor_columns, Records};
+use crate::diagnose::select::{effects, Selection};
+use crate::Warning;
+use dynamics_runtime::Robot;
+
+/// What the evaluation found.
+pub struct Evaluation<'a, const N: usize> {
+    /// The nominal model's short-horizon prediction error per joint on the
+    /// training record (`None`: the simulation could not be made).
+    pub prediction: Option<SVector<f64, N>>,
+    /// What the same procedure shows for an exact model (`yardstick.rs`).
+    pub prediction_noise: SVector<f64, N>,
+    /// Per joint, where in time the training residual concentrates.
+    pub gap_windows: Vec<Vec<GapWindow>>,
+    /// Warnings of the training record's evaluation.
+    pub training_warnings: Vec<Warning>,
+    /// The explanation on the held-out record.
+    pub hold: Holdout<'a, N>,
+    /// The plain RMS of the held-out effort residual, as a fraction
+    /// removed by the explanation.
+    pub rms_fraction: f64,
+    /// How far the gap shrinks on the held-out record.
+    pub shrink: ShrinkFigures<N>,
+    /// Warnings of the held-out record's evaluation.
+    pub held_out_warnings: Vec<Warning>,
+}
+
+/// The nominal model on the training record of `records` (where the gap
+/// is), and the explanation of `selection` on the held-out record.
+pub fn evaluate<'a, R: Robot<N> + Clone + Sync, const N: usize>(
+    robot: &R,
+    records: &'a Records<N>,
+    selection: &Selection,
+) -> Evaluation<'a, N> {
+    let (p, h) = (&records.p, &records.h);
+    let mut training_warnings = Vec::new();
+    let prediction = horizon::prediction_error(robot, p, &[])
+        .map_err(|reason| {
+            training_warnings.push(Warning::SimulationNotMade {
+                model: "the nominal model (training data)".into(),
+                reason,
+            })
+        })
+        .ok();
+    let prediction_noise = yardstick::prediction_floor(robot, &records.train, p);
+    let gap_windows = (0..N)
+        .map(|j| gap_windows::gap_windows(p, &p.sig.residual, j, 3.0, 5))
+        .collect();
+
+    let (pool, e) = (&selection.pool, &selection.explanation);
+    let hlinks = if selection.with_links {
+        regressor_columns(robot, h).unwrap_or_default()
+    } else {
+        vec![]
+    };
+    let mut hold = Holdout::new(h, &hlinks, pool, e);
+    limit_to_windows(&mut hold, h, pool, e, &selection.windows);
+    let all: Vec<usize> = (0..e.set.len()).collect();
+    let r = hold.residual(&all, &e.sol.theta);
+    let rms_fraction = fraction(hold.plain(&hold.residual(&[], &[])), hold.plain(&r));
+    let after: Option<Vec<SVector<f64, N>>> = (!e.set.is_empty()).then(|| unwhitened(h, &r));
+    let mut held_out_warnings = Vec::new();
+    let shrink = shrink::shrink(
+        robot,
+        &records.holdout,
+        h,
+        after,
+        &effects(pool, e, &p.basis.friction),
+        &mut held_out_warnings,
+    );
+    Evaluation {
+        prediction,
+        prediction_noise,
+        gap_windows,
+        training_warnings,
+        hold,
+        rms_fraction,
+        shrink,
+        held_out_warnings,
+    }
+}
+
+/// A whitened residual over the rows of `h` back in effort units at every
+/// sample (zero off the rows).
+fn unwhitened<const N: usize>(
+    h: &crate::diagnose::candidates::Prepared<N>,
+    r: &DVector<f64>,
+) -> Vec<SVector<f64, N>> {
+    let mut v = vec![SVector::<f64, N>::zeros(); h.sig.t.len()];
+    for (i, &k) in h.rows.iter().enumerate() {
+        for j in 0..N {
+            v[k][j] = r[i * N + j] * h.sig.floor[j];
+        }
+    }
+    v
+}

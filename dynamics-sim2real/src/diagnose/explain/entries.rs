@@ -1,0 +1,251 @@
+//! The compound explanation in the report's words: each effect with its
+//! parameters from the joint fit, its share of the training gap (in the
+//! order of the gains), its held-out contribution (how much the held-out gap
+//! grows when it alone is left out of the set, the others refitted), and
+//! the held-out gap left after each added effect.
+
+use nalgebra::{DMatrix, DVector, SVector};
+
+use super::ranked::ranked_entry;
+use super::report::{EffectWindow, Explained, Parameter, Rival, ShrinkStep};
+use super::words::{add_direction_words, link_words, nominal_words};
+use crate::diagnose::candidates::{delta, Candidate, Friction, LinkBasis};
+use crate::diagnose::evaluate::{fraction, Holdout};
+use crate::diagnose::fit::{window_of, Windows};
+use crate::diagnose::select::{joint_fit, Explanation, Pool, Solution};
+use crate::inertial::{check, complete, describe};
+use dynamics_runtime::Robot;
+
+/// Where a candidate sits: its joint, or its point (the tip, or a link).
+fn place_of<R: Robot<N>, const N: usize>(
+    c: Candidate,
+    tip: &str,
+) -> (Option<String>, Option<String>) {
+    match c {
+        Candidate::Inertial(l) => (None, R::LINK_NAMES.get(l).map(|s| s.to_string())),
+        _ => (
+            c.joint().map(|j| R::JOINT_NAMES[j].to_string()),
+            (c.kind().place() == crate::effects::PlaceKind::Point).then(|| tip.to_string()),
+        ),
+    }
+}
+
+/// The report's entries and the held-out steps.
+pub fn entries<R: Robot<N>, const N: usize>(
+    pool: &Pool,
+    e: &Explanation,
+    hold: &Holdout<N>,
+    tip: &str,
+    aicc0: f64,
+    nominal: &[SVector<f64, 10>],
+    friction: &Friction<N>,
+) -> (Vec<Explained>, Vec<ShrinkStep>) {
+    let n = pool.n();
+    let sse0 = pool.yy();
+    let gap0 = (sse0 - n as f64).max(1e-12);
+    let all: Vec<usize> = (0..e.set.len()).collect();
+    let h_full = hold.residual(&all, &e.sol.theta);
+    let y = hold.observed();
+    let (hgap0, plain0) = (hold.gap(y), hold.plain(y));
+    let hsse = |r: &DVector<f64>| r.norm_squared();
+    let hgap_sse = (hsse(y) - y.len() as f64).max(1e-12);
+    // Prefixes: refitted on the training rows, checked on the held-out.
+    let mut steps = vec![ShrinkStep {
+        effects: 0,
+        added: "nominal model".into(),
+        torque_gap: hgap0.sqrt(),
+        torque_fraction: 0.0,
+        rms_fraction: 0.0,
+    }];
+    let mut prev_sse = sse0;
+    let mut shares = Vec::new();
+    for i in 0..e.set.len() {
+        let which: Vec<usize> = (0..=i).collect();
+        let sol: Solution = pool.solve(&e.set[..=i]);
+        shares.push(((prev_sse - sol.sse) / gap0).clamp(0.0, 1.0));
+        prev_sse = sol.sse;
+        let r = hold.residual(&which, &sol.theta);
+        let c = pool.terms[e.set[i]].fit.candidate;
+        let (j, pt) = place_of::<R, N>(c, tip);
+        let place = j.or(pt).unwrap_or_else(|| "all signals".into());
+        let g = hold.gap(&r);
+        steps.push(ShrinkStep {
+            effects: i + 1,
+            added: format!("{} at {place}", c.kind().name()),
+            torque_gap: g.sqrt(),
+            torque_fraction: fraction(hgap0.sqrt(), g.sqrt()),
+            rms_fraction: fraction(plain0, hold.plain(&r)),
+        });
+    }
+    if e.set.is_empty() {
+        steps.clear();
+    }
+    let full = hsse(&h_full);
+    let mut explained: Vec<Explained> = e
+        .set
+        .iter()
+        .enumerate()
+        .map(|(i, &t)| {
+            // Held out without it, the others refitted on training.
+            let rest: Vec<usize> = e.set.iter().copied().filter(|&u| u != t).collect();
+            let which: Vec<usize> = (0..e.set.len()).filter(|&m| m != i).collect();
+            let sol = pool.solve(&rest);
+            let without = hsse(&hold.residual(&which, &sol.theta));
+            let contribution = (without - full) / hgap_sse;
+            let f = joint_fit(pool, t, &e.sol.theta[i], &e.sol.std[i]);
+            let (joint, point) = place_of::<R, N>(f.candidate, tip);
+            let (mut parameters, mut description) = match &pool.terms[t].link {
+                Some(b) => link_parameters(
+                    b,
+                    &e.sol.theta[i],
+                    &e.sol.std[i],
+                    point.as_deref().unwrap_or("?"),
+                    nominal.get(b.link),
+                ),
+                None => {
+                    let parameters =
+                        ranked_entry::<R, N>(&f, tip, aicc0, n, shares[i], 0.0).parameters;
+                    let words = parameters.first().and_then(|p| {
+                        nominal_words(f.candidate, p.value, joint.as_deref()?, friction)
+                    });
+                    (parameters, words)
+                }
+            };
+            // No NaN in a report: a parameter the fit could not make says so.
+            for p in parameters.iter_mut() {
+                if !p.value.is_finite() {
+                    p.value = 0.0;
+                    p.std = f64::INFINITY;
+                    description = Some(format!(
+                        "{}: the fit of `{}` could not be made",
+                        f.candidate.kind().name(),
+                        p.name
+                    ));
+                } else if p.std.is_nan() {
+                    p.std = f64::INFINITY;
+                }
+            }
+            let rival = e.rivals[i].map(|u| {
+                let c = pool.terms[u].fit.candidate;
+                let (joint, point) = place_of::<R, N>(c, tip);
+                Rival {
+                    kind: c.kind(),
+                    joint,
+                    point,
+                }
+            });
+            Explained {
+                kind: f.candidate.kind(),
+                joint,
+                point,
+                description,
+                parameters,
+                share: if shares[i].is_finite() {
+                    shares[i]
+                } else {
+                    0.0
+                },
+                holdout_contribution: if contribution.is_finite() {
+                    contribution
+                } else {
+                    0.0
+                },
+                window: None,
+                channel: f.candidate.channel(),
+                ambiguous_with: rival,
+            }
+        })
+        .collect();
+    add_direction_words(&mut explained, &R::JOINT_NAMES, &friction.0);
+    (explained, steps)
+}
+
+/// A link correction's parameters and its words: the change along the
+/// combinations the data determine (standard deviations through them),
+/// moved along the others until the link with its nominal parameters
+/// `nominal` is a physical body (`inertial::complete`; when no such move
+/// exists the determined part is scaled back, and the words say so).
+fn link_parameters(
+    b: &LinkBasis,
+    theta: &[f64],
+    std: &[f64],
+    link: &str,
+    nominal: Option<&SVector<f64, 10>>,
+) -> (Vec<Parameter>, Option<String>) {
+    let fitted = delta(b, theta);
+    let made = nominal.and_then(|nom| complete(nom, &fitted, &free_combinations(b)));
+    let d = made.as_ref().map_or(fitted, |c| c.delta);
+    let names = [
+        "d_m", "d_mcx", "d_mcy", "d_mcz", "d_ixx", "d_ixy", "d_iyy", "d_ixz", "d_iyz", "d_izz",
+    ];
+    let params = (0..10)
+        .map(|c| {
+            let var: f64 = (0..b.v.ncols())
+                .map(|r| (b.v[(c, r)] * std.get(r).copied().unwrap_or(0.0)).powi(2))
+                .sum();
+            Parameter {
+                name: names[c].into(),
+                value: d[c],
+                std: var.sqrt(),
+            }
+        })
+        .collect();
+    let text = match (nominal, &made) {
+        (Some(nom), Some(c)) => {
+            let mut t = describe(link, nom, &d);
+            if c.moved && !c.projected {
+                t += &format!(
+                    "; the data determine {} of the 10 combinations, the others are set to keep the link physical",
+                    b.v.ncols()
+                );
+            }
+            if c.projected {
+                t += &format!(
+                    "; the fit is not a physical body ({}): the nearest one is given (its pseudo-inertia's negative eigenvalues set to zero)",
+                    check(&(nom + fitted), 1e-9)
+                        .err()
+                        .map_or(String::new(), |e| e.to_string())
+                );
+            } else if c.scale < 1.0 {
+                t += &format!(
+                    "; scaled to {:.2} of the fit, which is not a physical body ({})",
+                    c.scale,
+                    check(&(nom + fitted), 1e-9)
+                        .err()
+                        .map_or(String::new(), |e| e.to_string())
+                );
+            }
+            t
+        }
+        (Some(nom), None) => format!(
+            "{}; the nominal link is not a physical body ({})",
+            link_words(link, &d),
+            check(nom, 1e-9)
+                .err()
+                .map_or(String::new(), |e| e.to_string())
+        ),
+        (None, _) => link_words(link, &d),
+    };
+    (params, Some(text))
+}
+
+/// An orthonormal basis of the combinations of a link's ten parameters
+/// the data do not determine (the complement of `b.v`).
+fn free_combinations(b: &LinkBasis) -> DMatrix<f64> {
+    let p = DMatrix::<f64>::identity(10, 10) - &b.v * b.v.transpose();
+    let eig = p.symmetric_eigen();
+    let keep: Vec<usize> = (0..10).filter(|&i| eig.eigenvalues[i] > 0.5).collect();
+    eig.eigenvectors.select_columns(&keep)
+}
+
+/// The training windows on the report's entries of the explanation.
+pub fn annotate(effects: &mut [Explained], pool: &Pool, e: &Explanation, windows: &Windows) {
+    for (entry, &t) in effects.iter_mut().zip(&e.set) {
+        if let Some(w) = window_of(windows, pool.terms[t].fit.candidate) {
+            entry.window = Some(EffectWindow {
+                start: w.start,
+                end: w.end,
+            });
+        }
+    }
+}

@@ -1,0 +1,165 @@
+//! Explanation: the report, in the user's words. The only stage that knows
+//! the report's schema (`report.rs`) and writes kinds, statuses and
+//! channels as strings.
+//!
+//! - `report.rs`: the report's types (serialised as the JSON schema);
+//! - `entries.rs`: the compound explanation's entries and the held-out
+//!   steps;
+//! - `ranked.rs`: the single-effect ranking's entries;
+//! - `verdict.rs`: the verdict on the best single effect;
+//! - `words.rs`, `friction_table.rs`: joint effects and friction in words
+//!   and as a table;
+//! - `late.rs`, `reversal.rs`: warnings and ambiguities the data leave.
+
+mod entries;
+mod friction_table;
+mod late;
+mod ranked;
+pub mod report;
+mod reversal;
+mod verdict;
+mod words;
+
+pub use entries::{annotate, entries};
+pub use friction_table::friction_table;
+pub use late::warn_delays;
+pub use ranked::ranked_entry;
+pub use reversal::mark_reversals;
+pub use verdict::verdict;
+pub use words::{add_encoder_words, add_spring_words};
+
+use crate::diagnose::candidates::Records;
+use crate::diagnose::evaluate::Evaluation;
+use crate::diagnose::fit::corrected;
+use crate::diagnose::numeric::aicc;
+use crate::diagnose::select::Selection;
+use crate::diagnose::Options;
+use crate::effects::Tip;
+use dynamics_runtime::Robot;
+use report::{JointGap, JointShrink, Ranked, Report, Shrink, Where, Which};
+
+/// The report of a diagnosis: where the gap is, the ranking and verdict,
+/// the explanation in words with its friction table, how far it shrinks
+/// the gap; the warnings of every stage in the order of the data.
+pub fn report<R: Robot<N>, const N: usize>(
+    records: &Records<N>,
+    selection: &Selection,
+    evaluation: &Evaluation<N>,
+    options: &Options,
+) -> Report {
+    let (p, h) = (&records.p, &records.h);
+    let (pool, e) = (&selection.pool, &selection.explanation);
+    let tip_name = Tip::of::<R, N>().name::<R, N>().to_string();
+    let n = p.n();
+    let sse0 = p.sse(&p.sig.residual);
+    let aicc0 = aicc(sse0, n, 0);
+    let hsse0 = h.sse(&h.sig.residual);
+    let excess = |sse: f64, sse0: f64, n: usize| -> f64 {
+        let gap0 = (sse0 - n as f64).max(1e-12);
+        ((sse0 - sse) / gap0).clamp(0.0, 1.0)
+    };
+    let ranked: Vec<Ranked> = selection
+        .best
+        .iter()
+        .map(|f| {
+            let hs = h.sse(&corrected(f, h, &selection.windows));
+            ranked_entry::<R, N>(
+                f,
+                &tip_name,
+                aicc0,
+                n,
+                excess(f.sse, sse0, n),
+                excess(hs, hsse0, h.n()),
+            )
+        })
+        .collect();
+    let mut verdict = verdict(&ranked, p.gap_ratio(), options);
+
+    let joints = (0..N)
+        .map(|j| {
+            let rms = p.rms(&p.sig.residual, j);
+            let pred = evaluation.prediction;
+            let q_noise = evaluation.prediction_noise;
+            JointGap {
+                joint: R::JOINT_NAMES[j].to_string(),
+                torque_rms: rms,
+                torque_noise: p.sig.floor[j],
+                torque_ratio: rms / p.sig.floor[j],
+                prediction_rms: pred.map(|x| x[j]),
+                prediction_noise: q_noise[j],
+                prediction_ratio: pred.map(|x| x[j] / q_noise[j]),
+                windows: evaluation.gap_windows[j].clone(),
+            }
+        })
+        .collect();
+
+    let (mut effects, steps) = entries::<R, N>(
+        pool,
+        e,
+        &evaluation.hold,
+        &tip_name,
+        aicc0,
+        &selection.nominal,
+        &p.basis.friction,
+    );
+    add_spring_words(&mut effects, &R::JOINT_NAMES, &records.excitation.range);
+    add_encoder_words(&mut effects, &R::JOINT_NAMES, &R::JOINT_KINDS);
+    annotate(&mut effects, pool, e, &selection.windows);
+    let mut warnings = records.warnings.clone();
+    warnings.extend(evaluation.training_warnings.iter().cloned());
+    // A late effort stream, or a late motion whose channel is unresolved.
+    warn_delays(
+        records.train.qd_measured,
+        &effects,
+        &verdict,
+        &ranked,
+        &mut warnings,
+    );
+    // Coulomb friction or an effort offset where a velocity never reverses.
+    mark_reversals(
+        &mut verdict,
+        &mut effects,
+        &ranked,
+        &R::JOINT_NAMES,
+        &records.excitation,
+    );
+    warnings.extend(evaluation.held_out_warnings.iter().cloned());
+    let s = &evaluation.shrink;
+    let shrink = Shrink {
+        joints: (0..N)
+            .map(|j| {
+                let f = &s.joints[j];
+                JointShrink {
+                    joint: R::JOINT_NAMES[j].to_string(),
+                    torque_before: f.torque_before,
+                    torque_after: f.torque_after,
+                    simulation_before: f.simulation_before,
+                    simulation_after: f.simulation_after,
+                }
+            })
+            .collect(),
+        torque_fraction: s.torque_fraction,
+        simulation_fraction: s.simulation_fraction,
+        fraction: s.torque_fraction,
+        rms_fraction: evaluation.rms_fraction,
+        steps,
+    };
+    Report {
+        robot: R::NAME.to_string(),
+        samples: [records.train.len(), records.holdout.len()],
+        where_: Where { joints },
+        which: Which {
+            ranked,
+            verdict,
+            friction: friction_table(
+                &R::JOINT_NAMES,
+                &p.basis.friction.0,
+                &p.basis.friction.1,
+                &effects,
+            ),
+            effects,
+        },
+        shrink,
+        warnings,
+    }
+}

@@ -1,0 +1,400 @@
+//! The diagnosis report (serialised as the JSON documented in the README).
+
+use serde::Serialize;
+
+use crate::effects::EffectKind;
+use crate::Warning;
+
+pub use crate::diagnose::candidates::Channel;
+pub use crate::diagnose::evaluate::GapWindow;
+
+/// The whole report.
+#[derive(Debug, Clone, Serialize)]
+pub struct Report {
+    /// Robot name.
+    pub robot: String,
+    /// Samples in the training and held-out data.
+    pub samples: [usize; 2],
+    /// Where the model and the data disagree.
+    #[serde(rename = "where")]
+    pub where_: Where,
+    /// Which effect explains it.
+    pub which: Which,
+    /// How far the gap shrinks on held-out data.
+    pub shrink: Shrink,
+    /// What the preparation repaired and what the data cannot show
+    /// (training data first).
+    pub warnings: Vec<Warning>,
+}
+
+/// Where: per joint.
+#[derive(Debug, Clone, Serialize)]
+pub struct Where {
+    /// Per joint.
+    pub joints: Vec<JointGap>,
+}
+
+/// The gap at one joint (training data, nominal model).
+#[derive(Debug, Clone, Serialize)]
+pub struct JointGap {
+    /// Joint name.
+    pub joint: String,
+    /// RMS of the smoothed torque residual.
+    pub torque_rms: f64,
+    /// Its noise floor.
+    pub torque_noise: f64,
+    /// `torque_rms / torque_noise`.
+    pub torque_ratio: f64,
+    /// RMS short-horizon position prediction error (`None`: the
+    /// simulation could not be made; a warning says why).
+    pub prediction_rms: Option<f64>,
+    /// Its yardstick: the same error for an exact model (`yardstick.rs`).
+    pub prediction_noise: f64,
+    /// `prediction_rms / prediction_noise`.
+    pub prediction_ratio: Option<f64>,
+    /// Windows where the residual concentrates.
+    pub windows: Vec<GapWindow>,
+}
+
+/// Which: ranking, verdict and the compound explanation.
+#[derive(Debug, Clone, Serialize)]
+pub struct Which {
+    /// Candidates, best first.
+    pub ranked: Vec<Ranked>,
+    /// The verdict.
+    pub verdict: Verdict,
+    /// The effects that together explain the gap, in the order of their gains
+    /// (empty when the model explains the data within noise or nothing
+    /// explains the gap).
+    pub effects: Vec<Explained>,
+    /// Each joint's friction in the calibrated model: the nominal model's
+    /// own with the explanation's corrections.
+    pub friction: Vec<JointFriction>,
+}
+
+/// A joint's friction in the calibrated model.
+#[derive(Debug, Clone, Serialize)]
+pub struct JointFriction {
+    /// Joint.
+    pub joint: String,
+    /// The nominal model's Coulomb level (N m or N).
+    pub coulomb_nominal: f64,
+    /// The Coulomb level with the explanation's corrections (>= 0).
+    pub coulomb: f64,
+    /// The level as the joint starts to move (>= `coulomb`): the Coulomb
+    /// level plus a Stribeck friction's excess `fs - fc`, which fades over
+    /// its Stribeck velocity.
+    pub breakaway: f64,
+    /// The nominal model's viscous coefficient (N m s/rad or N s/m).
+    pub viscous_nominal: f64,
+    /// The viscous coefficient with the explanation's corrections (>= 0).
+    pub viscous: f64,
+    /// Whether the explanation corrects the friction at this joint (else
+    /// the nominal values stand).
+    pub corrected: bool,
+}
+
+/// One effect of the compound explanation.
+#[derive(Debug, Clone, Serialize)]
+pub struct Explained {
+    /// Effect kind.
+    pub kind: EffectKind,
+    /// Joint, for joint effects.
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub joint: Option<String>,
+    /// Point, for tip effects.
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub point: Option<String>,
+    /// Parameters from the joint fit of the whole set, with their
+    /// standard deviations.
+    pub parameters: Vec<Parameter>,
+    /// The effect in words, where numbers alone say little (a link's
+    /// inertial correction).
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub description: Option<String>,
+    /// Share of the training gap above noise it explains, in the order
+    /// chosen (the shares add up to the set's).
+    pub share: f64,
+    /// How much the held-out gap (whitened squared residual above noise)
+    /// grows, as a share of that gap, when this effect alone is left out of
+    /// the set (the others refitted on the training data).
+    pub holdout_contribution: f64,
+    /// When the effect is limited in time.
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub window: Option<EffectWindow>,
+    /// For `time_delay`: the late channel (see [`Ranked::channel`]).
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub channel: Option<Channel>,
+    /// An effect the data cannot tell from this one within the set (the
+    /// two are one ambiguous pair).
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub ambiguous_with: Option<Rival>,
+}
+
+/// The time span of a time-limited effect.
+#[derive(Debug, Clone, Serialize)]
+pub struct EffectWindow {
+    /// Start, s.
+    pub start: f64,
+    /// End, s.
+    pub end: f64,
+}
+
+/// The other half of an ambiguous pair.
+#[derive(Debug, Clone, Serialize)]
+pub struct Rival {
+    /// Effect kind.
+    pub kind: EffectKind,
+    /// Joint, for joint effects.
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub joint: Option<String>,
+    /// Point, for tip effects.
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub point: Option<String>,
+}
+
+/// The held-out gap left after the first few effects of the explanation.
+#[derive(Debug, Clone, Serialize)]
+pub struct ShrinkStep {
+    /// Effects in the model (the first `effects` of the explanation).
+    pub effects: usize,
+    /// The effect this step added (`kind at place`).
+    pub added: String,
+    /// Torque gap above noise left (root of the sum over joints of the
+    /// squared residual RMS above the floor, in floor units).
+    pub torque_gap: f64,
+    /// 1 - gap left / gap of the nominal model.
+    pub torque_fraction: f64,
+    /// 1 - RMS of the raw effort residual over all joints (noise included)
+    /// / the nominal model's.
+    pub rms_fraction: f64,
+}
+
+/// A fitted parameter.
+#[derive(Debug, Clone, Serialize)]
+pub struct Parameter {
+    /// Name.
+    pub name: String,
+    /// Value (SI).
+    pub value: f64,
+    /// Standard deviation (grid-searched parameters: half the grid step);
+    /// infinite (`null` in JSON) where the data do not determine it.
+    pub std: f64,
+}
+
+/// One ranked candidate.
+#[derive(Debug, Clone, Serialize)]
+pub struct Ranked {
+    /// Effect kind.
+    pub kind: EffectKind,
+    /// Joint, for joint effects.
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub joint: Option<String>,
+    /// Point, for tip effects.
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub point: Option<String>,
+    /// Fitted parameters.
+    pub parameters: Vec<Parameter>,
+    /// Share of the gap above noise explained on the training data.
+    pub share: f64,
+    /// Corrected Akaike information criterion.
+    pub aicc: f64,
+    /// AICc of the nominal model minus this one's (larger is better).
+    pub delta_aicc: f64,
+    /// Share of the held-out gap above noise it explains.
+    pub holdout_share: f64,
+    /// For `time_delay`: the late channel (`all`: positions and
+    /// velocities late together against the effort; `positions`: the
+    /// position stream late against velocity and effort; `effort`: the
+    /// effort stream late against position and velocity).
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub channel: Option<Channel>,
+}
+
+/// The verdict.
+#[derive(Debug, Clone, Serialize)]
+pub struct Verdict {
+    /// Effect kind (`none` when the model explains the data within noise,
+    /// `unexplained` when it does not and no candidate explains the gap).
+    pub kind: VerdictKind,
+    /// Joint name, for joint effects.
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub joint: Option<String>,
+    /// Point, for tip effects.
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub point: Option<String>,
+    /// For `time_delay`: the late channel (see [`Ranked::channel`]).
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub channel: Option<Channel>,
+    /// `clear`, `ambiguous`, `within_noise` or `unexplained`.
+    pub status: Status,
+    /// The rival that these data cannot tell apart, when ambiguous.
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub rival: Option<Box<Ranked>>,
+    /// A motion that would separate the two, when ambiguous.
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub separating_motion: Option<String>,
+}
+
+impl Verdict {
+    /// Whether the verdict names an effect (the first of the ranking):
+    /// false for `none` and `unexplained`.
+    ///
+    /// ```
+    /// use dynamics_sim2real::diagnose::Verdict;
+    /// use dynamics_sim2real::diagnose::{Status, Verdict, VerdictKind};
+    /// let v = Verdict { kind: VerdictKind::Unexplained, joint: None, point: None, channel: None,
+    ///     status: Status::Unexplained, rival: None, separating_motion: None };
+    /// assert!(!v.names_effect());
+    /// ```
+    pub fn names_effect(&self) -> bool {
+        self.effect().is_some()
+    }
+
+    /// The effect the verdict names, if any.
+    ///
+    /// ```
+    /// use dynamics_sim2real::diagnose::VerdictKind;
+    /// use dynamics_sim2real::effects::EffectKind;
+    /// assert_eq!(VerdictKind::Effect(EffectKind::Backlash).effect(), Some(EffectKind::Backlash));
+    /// assert_eq!(VerdictKind::Effect(EffectKind::None).effect(), None);
+    /// ```
+    pub fn effect(&self) -> Option<EffectKind> {
+        self.kind.effect()
+    }
+}
+
+/// What the verdict names: an effect of the vocabulary (`none` when the
+/// model explains the data within noise), or `unexplained`.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub enum VerdictKind {
+    /// An effect kind, or `none`.
+    Effect(EffectKind),
+    /// The gap is real and no candidate explains it.
+    Unexplained,
+}
+
+impl VerdictKind {
+    /// The effect named, if any (`none` and `unexplained` name none).
+    pub fn effect(self) -> Option<EffectKind> {
+        match self {
+            VerdictKind::Effect(EffectKind::None) | VerdictKind::Unexplained => None,
+            VerdictKind::Effect(k) => Some(k),
+        }
+    }
+
+    /// The name the report writes.
+    pub fn name(self) -> &'static str {
+        match self {
+            VerdictKind::Effect(k) => k.name(),
+            VerdictKind::Unexplained => "unexplained",
+        }
+    }
+}
+
+impl Serialize for VerdictKind {
+    fn serialize<S: serde::Serializer>(&self, s: S) -> Result<S::Ok, S::Error> {
+        s.serialize_str(self.name())
+    }
+}
+
+impl std::fmt::Display for VerdictKind {
+    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
+        f.write_str(self.name())
+    }
+}
+
+/// How sure the verdict is.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Serialize)]
+#[serde(rename_all = "snake_case")]
+pub enum Status {
+    /// The top candidate wins clearly.
+    Clear,
+    /// A rival is close behind: these data cannot tell them apart.
+    Ambiguous,
+    /// The model explains the data within noise.
+    WithinNoise,
+    /// The gap is real and no candidate explains it.
+    Unexplained,
+}
+
+impl Status {
+    /// The name the report writes.
+    pub fn name(self) -> &'static str {
+        match self {
+            Status::Clear => "clear",
+            Status::Ambiguous => "ambiguous",
+            Status::WithinNoise => "within_noise",
+            Status::Unexplained => "unexplained",
+        }
+    }
+}
+
+impl std::fmt::Display for Status {
+    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
+        f.write_str(self.name())
+    }
+}
+
+/// Shrink on held-out data.
+#[derive(Debug, Clone, Serialize)]
+pub struct Shrink {
+    /// Per joint.
+    pub joints: Vec<JointShrink>,
+    /// 1 - gap after / gap before, torque residual above noise.
+    pub torque_fraction: f64,
+    /// 1 - error after / error before, short-horizon simulation (`None`,
+    /// `null` in JSON: a simulation could not be made; a warning says why).
+    pub simulation_fraction: Option<f64>,
+    /// The overall figure (the torque fraction).
+    pub fraction: f64,
+    /// 1 - RMS of the raw effort residual over all joints after / before
+    /// (noise included): the plain figure other tools report.
+    pub rms_fraction: f64,
+    /// The held-out gap of the nominal model (`effects` 0) and the gap
+    /// left after each added effect of the explanation (empty when nothing
+    /// was added).
+    pub steps: Vec<ShrinkStep>,
+}
+
+/// Before and after at one joint (held-out data).
+#[derive(Debug, Clone, Serialize)]
+pub struct JointShrink {
+    /// Joint name.
+    pub joint: String,
+    /// Torque residual RMS before.
+    pub torque_before: f64,
+    /// After.
+    pub torque_after: f64,
+    /// Short-horizon position error RMS before (`None`: the simulation
+    /// could not be made; a warning says why).
+    pub simulation_before: Option<f64>,
+    /// After (`None` likewise).
+    pub simulation_after: Option<f64>,
+}
+
+/// A one-parameter joint effect of the explanation, for unit tests.
+#[cfg(test)]
+pub(crate) fn test_entry(
+    kind: crate::effects::EffectKind,
+    joint: &str,
+    name: &str,
+    value: f64,
+) -> Explained {
+    Explained {
+        kind,
+        joint: Some(joint.to_string()),
+        point: None,
+        description: None,
+        parameters: vec![Parameter {
+            name: name.to_string(),
+            value,
+            std: 0.01,
+        }],
+        share: 0.1,
+        holdout_contribution: 0.1,
+        window: None,
+        channel: None,
+        ambiguous_with: None,
+    }
+}

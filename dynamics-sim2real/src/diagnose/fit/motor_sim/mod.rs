@@ -1,0 +1,185 @@
+//! The motor-side simulation behind elasticity, backlash and the stiff
+//! rotor (`transmitted.rs` says what it models), run for several guesses at
+//! once: the guesses of a grid, of a compass step or of a finite
+//! difference share the measured signals and differ only in their
+//! parameters, and one integration step is a chain of dependent
+//! operations, so lanes integrated side by side keep the processor's
+//! units busy where one lane waits on its own chain. Every lane does
+//! exactly the operations, in the same order, of a simulation on its own:
+//! its result does not depend on its companions.
+//!
+//! - here: the lanes' integration (two Runge-Kutta steps a sample);
+//! - `transmitted.rs`: one guess's transmitted effort, raw or smoothed;
+//! - `derivative.rs`: the coupling's force (spring or dead zone) and the
+//!   lanes' state derivative, the link pulled back to the measured motion;
+//! - `tests.rs`: the one-at-a-time simulation each lane must reproduce.
+
+mod derivative;
+#[cfg(test)]
+mod tests;
+pub mod transmitted;
+
+use std::f64::consts::PI;
+
+use crate::diagnose::candidates::MotorGuess;
+use crate::diagnose::signals::Signals;
+use derivative::{add, force, Lanes};
+use nalgebra::SVector;
+
+/// Bandwidth with which the simulated link is pulled back to the measured
+/// motion, Hz.
+pub const OBSERVER_HZ: f64 = 3.0;
+
+/// Lanes integrated side by side.
+pub const LANES: usize = 4;
+
+/// The raw transmitted effort (see `transmitted::motor_transmitted_raw`) of
+/// every guess of `gs` at joint `j`, in their order; `compliance` per
+/// sample is the link's acceleration per unit of its own effort
+/// (`Basis::compliance`).
+pub fn transmitted_raw_many<const N: usize>(
+    sig: &Signals<N>,
+    j: usize,
+    gs: &[MotorGuess],
+    backlash: bool,
+    compliance: &[SVector<f64, N>],
+) -> Vec<Vec<f64>> {
+    let mut out = Vec::with_capacity(gs.len());
+    let mut rest = gs;
+    while !rest.is_empty() {
+        let take = rest.len().min(LANES);
+        let (now, later) = rest.split_at(take);
+        match (take, backlash) {
+            (1, false) => out.extend(lanes::<N, 1, false>(sig, j, now, compliance)),
+            (1, true) => out.extend(lanes::<N, 1, true>(sig, j, now, compliance)),
+            (2, false) => out.extend(lanes::<N, 2, false>(sig, j, now, compliance)),
+            (2, true) => out.extend(lanes::<N, 2, true>(sig, j, now, compliance)),
+            (_, false) => out.extend(lanes::<N, LANES, false>(sig, j, now, compliance)),
+            (_, true) => out.extend(lanes::<N, LANES, true>(sig, j, now, compliance)),
+        }
+        rest = later;
+    }
+    out
+}
+
+/// `L` lanes side by side, `B` backlash; `gs` has 1 to `L` guesses (the
+/// last repeated to fill the lanes, its copies dropped).
+fn lanes<const N: usize, const L: usize, const B: bool>(
+    sig: &Signals<N>,
+    j: usize,
+    gs: &[MotorGuess],
+    compliance: &[SVector<f64, N>],
+) -> Vec<Vec<f64>> {
+    let n = sig.t.len();
+    let (a, z) = sig.range;
+    let used = gs.len().min(L);
+    let nan = || vec![vec![f64::NAN; n]; used];
+    if z <= a + 1 || used == 0 || compliance.len() < z {
+        return nan();
+    }
+    let g: [MotorGuess; L] = std::array::from_fn(|l| gs[l.min(used - 1)]);
+    let (k_, c_, w_) = (
+        g.map(|g| g.stiffness),
+        g.map(|g| g.damping),
+        g.map(|g| g.half_width),
+    );
+    let mut out = nan();
+    let mut lane_out: [Vec<f64>; L] = std::array::from_fn(|_| vec![f64::NAN; n]);
+    let load = sig.model[a][j];
+    // State per lane: motor angle, motor rate, link angle, link rate.
+    let mut x = [[0.0f64; L]; 4];
+    for l in 0..L {
+        x[0][l] = if B {
+            sig.q[a][j] + load.signum() * (g[l].half_width + load.abs() / g[l].stiffness)
+        } else {
+            sig.q[a][j] + load / g[l].stiffness
+        };
+        x[1][l] = sig.qd[a][j];
+        x[2][l] = sig.q[a][j];
+        x[3][l] = sig.qd[a][j];
+    }
+    let mut dead = [false; L];
+    let wo = 2.0 * PI * OBSERVER_HZ;
+    let (wo2, two_wo) = (wo * wo, 2.0 * wo);
+    // Two RK4 steps a sample: omega h <= 0.8 up to the 250 Hz stiff rotor,
+    // well inside RK4's stability (|R(z)| < 1 for |z| < 2.78 on the
+    // imaginary axis).
+    const SUB: usize = 2;
+    // A multiply, not a divide, on the integration's dependent chain.
+    let inv_jm = g.map(|g| 1.0 / g.jm);
+    for k in a..z {
+        for l in 0..L {
+            lane_out[l][k] =
+                force::<L, B>(k_[l], c_[l], w_[l], x[0][l] - x[2][l], x[1][l] - x[3][l]);
+        }
+        if k + 1 >= z {
+            break;
+        }
+        let (q0, v0, a0, m0) = (sig.q[k][j], sig.qd[k][j], sig.qdd[k][j], sig.model[k][j]);
+        let (q1, v1, a1, m1) = (
+            sig.q[k + 1][j],
+            sig.qd[k + 1][j],
+            sig.qdd[k + 1][j],
+            sig.model[k + 1][j],
+        );
+        let h = (sig.t[k + 1] - sig.t[k]) / SUB as f64;
+        let tau = sig.tau_raw[k][j];
+        // The link's response to its own effort over the interval.
+        let inv_i = 0.5 * (compliance[k][j] + compliance[k + 1][j]);
+        // The measured motion and the model's effort at fraction s of the
+        // interval.
+        let at = |s: f64| -> [f64; 4] {
+            [
+                q0 + (q1 - q0) * s,
+                v0 + (v1 - v0) * s,
+                a0 + (a1 - a0) * s,
+                m0 + (m1 - m0) * s,
+            ]
+        };
+        let lane = Lanes {
+            k: &k_,
+            c: &c_,
+            w: &w_,
+            inv_jm: &inv_jm,
+            inv_i,
+            wo2,
+            two_wo,
+            tau,
+        };
+        for i in 0..SUB {
+            let s0 = i as f64 / SUB as f64;
+            let sm = (i as f64 + 0.5) / SUB as f64;
+            let s1 = (i + 1) as f64 / SUB as f64;
+            let (m0s, mms, m1s) = (at(s0), at(sm), at(s1));
+            let k1 = lane.derivative::<B>(&x, &m0s);
+            let k2 = lane.derivative::<B>(&add(&x, &k1, 0.5 * h), &mms);
+            let k3 = lane.derivative::<B>(&add(&x, &k2, 0.5 * h), &mms);
+            let k4 = lane.derivative::<B>(&add(&x, &k3, h), &m1s);
+            for c in 0..4 {
+                for l in 0..L {
+                    x[c][l] += h / 6.0 * (k1[c][l] + 2.0 * k2[c][l] + 2.0 * k3[c][l] + k4[c][l]);
+                }
+            }
+        }
+        let mut all_dead = true;
+        for l in 0..L {
+            if !x[0][l].is_finite() || !x[1][l].is_finite() || !x[2][l].is_finite() {
+                dead[l] = true;
+                // (A diverged lane goes on from rest, its result dropped.)
+                for row in x.iter_mut() {
+                    row[l] = 0.0;
+                }
+            }
+            all_dead &= dead[l];
+        }
+        if all_dead {
+            break;
+        }
+    }
+    for (l, o) in out.iter_mut().enumerate() {
+        if !dead[l] {
+            std::mem::swap(o, &mut lane_out[l]);
+        }
+    }
+    out
+}

@@ -1,0 +1,92 @@
+//! Selection: which of the fitted candidates explain the gap.
+//!
+//! - `criterion.rs`: ties of the information criterion;
+//! - `nesting.rs`: richer effects that contain simpler ones, and the
+//!   margin they must win by;
+//! - `rank/`: the single-effect ranking (the best variant per kind and
+//!   place, parsimony, rival motor sides);
+//! - `pool/`: every fitted term as whitened columns and one Gram matrix
+//!   (changed only through `Pool`'s methods), with the prior toward the
+//!   nominal model;
+//! - `compound/`: the compound explanation, the set of effects that
+//!   together explain the gap (forward selection, elimination from the
+//!   full linear model, cross-validation, the prior's strength).
+
+mod compound;
+mod criterion;
+mod nesting;
+mod pool;
+mod rank;
+
+pub use compound::{effects, joint_fit, without_others, Explanation};
+pub use pool::{Pool, Solution};
+
+use nalgebra::SVector;
+
+use crate::diagnose::candidates::{regressor_columns, Prepared};
+use crate::diagnose::fit::{corrected, Fit, Fitted, Windows};
+use crate::diagnose::Options;
+use crate::effects::EffectKind;
+use dynamics_runtime::Robot;
+
+/// What the selection chose: the single-effect ranking and the compound
+/// explanation over the pool it was chosen from.
+pub struct Selection {
+    /// The best variant per (kind, place), best first (`rank/`).
+    pub best: Vec<Fit>,
+    /// Every fitted term as whitened columns and their Gram matrix.
+    pub pool: Pool,
+    /// The compound explanation: the chosen set and its joint fit.
+    pub explanation: Explanation,
+    /// The links' nominal inertial parameters (empty: the robot gives
+    /// none).
+    pub nominal: Vec<SVector<f64, 10>>,
+    /// The candidates limited in time, with their training windows.
+    pub windows: Windows,
+    /// Whether link inertial corrections were candidates.
+    pub with_links: bool,
+}
+
+/// The single-effect ranking of `fitted` on training record `p` (the
+/// held-out record `h` adding its evidence where the ranking asks it) and
+/// the compound explanation over every fitted term and, unless
+/// `options.kinds` leaves them out, every link's inertial correction.
+pub fn select<R: Robot<N> + Clone + Sync, const N: usize>(
+    robot: &R,
+    p: &Prepared<N>,
+    h: &Prepared<N>,
+    fitted: Fitted,
+    options: &Options,
+) -> Selection {
+    let with_links =
+        options.kinds.is_empty() || options.kinds.contains(&EffectKind::InertialParameters);
+    let plinks = if with_links {
+        regressor_columns(robot, p).unwrap_or_default()
+    } else {
+        vec![]
+    };
+    let mut nominal = vec![SVector::<f64, 10>::zeros(); R::LINK_NAMES.len()];
+    if robot.inertial_parameters(&mut nominal).is_err() {
+        nominal.clear();
+    }
+    let mut pool = Pool::new(&fitted.fits, &plinks, &nominal, p);
+    pool.limit_to_windows(&fitted.windows, p);
+    let explanation = compound::explain::<R, N>(&mut pool, p, options);
+    let best = rank::rank(fitted.fits, p, h, &fitted.windows, options);
+    Selection {
+        best,
+        pool,
+        explanation,
+        nominal,
+        windows: fitted.windows,
+        with_links,
+    }
+}
+
+/// The held-out deviance of fit `f` on `h` (its parameters fitted on the
+/// training record, not refitted; a windowed effect limited to the window
+/// found on `h`): `n ln(sse / n)` of the whitened residual it leaves.
+pub fn held_out_deviance<const N: usize>(f: &Fit, h: &Prepared<N>, windows: &Windows) -> f64 {
+    let (hs, hn) = (h.sse(&corrected(f, h, windows)), h.n() as f64);
+    hn * (hs.max(1e-300) / hn).ln()
+}

@@ -1,0 +1,122 @@
+//! Building the pool: every fitted candidate as whitened columns over the
+//! fit's rows (free columns for the linear ones, a fixed column for a
+//! motor side), each link correction as the combinations the data
+//! determine, and the Gram matrix with the prior (`prior.rs`).
+
+use nalgebra::{DMatrix, DVector, SVector};
+
+use super::prior;
+use super::{penalised, Pool, Term};
+use crate::diagnose::candidates::{
+    combined, linear_columns, link_basis, lower_bounds, whitened, Candidate, Prepared,
+    EFFORT_SCALE_LIMIT,
+};
+use crate::diagnose::fit::{fixed_column, Fit};
+
+impl Pool {
+    /// The pool of `fits` on `p` (every single fit, grid variants too) and
+    /// of the link corrections whose whitened regressor columns are `links`
+    /// (`[link][parameter]`, see `links.rs`; empty: none), with the prior
+    /// toward the links' `nominal` parameters (`prior.rs`; empty: none on
+    /// the links).
+    pub fn new<const N: usize>(
+        fits: &[Fit],
+        links: &[Vec<Vec<f64>>],
+        nominal: &[SVector<f64, 10>],
+        p: &Prepared<N>,
+    ) -> Pool {
+        let mut cols: Vec<Vec<f64>> = Vec::new();
+        let mut terms = Vec::new();
+        for f in fits {
+            if !f.sse.is_finite() {
+                continue;
+            }
+            let c = f.candidate;
+            if f.motor.is_some() {
+                let col = fixed_column(f, p);
+                if col.iter().all(|x| *x == 0.0) {
+                    continue;
+                }
+                cols.push(col);
+                terms.push(Term {
+                    fit: f.clone(),
+                    cols: vec![],
+                    lower: vec![],
+                    limit: vec![],
+                    fixed: Some(cols.len() - 1),
+                    k: f.k,
+                    link: None,
+                });
+            } else if !c.linear_parameters().is_empty() {
+                let new = linear_columns(c, p);
+                if new.iter().all(|c| c.iter().all(|x| *x == 0.0)) {
+                    continue;
+                }
+                let at = cols.len();
+                cols.extend(new);
+                terms.push(Term {
+                    fit: f.clone(),
+                    cols: (at..cols.len()).collect(),
+                    lower: lower_bounds(c, p),
+                    limit: c
+                        .linear_parameters()
+                        .iter()
+                        .map(|_| match c {
+                            Candidate::EffortScale(_) => EFFORT_SCALE_LIMIT,
+                            _ => f64::INFINITY,
+                        })
+                        .collect(),
+                    fixed: None,
+                    k: f.k,
+                    link: None,
+                });
+            }
+        }
+        // Link inertial corrections: the combinations the data determine.
+        for (l, lc) in links.iter().enumerate() {
+            let Some(basis) = link_basis(l, lc) else {
+                continue;
+            };
+            let new = combined(lc, &basis);
+            let at = cols.len();
+            let r = new.len();
+            cols.extend(new);
+            terms.push(Term {
+                fit: Fit {
+                    candidate: Candidate::Inertial(l),
+                    theta: vec![],
+                    std: vec![],
+                    motor: None,
+                    motor_std: None,
+                    sse: f64::NAN,
+                    k: r,
+                },
+                cols: (at..cols.len()).collect(),
+                lower: vec![f64::NEG_INFINITY; r],
+                limit: vec![f64::INFINITY; r],
+                fixed: None,
+                k: r,
+                link: Some(basis),
+            });
+        }
+        let n = p.n();
+        let x = DMatrix::from_fn(n, cols.len(), |r, c| cols[c][r]);
+        let y = DVector::from_vec(whitened(p, |k| p.sig.residual[k]));
+        let xty = x.tr_mul(&y);
+        let yy = y.norm_squared();
+        let prior = prior::Prior::new(&terms, cols.len(), nominal);
+        let strength = prior::STRENGTHS[0];
+        let gram = penalised(&x, &prior, yy, strength);
+        Pool {
+            x,
+            y,
+            gram,
+            xty,
+            yy,
+            terms,
+            weights: vec![1.0; N],
+            prior,
+            strength,
+        }
+    }
+}

@@ -1,0 +1,124 @@
+use super::test_pool;
+use super::test_term as term;
+use super::*;
+use crate::diagnose::numeric::constrained_least_squares;
+use crate::effects::SIGN_SMOOTHING;
+
+/// The Gram route against a direct least-squares fit of the same
+/// columns, with a fixed column subtracted and a sign constraint that
+/// becomes active.
+#[test]
+fn joint_fits_from_the_gram_match_direct_least_squares() {
+    let n = 300;
+    let c0: Vec<f64> = (0..n).map(|i| (i as f64 * 0.05).sin()).collect();
+    let c1: Vec<f64> = (0..n).map(|i| (i as f64 * 0.013).cos()).collect();
+    let c2: Vec<f64> = (0..n).map(|i| ((i % 7) as f64 - 3.0) * 0.1).collect();
+    let fixed: Vec<f64> = (0..n).map(|i| 0.3 * (i as f64 * 0.2).sin()).collect();
+    let mut rng = crate::synth::Rng::new(5);
+    // y = 2 c0 - 0.7 c1 + 1.5 c2 + fixed + noise.
+    let y: Vec<f64> = (0..n)
+        .map(|i| 2.0 * c0[i] - 0.7 * c1[i] + 1.5 * c2[i] + fixed[i] + 0.01 * rng.normal())
+        .collect();
+    let cols = [c0.clone(), c1.clone(), c2.clone(), fixed.clone()];
+    let x = DMatrix::from_fn(n, 4, |r, c| cols[c][r]);
+    let yv = DVector::from_vec(y.clone());
+    let terms = vec![
+        term(
+            Candidate::Coulomb(0, SIGN_SMOOTHING),
+            vec![0],
+            vec![true],
+            None,
+        ),
+        term(Candidate::Viscous(0), vec![1], vec![true], None),
+        term(Candidate::EffortOffset(0), vec![2], vec![false], None),
+        term(Candidate::Elasticity(1), vec![], vec![], Some(3)),
+    ];
+    let pool = test_pool(x, yv.clone(), terms, 1);
+    // All four: the viscous coefficient wants -0.7, is held at 0.
+    let sol = pool.solve(&[0, 1, 2, 3]);
+    let y_minus_fixed = DVector::from_fn(n, |r, _| y[r] - fixed[r]);
+    let direct = constrained_least_squares(
+        &DMatrix::from_fn(n, 3, |r, c| cols[c][r]),
+        &y_minus_fixed,
+        &[true, true, false],
+    );
+    assert_eq!(sol.theta[1][0], 0.0);
+    for (t, d) in [(0, 0), (2, 2)] {
+        assert!((sol.theta[t][0] - direct.theta[d]).abs() < 1e-9, "{t}");
+        assert!((sol.std[t][0] / direct.std[d] - 1.0).abs() < 1e-6);
+    }
+    assert!((sol.sse / direct.sse - 1.0).abs() < 1e-9);
+    assert_eq!(sol.k, 1 + 1 + 1 + 3);
+    // The residual it leaves is the direct one.
+    let r = pool.residual(&[0, 1, 2, 3], &sol);
+    assert!((r.norm_squared() / direct.sse - 1.0).abs() < 1e-9);
+    // Without the fixed column the fit is worse.
+    assert!(pool.solve(&[0, 1, 2]).sse > sol.sse + 1.0);
+}
+
+/// A term whose column a term before it already spans is left out of
+/// the fit and of the parameter count, and a term after the pair is
+/// still fitted (not dropped as the last column of a singular set).
+#[test]
+fn a_dependent_column_does_not_hide_the_terms_after_it() {
+    let n = 200;
+    let c0: Vec<f64> = (0..n).map(|i| (i as f64 * 0.05).sin()).collect();
+    let c1: Vec<f64> = (0..n).map(|i| (i as f64 * 0.011).cos()).collect();
+    let y: Vec<f64> = (0..n).map(|i| 2.0 * c0[i] + 0.5 * c1[i]).collect();
+    // Column 1 repeats column 0 (a regrouped link parameter).
+    let cols = [c0.clone(), c0.clone(), c1.clone()];
+    let x = DMatrix::from_fn(n, 3, |r, c| cols[c][r]);
+    let yv = DVector::from_vec(y);
+    let terms = vec![
+        term(Candidate::EffortOffset(0), vec![0], vec![false], None),
+        term(Candidate::EffortOffset(1), vec![1], vec![false], None),
+        term(Candidate::EffortOffset(2), vec![2], vec![false], None),
+    ];
+    let pool = test_pool(x, yv, terms, 1);
+    let sol = pool.solve(&[0, 1, 2]);
+    assert!((sol.theta[0][0] - 2.0).abs() < 1e-9, "{:?}", sol.theta);
+    assert_eq!(sol.theta[1][0], 0.0);
+    assert!((sol.theta[2][0] - 0.5).abs() < 1e-9, "{:?}", sol.theta);
+    assert!(sol.sse < 1e-9);
+    assert_eq!(sol.k, 2);
+}
+
+/// Reweighting two joints' rows keeps the residual in floor units,
+/// leaves an exact fit's parameter where it is, and moves a fit that
+/// must compromise between the joints toward the heavier one, as a
+/// direct weighted least-squares fit does.
+#[test]
+fn reweighting_the_joints_rows_is_weighted_least_squares() {
+    let rows = 200;
+    // Rows interleaved: joint 0, joint 1, joint 0, ...
+    let c0: Vec<f64> = (0..2 * rows)
+        .map(|i| ((i / 2) as f64 * 0.07).sin())
+        .collect();
+    // Joint 0 wants 2, joint 1 wants 3.
+    let y: Vec<f64> = (0..2 * rows)
+        .map(|i| if i % 2 == 0 { 2.0 } else { 3.0 } * c0[i])
+        .collect();
+    let x = DMatrix::from_column_slice(2 * rows, 1, &c0);
+    let yv = DVector::from_vec(y.clone());
+    let terms = vec![term(Candidate::EffortScale(0), vec![0], vec![false], None)];
+    let mut pool = test_pool(x, yv, terms, 2);
+    let even = pool.solve(&[0]);
+    assert!((even.theta[0][0] - 2.5).abs() < 1e-9, "{:?}", even.theta);
+    let before = pool.floor_rms(&pool.residual(&[0], &even));
+    pool.reweight(&[1.0, 0.1]);
+    // The same parameters leave the same residual in floor units.
+    let again = pool.floor_rms(&pool.residual(&[0], &even));
+    for j in 0..2 {
+        assert!((again[j] / before[j] - 1.0).abs() < 1e-12);
+    }
+    // Weighted least squares: (2 * 1 + 3 * 0.01) / 1.01.
+    let heavy = pool.solve(&[0]);
+    assert!(
+        (heavy.theta[0][0] - 2.03 / 1.01).abs() < 1e-9,
+        "{:?}",
+        heavy.theta
+    );
+    // Back to even weights: the even fit again.
+    pool.reweight(&[1.0, 1.0]);
+    assert!((pool.solve(&[0]).theta[0][0] - 2.5).abs() < 1e-9);
+}

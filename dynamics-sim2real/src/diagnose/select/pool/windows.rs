@@ -1,0 +1,37 @@
+//! Effects limited in time within the pool: their columns multiplied by
+//! the indicator of the window found on the training record.
+
+use nalgebra::DVector;
+
+use super::Pool;
+use crate::diagnose::candidates::Prepared;
+use crate::diagnose::fit::{inside, window_of, Windows};
+
+impl Pool {
+    /// The pool's columns of the windowed terms limited to their windows (two
+    /// more parameters each).
+    pub fn limit_to_windows<const N: usize>(&mut self, windows: &Windows, p: &Prepared<N>) {
+        let pool = self;
+        // (The windowed kinds, `windowable`, carry no prior: their rows of the
+        // Gram matrix are their columns' products alone.)
+        for t in 0..pool.terms.len() {
+            let Some(w) = window_of(windows, pool.terms[t].fit.candidate) else {
+                continue;
+            };
+            if pool.terms[t].fixed.is_some() || pool.terms[t].link.is_some() {
+                continue;
+            }
+            let m = DVector::from_vec(inside(p, &w));
+            for &c in &pool.terms[t].cols.clone() {
+                let col = pool.x.column(c).component_mul(&m);
+                pool.x.set_column(c, &col);
+                let v = pool.x.tr_mul(&pool.x.column(c));
+                pool.gram.set_column(c, &v);
+                pool.gram.set_row(c, &v.transpose());
+                pool.xty[c] = pool.x.column(c).dot(&pool.y);
+            }
+            pool.terms[t].k += 2;
+            pool.terms[t].fit.k = pool.terms[t].k;
+        }
+    }
+}
