@@ -3,7 +3,8 @@
 //! needs nothing else), [`run_set`] over robots chosen by name
 //! (`program`: the command line and its dispatch); its subcommands
 //! (`commands`, `diagnose`, `identify`, `simulate`, `scaffold` for `new`), the nominal
-//! model (`tune`: `--set`, `--baseline`), evaluation at given
+//! model (`tune`: `--set`, `--baseline`), what the program knows of a robot
+//! besides its model (`info`), evaluation at given
 //! states and comparison with reference values (`eval`, `states`,
 //! `compare`), synthetic data and the diagnosis of data files (`gap`), the
 //! readable diagnosis report (`report`) and SVG plots (`plot`), warnings
@@ -18,6 +19,7 @@ pub mod diagnose;
 pub mod eval;
 pub mod gap;
 pub mod identify;
+pub mod info;
 pub mod plot;
 pub mod program;
 pub mod report;
@@ -27,7 +29,8 @@ pub mod states;
 pub mod tune;
 pub mod warnings;
 
-pub use program::{run, run_set, run_with, RobotInfo, RobotSet, RobotVisitor};
+pub use info::RobotInfo;
+pub use program::{run, run_set, run_with, RobotSet, RobotVisitor};
 
 /// What every subcommand returns; `main` prints the error.
 pub type Res = Result<(), Box<dyn std::error::Error>>;

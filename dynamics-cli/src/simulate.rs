@@ -1,7 +1,7 @@
 //! `simulate`: the robot (with effects from a JSON file, optionally) under
 //! a computed-torque controller on the nominal model following a reference
 //! (the data generator's excitations: sines, chirp, pick-and-place; or a
-//! CSV of positions), written as the CSV of the design notes (`t, q_<j>,
+//! CSV of positions), written as the trajectory CSV (docs/cli.md) (`t, q_<j>,
 //! qd_<j>, qdd_<j>, tau_<j>`) with SVG plots of the positions against the
 //! reference, the tracking error and the efforts.
 
@@ -15,9 +15,9 @@ use dynamics_sim2real::effects::Plant;
 use dynamics_sim2real::synth::{Excitation, ExcitationKind, Rng};
 use nalgebra::SVector;
 
+use crate::info::RobotInfo;
 use crate::plot::{svg, Series};
-use crate::program::args::{BaselineArgs, ModelArgs};
-use crate::program::RobotInfo;
+use crate::tune::{BaselineArgs, ModelArgs};
 use crate::Res;
 
 /// `simulate`.

@@ -2,7 +2,9 @@
 //! name (`--set NAME=VALUE`) and a calibrated baseline (`--baseline
 //! FILE.json`: the effects of a previous diagnosis report).
 
-use std::path::Path;
+use std::path::{Path, PathBuf};
+
+use clap::Args;
 
 use dynamics_runtime::{Parameters, Robot};
 use dynamics_sim2real::baseline::{self, BaselineError, Entry};
@@ -10,6 +12,23 @@ use dynamics_sim2real::diagnose::Parameter;
 use dynamics_sim2real::effects::Effect;
 use serde_json::Value;
 use thiserror::Error;
+
+/// The model every subcommand on a robot starts from.
+#[derive(Args, Debug, Clone, Default)]
+pub struct ModelArgs {
+    /// Set a run-time parameter of the nominal model, e.g. `--set c=0` (repeatable).
+    #[arg(long = "set", value_name = "NAME=VALUE")]
+    pub set: Vec<String>,
+}
+
+/// A calibrated baseline added to the nominal model.
+#[derive(Args, Debug, Clone, Default)]
+pub struct BaselineArgs {
+    /// The effects of a previous diagnosis (its JSON report, `which.effects`), or a file
+    /// `{"effects": [{"kind", "joint", "parameters": [{"name", "value"}]}]}`, added to the nominal model.
+    #[arg(long, value_name = "FILE.json")]
+    pub baseline: Option<PathBuf>,
+}
 
 /// Why the nominal model could not be made.
 #[derive(Debug, Error)]

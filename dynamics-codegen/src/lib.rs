@@ -15,6 +15,7 @@ mod emit;
 mod expand;
 mod model;
 mod parse;
+mod rotation;
 mod urdf;
 
 use std::path::PathBuf;

@@ -54,7 +54,7 @@ use proc_macro::TokenStream;
 ///             | "offset" "=" e ";"              //   defaults 1 and 0; chains of mimics compose)
 /// elem       := "rot_x(" e ")" | "rot_y(" e ")" | "rot_z(" e ")"          // spatial 4x4
 ///             | "trans_x(" e ")" | "trans_y(" e ")" | "trans_z(" e ")"
-///             | "tu(" e ")" | "tv(" e ")" | "rot(" e ")"                  // planar 3x3, seed 001 eq. 2.4
+///             | "tu(" e ")" | "tv(" e ")" | "rot(" e ")"                  // planar 3x3, dissertation, eq. 2.4
 ///             | "matrix([[..],[..],[..]])"                                // general planar 3x3
 ///             | "matrix([[..],[..],[..],[..]])"                           // general homogeneous 4x4
 /// e          := number | NAME | "q" | "pi" | e ("+"|"-"|"*"|"/") e | "-" e | "(" e ")"

@@ -5,7 +5,7 @@ use nalgebra::{SMatrix, SVector};
 
 use crate::Robot;
 
-/// A robot with `M` program constraints `f(t, q) = 0` (seed 001 eq. 2.39)
+/// A robot with `M` program constraints `f(t, q) = 0` (dissertation, eq. 2.39)
 /// whose Jacobian and second derivatives `robot!` derived symbolically.
 ///
 /// ```

@@ -1,4 +1,4 @@
-//! Joint-space tracking controllers (seed 001, chapter 4): PD with gravity
+//! Joint-space tracking controllers (dissertation, chapter 4): PD with gravity
 //! compensation, computed torque, and sliding-mode control with a boundary
 //! layer. Each uses a model of the robot (any `Robot<N>`; it may differ
 //! from the plant).

@@ -4,7 +4,7 @@
 //!
 //! # Conventions
 //! Generalized coordinates q (rad for revolute joints, m for prismatic ones),
-//! the matrix Lagrange form of seed 001 (eqs. 2.40-2.41):
+//! the matrix Lagrange form of the dissertation (eqs. 2.40-2.41):
 //!
 //! ```text
 //! A(q) qdd = Q + Qqt1 + Qqt2 + U

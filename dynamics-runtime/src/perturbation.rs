@@ -1,4 +1,4 @@
-//! Perturbation analysis about a nominal motion (seed 000, eqs. 5-6, 9):
+//! Perturbation analysis about a nominal motion (vibration paper, eqs. 5-6, 9):
 //! the linear time-varying equation `A dxdd + D dxd + K dx = dU`, with
 //! `A`, `K = dF/dq`, `D = dF/dqd` evaluated on the nominal motion, which is
 //! integrated alongside (one Dormand-Prince state holds both).

@@ -1,9 +1,9 @@
-//! Program (constrained) motion, seed 001 eqs. 2.43-2.46: the control
+//! Program (constrained) motion, dissertation, eqs. 2.43-2.46: the control
 //! forces that keep the robot on a program `f(t, q) = 0`.
 //!
 //! With ideal program constraints the control force is `U_c = J^T lambda`
 //! (it does no work along the motions the program allows, i.e. `D U_c = 0`
-//! for the seed's null-space matrix D). lambda follows from
+//! for the dissertation's null-space matrix D). lambda follows from
 //! `A qdd = Q + Qqt + U + J^T lambda` and the constraint acceleration
 //! `J qdd + bias = -2 alpha (J qd) - beta^2 f` (Baumgarte's drift control):
 //! `(J A^-1 J^T) lambda = -bias - 2 alpha J qd - beta^2 f - J A^-1 (Q + Qqt + U)`.

@@ -25,7 +25,7 @@ pub enum JointKind {
     Prismatic,
 }
 
-/// All terms of the matrix Lagrange equations (seed 001, eqs. 2.40-2.41)
+/// All terms of the matrix Lagrange equations (dissertation, eqs. 2.40-2.41)
 ///
 /// `A(q) qdd = Q + Qqt1 + Qqt2 + U`, evaluated in one straight-line function
 /// that shares every subexpression between the terms.
@@ -65,7 +65,7 @@ impl<const N: usize> MotionTerms<N> {
     }
 }
 
-/// The perturbation Jacobians of seed 000 (eqs. 5-6) at one state of a
+/// The perturbation Jacobians of the vibration paper (eqs. 5-6) at one state of a
 /// nominal motion: with the residual `F(q, qd, qdd) = A qdd - Q - Qqt1 -
 /// Qqt2 - U`, a small disturbance obeys `A dxdd + D dxd + K dx = dU`.
 /// For a rigid robot, `K` and `D` are Pinocchio's `dtau_dq` and `dtau_dv`.
@@ -325,7 +325,7 @@ pub trait Robot<const N: usize> {
         crate::check::finite("qd", qd)?;
         crate::check::finite("u", u)?;
         let terms = self.motion_terms(q, qd);
-        crate::solve::accelerations(&terms, u, q)
+        crate::solve::accelerations(&terms.a, &terms.bias(), u, q)
     }
 
     /// `C qd + g`-like bias as other toolkits define it (Pinocchio's `nle`

@@ -62,7 +62,7 @@ pub struct Trajectory<const N: usize> {
 }
 
 impl<const N: usize> Trajectory<N> {
-    /// Writes the CSV format of the design notes: `t`, then `q_<joint>`,
+    /// Writes the trajectory CSV format (docs/cli.md): `t`, then `q_<joint>`,
     /// `qd_<joint>`, `qdd_<joint>`, `tau_<joint>` for each joint.
     ///
     /// ```

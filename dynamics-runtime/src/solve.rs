@@ -1,22 +1,23 @@
 //! Solving the equations of motion for the accelerations.
 
-use nalgebra::SVector;
+use nalgebra::{SMatrix, SVector};
 
-use crate::{DynamicsError, MotionTerms};
+use crate::DynamicsError;
 
-/// qdd = A^-1 (Q + Qqt1 + Qqt2 + u) by Cholesky (fixed size, no heap).
+/// qdd = A^-1 (bias + u) by Cholesky (fixed size, no heap), with the bias
+/// `Q + Qqt1 + Qqt2` of `MotionTerms::bias`; `q` names the state in errors.
 pub(crate) fn accelerations<const N: usize>(
-    terms: &MotionTerms<N>,
+    a: &SMatrix<f64, N, N>,
+    bias: &SVector<f64, N>,
     u: &SVector<f64, N>,
     q: &SVector<f64, N>,
 ) -> Result<SVector<f64, N>, DynamicsError> {
-    let chol = terms
-        .a
+    let chol = a
         .cholesky()
         .ok_or_else(|| DynamicsError::SingularMassMatrix {
             q: crate::Coordinates::new(q.as_slice()),
         })?;
-    let qdd = chol.solve(&(terms.bias() + u));
+    let qdd = chol.solve(&(bias + u));
     match qdd.iter().position(|x| !x.is_finite()) {
         Some(index) => Err(DynamicsError::Diverged {
             quantity: "qdd",

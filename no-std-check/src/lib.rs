@@ -60,7 +60,7 @@ dynamics_macros::robot! {
 }
 
 dynamics_macros::robot! {
-    /// The planar 3R loading arm of seed 001 (the URDF twin of `robots::Arm3r`).
+    /// The planar 3R loading arm of the dissertation (the URDF twin of `robots::Arm3r`).
     pub robot Arm3r;
     gravity = [0.0, -9.8, 0.0];
     urdf = "../robots/data/urdf/arm3r.urdf";

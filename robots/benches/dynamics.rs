@@ -1,4 +1,4 @@
-//! Time per call of the generated dynamics of the seed robots and the two
+//! Time per call of the generated dynamics of the robots of the source works and the two
 //! industrial arms, cycling over
 //! 1000 pseudo-random states as the Pinocchio anchor does
 //! (shared/anchors/pinocchio/bench.cpp), in thread CPU time as the anchors

@@ -1,16 +1,16 @@
-//! The planar 3R loading arm of seed 001, sec. 3.1.1 and chapter 4.
+//! The planar 3R loading arm of the dissertation, sec. 3.1.1 and chapter 4.
 //!
 //! Data: l1 = l2 = 0.2 m, payload at l3 = 0.1 m on link 3; centres of mass
 //! c1 = 0.0635, c2 = 0.07475, c3 = 0.06067 m; m1 = 4.08, m2 = 2.34,
 //! m3 = 0.73 kg; J1 = 0.031, J2 = 0.013, J3 = 0.0013 kg m^2; payload m = 2 kg;
-//! g = 9.8 m/s^2. The geometry and the tiny inertias that the seed leaves
+//! g = 9.8 m/s^2. The geometry and the tiny inertias that the dissertation leaves
 //! out (1e-5 about the link axis, 1e-6 for the payload) are those of
 //! `shared/reference/urdf/arm3r.urdf`, so the model matches the Pinocchio
-//! reference values. Joints placed by the planar transfer matrices of seed
-//! 001 eq. 2.4 (tu = translate along the link, rot = rotate).
+//! reference values. Joints placed by the planar transfer matrices of the
+//! dissertation, eq. 2.4 (tu = translate along the link, rot = rotate).
 
 dynamics_macros::robot! {
-    /// Planar 3R loading arm (seed 001, sec. 3.1.1; chapter 4 with `b1..b3 = 1`).
+    /// Planar 3R loading arm (dissertation, sec. 3.1.1; chapter 4 with `b1..b3 = 1`).
     ///
     /// ```
     /// use dynamics_runtime::Robot;

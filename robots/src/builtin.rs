@@ -86,7 +86,7 @@ pub fn traces_files(
 
 /// The built-in robots as a [`dynamics_cli::RobotSet`]: what the
 /// `dynamics` program runs on (`dynamics_cli::run_set(&Builtin)`), with the
-/// seed scenarios as an extra subcommand and the built-in diagnosis case
+/// scenarios of the source works as an extra subcommand and the built-in diagnosis case
 /// as what it does without one.
 #[derive(Debug, Clone, Copy, Default)]
 pub struct Builtin;
@@ -129,7 +129,7 @@ impl dynamics_cli::RobotSet for Builtin {
 
     fn commands(&self) -> Vec<clap::Command> {
         vec![clap::Command::new("scenario")
-            .about("Run a scenario of the seeds by name, writing CSV and SVG plots")
+            .about("Run a scenario of the source works by name, writing CSV and SVG plots")
             .arg(clap::Arg::new("name").help("Scenario name; omit to list them"))
             .arg(
                 clap::Arg::new("out")

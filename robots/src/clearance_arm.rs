@@ -1,9 +1,9 @@
-//! The two-link arm with a clearance in its second joint, seed 001 sec. 3.2
+//! The two-link arm with a clearance in its second joint, dissertation, sec. 3.2
 //! (Figs. 3.12-3.13): link 1 (OA) turns by phi1 about O and ends in a ring
 //! of radius r1 at A; link 2 ends in a pin of radius r2 < r1 that sits in
 //! the ring. Two sets of coordinates describe the same bodies:
 //!
-//! - [`ClearanceArm`], the seed's `(phi1, psi, u, phi2)`: the line of
+//! - [`ClearanceArm`], the dissertation's `(phi1, psi, u, phi2)`: the line of
 //!   centres from A turns by psi against link 1, the pin centre lies at u
 //!   along it, link 2 turns by phi2 against that line (so link 2's angle to
 //!   link 1 is `psi + phi2`). In contact (eq. 3.25) `u = r1 - r2` and the pin
@@ -13,12 +13,12 @@
 //!   everywhere inside the ring: the free flight inside the clearance. Its
 //!   constraints x = y = 0 give the joint without clearance.
 //!
-//! Data of sec. 3.2: l1 = 1.25 m, l2 = 0.5 m; m1 = 1 kg (the seed's `m`),
+//! Data of sec. 3.2: l1 = 1.25 m, l2 = 0.5 m; m1 = 1 kg (the dissertation's `m`),
 //! m2 = 0.5 kg; c1 = 0, c2 = 0.2 m; J1 = J2 = 0.1 kg m^2 (taken about the
 //! centres of mass); r1 = 0.0025 m, r2 = 0.00245 m; g = 10 m/s^2.
 
 dynamics_macros::robot! {
-    /// Two-link arm with joint clearance in the seed's coordinates (phi1, psi, u, phi2).
+    /// Two-link arm with joint clearance in the dissertation's coordinates (phi1, psi, u, phi2).
     ///
     /// ```
     /// use dynamics_runtime::Robot;

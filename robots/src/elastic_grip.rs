@@ -1,4 +1,4 @@
-//! The planar arm with an elastic grip of seed 001, sec. 3.3 (Fig. 3.19):
+//! The planar arm with an elastic grip of the dissertation, sec. 3.3 (Fig. 3.19):
 //! arm OA turns by phi = q1 about O, arm AB by theta = q2 about A, the push
 //! rod CD slides along AB by u = q3 = AC against a spring, and its free end
 //! D, where the object M sits, deflects by y = q4 across the rod (the rod
@@ -11,20 +11,20 @@
 //! Data of sec. 3.3: m = 1 kg; J1 = J2 = 4 kg m^2 (the arms, about O and
 //! A); c3 = 125 N/m, l = 0.15 m; l1 = 0.3 m, l3 = 0.5 m; drag
 //! beta1 = beta2 = 0.01 N m s, beta3 = 0.05 N s/m; g = 10 m/s^2;
-//! E = 6.626e10 N/m^2, I = 1.14197e-8 m^4. Derived here (the OCR drops
+//! E = 6.626e10 N/m^2, I = 1.14197e-8 m^4. Derived here (the available text drops
 //! it): the rod's bending stiffness at D is that of a cantilever with an end
-//! load, c4 = 3 E I / l3^3 = 18 160 N/m. Not in the seed, chosen here:
+//! load, c4 = 3 E I / l3^3 = 18 160 N/m. Not in the dissertation, chosen here:
 //! c1 = c2 = 0 (no torsion springs are given), the arms' own masses 0 (the
-//! seed gives only their inertias; parameter `arm2_mass` at A if wanted).
+//! dissertation gives only their inertias; parameter `arm2_mass` at A if wanted).
 
 dynamics_macros::robot! {
-    /// Planar arm with a sliding, elastic push rod carrying M (seed 001, sec. 3.3).
+    /// Planar arm with a sliding, elastic push rod carrying M (dissertation, sec. 3.3).
     ///
     /// ```
     /// use dynamics_runtime::Robot;
     /// use nalgebra::Vector4;
     /// let g = robots::ElasticGrip::default();
-    /// // Rod stiffness 3 E I / l3^3 of the seed's E, I, l3:
+    /// // Rod stiffness 3 E I / l3^3 of the dissertation's E, I, l3:
     /// assert!((g.params.c4 - 3.0 * 6.626e10 * 1.14197e-8 / 0.125).abs() < 1e-9);
     /// // M sits at (l1 + l3 + u, y) when both arms are horizontal.
     /// let d = g.point_position(0, &Vector4::new(0.0, 0.0, 0.1, 0.01)).unwrap();
@@ -37,11 +37,11 @@ dynamics_macros::robot! {
     const L3 = 0.5;
     /// Mass at D, kg (with the handle's mass: m + km m0, eq. 3.58).
     param m = 1.0;
-    /// Mass of arm AB, at A, kg (not given in the seed).
+    /// Mass of arm AB, at A, kg (not given in the dissertation).
     param arm2_mass = 0.0;
-    /// Torsion spring at O, N m/rad (not given in the seed).
+    /// Torsion spring at O, N m/rad (not given in the dissertation).
     param c1 = 0.0;
-    /// Torsion spring at A, N m/rad (not given in the seed).
+    /// Torsion spring at A, N m/rad (not given in the dissertation).
     param c2 = 0.0;
     /// Push-rod spring, N/m.
     param c3 = 125.0;

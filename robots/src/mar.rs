@@ -1,4 +1,4 @@
-//! The MAR modular manipulator of seed 000, Table 1: q1 turns the arm about
+//! The MAR modular manipulator of the vibration paper, Table 1: q1 turns the arm about
 //! the horizontal x axis, q2 turns link 2 about z, link 3 slides along link
 //! 2's x axis (its centre s3 = 0.18 m from the slide origin). Links are thin
 //! rods: lengths 0.15, 0.18, 0.42 m, masses 12.7, 12.7, 15 kg.
@@ -14,7 +14,7 @@ pub const DRIVE_STIFFNESS: [f64; 3] = [110066.0, 110066.0, 1604648.0];
 pub const DRIVE_DAMPING: [f64; 3] = [95.0, 76.0, 246.0];
 
 dynamics_macros::robot! {
-    /// MAR manipulator (seed 000, Table 1), optionally with elastic drives.
+    /// MAR manipulator (vibration paper, Table 1), optionally with elastic drives.
     pub robot Mar;
     gravity = [0.0, -9.81, 0.0];
 

@@ -1,4 +1,4 @@
-//! The planar arm of seed 001, sec. 3.4 (Fig. 3.24): link OA turns by q1
+//! The planar arm of the dissertation, sec. 3.4 (Fig. 3.24): link OA turns by q1
 //! about O, the cylinder turns by q2 about A, the piston slides by q3 in it
 //! against a spring; its end point C works against the environment.
 //!
@@ -6,13 +6,13 @@
 //! m1 = m2 = m3 = 1 kg; c1 = c2 = 0, c3 = 0.5 m; J1 = 1, J2 = 0.1,
 //! J3 = 0.1 kg m^2 (taken about the centres of mass, planar axis);
 //! spring k = 650 N/m with rest l0 = 0.1 m; drag b1 = b2 = 0.1 N m s,
-//! b3 = 0. Not in the seed, chosen and documented here: gravity
+//! b3 = 0. Not in the dissertation, chosen and documented here: gravity
 //! g = 10 m/s^2 (as in sec. 3.1.2, the same arm) and the slope a = 2 of the
 //! line KL (eq. 3.89 leaves `a` open; sec. 3.1.2 uses 2). The tiny inertias
 //! about the link axes (1e-5) only keep the 3-D inertia tensors valid.
 
 dynamics_macros::robot! {
-    /// Planar RRP arm whose piston end C follows the line KL (seed 001, sec. 3.4).
+    /// Planar RRP arm whose piston end C follows the line KL (dissertation, sec. 3.4).
     ///
     /// ```
     /// use dynamics_runtime::{Constrained, Robot};

@@ -11,17 +11,20 @@ use dynamics_cli::states::{self, StatesError};
 pub const ROBOTS: &[(&str, &str)] = &[
     (
         "arm3r",
-        "planar 3R loading arm, seed 001 sec. 3.1.1 (3 DOF)",
+        "planar 3R loading arm, dissertation, sec. 3.1.1 (3 DOF)",
     ),
     (
         "rrp",
-        "planar RRP arm with plunger spring and drag, seed 001 sec. 3.1.2 (3 DOF)",
+        "planar RRP arm with plunger spring and drag, dissertation, sec. 3.1.2 (3 DOF)",
     ),
     (
         "rrp-rigid",
         "the RRP arm without spring and drag, as Pinocchio models it (3 DOF)",
     ),
-    ("mar", "MAR manipulator, seed 000 Table 1, rigid (3 DOF)"),
+    (
+        "mar",
+        "MAR manipulator, vibration paper, Table 1, rigid (3 DOF)",
+    ),
     (
         "mar-drives",
         "MAR with Table 1's drive stiffness and damping (3 DOF)",

@@ -1,5 +1,5 @@
 //! Robots read from URDF files at compile time: the two industrial arms,
-//! and URDF twins of the seed robots that tests compare with the
+//! and URDF twins of the robots of the source works that tests compare with the
 //! hand-written descriptions.
 
 dynamics_macros::robot! {
@@ -43,14 +43,14 @@ dynamics_macros::robot! {
 }
 
 dynamics_macros::robot! {
-    /// The arm3r seed robot read from its URDF (twin of [`crate::Arm3r`]).
+    /// The arm3r robot of the source works read from its URDF (twin of [`crate::Arm3r`]).
     pub robot Arm3rUrdf;
     gravity = [0.0, -9.8, 0.0];
     urdf = "data/urdf/arm3r.urdf";
 }
 
 dynamics_macros::robot! {
-    /// The RRP seed robot read from its URDF (twin of [`crate::Rrp::rigid`]
+    /// The RRP robot of the source works read from its URDF (twin of [`crate::Rrp::rigid`]
     /// when its damping parameters are zero).
     pub robot RrpUrdf;
     gravity = [0.0, -10.0, 0.0];
@@ -58,7 +58,7 @@ dynamics_macros::robot! {
 }
 
 dynamics_macros::robot! {
-    /// The MAR seed robot read from its URDF (twin of [`crate::Mar`]).
+    /// The MAR robot of the source works read from its URDF (twin of [`crate::Mar`]).
     pub robot MarUrdf;
     gravity = [0.0, -9.81, 0.0];
     urdf = "data/urdf/mar.urdf";

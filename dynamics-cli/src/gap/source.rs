@@ -28,7 +28,7 @@ use super::GapError;
 pub struct DataFile {
     /// The file, or the directory of a record kept as one file per quantity.
     pub path: PathBuf,
-    /// `None`: the CSV of the design notes; else where `t`, `q`, `qd`, `tau` are.
+    /// `None`: the trajectory CSV (docs/cli.md); else where `t`, `q`, `qd`, `tau` are.
     pub columns: Option<ColumnMap>,
     /// Seconds from the first sample, start inclusive, end exclusive.
     pub window: Option<(f64, f64)>,

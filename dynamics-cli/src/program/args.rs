@@ -5,6 +5,8 @@ use std::path::PathBuf;
 
 use clap::{Args, Parser, Subcommand};
 
+pub use crate::tune::{BaselineArgs, ModelArgs};
+
 /// The program over one robot.
 #[derive(Parser, Debug)]
 #[command(
@@ -39,23 +41,6 @@ pub enum SetCommand {
     List,
     /// Write a crate for your own robot from its URDF: the whole program for it, with one call.
     New(crate::scaffold::NewArgs),
-}
-
-/// The model every subcommand on a robot starts from.
-#[derive(Args, Debug, Clone, Default)]
-pub struct ModelArgs {
-    /// Set a run-time parameter of the nominal model, e.g. `--set c=0` (repeatable).
-    #[arg(long = "set", value_name = "NAME=VALUE")]
-    pub set: Vec<String>,
-}
-
-/// A calibrated baseline added to the nominal model.
-#[derive(Args, Debug, Clone, Default)]
-pub struct BaselineArgs {
-    /// The effects of a previous diagnosis (its JSON report, `which.effects`), or a file
-    /// `{"effects": [{"kind", "joint", "parameters": [{"name", "value"}]}]}`, added to the nominal model.
-    #[arg(long, value_name = "FILE.json")]
-    pub baseline: Option<PathBuf>,
 }
 
 /// Subcommands on one robot.

@@ -12,24 +12,9 @@ use std::process::ExitCode;
 use clap::{ArgMatches, CommandFactory, FromArgMatches};
 use dynamics_runtime::Robot;
 
-use crate::gap::Motion;
+pub use crate::info::RobotInfo;
 use crate::Res;
 use args::{DiagnoseArgs, RobotCommand, SetCli, SetCommand, SingleCli};
-
-/// What the program knows about a robot besides its model.
-#[derive(Debug, Clone, Default)]
-pub struct RobotInfo {
-    /// The name it goes by (`--robot NAME`, reports, truth files).
-    pub name: String,
-    /// Reference states (file name, JSON text in the format of
-    /// Pinocchio's reference files): the default states of `eval`.
-    pub states: Option<(String, String)>,
-    /// Whether `states` carry reference values of this very model (what
-    /// `check` compares against).
-    pub reference_values: bool,
-    /// Home pose and amplitudes for `synth` and `simulate`.
-    pub motion: Motion,
-}
 
 /// Something to do with one robot of a set, whatever its type.
 pub trait RobotVisitor {
@@ -53,7 +38,7 @@ pub trait RobotSet {
     fn default_robot(&self) -> Option<String> {
         None
     }
-    /// Subcommands of this set's own (e.g. the seed scenarios).
+    /// Subcommands of this set's own (e.g. the scenarios of the source works).
     fn commands(&self) -> Vec<clap::Command> {
         Vec::new()
     }

@@ -1,4 +1,4 @@
-//! Program constraints f(t, q) = 0 (seed 001, eqs. 2.39, 2.43-2.46): the
+//! Program constraints f(t, q) = 0 (dissertation, eqs. 2.39, 2.43-2.46): the
 //! residual, its Jacobian J = df/dq, and the bias of its second time
 //! derivative, `d2f/dt2 = J qdd + bias` with
 //! `bias = qd^T (d2f/dq2) qd + 2 (d2f/dq dt) qd + d2f/dt2`, so that the

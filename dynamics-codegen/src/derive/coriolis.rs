@@ -1,4 +1,4 @@
-//! Inertial forces of the matrix Lagrange form (seed 001, eq. 2.41) and the
+//! Inertial forces of the matrix Lagrange form (dissertation, eq. 2.41) and the
 //! Christoffel Coriolis matrix, all from dA/dq_i.
 //!
 //! ```text

@@ -4,7 +4,7 @@
 //! bodies that move (a body welded to the base adds a constant and is left
 //! out, as Pinocchio does). `Q(0)_i = -dPi/dq_i - b_i qd_i
 //! - Fc_i tanh(qd_i / eps_i)`, the spring force `c (l0 - q)` being part of
-//! `-dPi/dq` (seed 001 sec. 3.1.2). A mimic joint's forces act at its own
+//! `-dPi/dq` (dissertation, sec. 3.1.2). A mimic joint's forces act at its own
 //! position `m q_i + o` and speed `m qd_i` and enter Q(0)_i times m.
 
 use dynamics_symbolic::{Graph, Id};

@@ -1,4 +1,4 @@
-//! Perturbation Jacobians of the residual (seed 000, eqs. 4-6):
+//! Perturbation Jacobians of the residual (vibration paper, eqs. 4-6):
 //! `F(q, qd, qdd) = A qdd - Q(0) - Qqt1 - Qqt2 - U`. Linearised about a
 //! nominal motion, `A dxdd + D dxd + K dx = dU` with `K = dF/dq` and
 //! `D = dF/dqd`; with U held fixed these are the derivatives of the inverse

@@ -107,7 +107,7 @@ pub enum JointKind {
     Fixed,
 }
 
-/// One elementary transfer matrix of a joint's chain (seed 001 eqs. 2.1-2.5).
+/// One elementary transfer matrix of a joint's chain (dissertation, eqs. 2.1-2.5).
 #[derive(Debug, Clone)]
 pub enum Elem {
     /// Rotation about the unit axis by the angle.

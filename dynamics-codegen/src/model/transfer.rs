@@ -1,5 +1,5 @@
 //! A joint's placement: its chain of elementary transfer matrices, written
-//! either as `transfer = [...]` (seed 001 eqs. 2.1-2.5) or URDF-style as
+//! either as `transfer = [...]` (dissertation, eqs. 2.1-2.5) or URDF-style as
 //! `origin`, `rpy` and `axis`.
 
 use syn::{Expr, Ident};

@@ -32,7 +32,7 @@ pub enum Item {
     /// `param NAME = expr;`: a run-time parameter with its default.
     Param(Binding),
     /// `constraint NAME = expr;`: a program constraint f(t, q) = 0 on the
-    /// motion (seed 001 eq. 2.39), with joint names standing for their
+    /// motion (dissertation, eq. 2.39), with joint names standing for their
     /// coordinates and `t` for time.
     Constraint(Binding),
     /// `link NAME;` or `link NAME { ... }`

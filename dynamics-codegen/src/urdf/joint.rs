@@ -8,8 +8,20 @@ use syn::Ident;
 
 use super::reader::Reader;
 use super::tokens::{array, ident, num, value};
-use super::Limits;
 use crate::parse::ast::{Binding, JointDecl, Prop};
+
+/// Joint limits from `<limit>` (infinite where absent).
+#[derive(Clone, Copy, Debug)]
+pub struct Limits {
+    /// Lower position limit.
+    pub lower: f64,
+    /// Upper position limit.
+    pub upper: f64,
+    /// Effort limit.
+    pub effort: f64,
+    /// Velocity limit.
+    pub velocity: f64,
+}
 
 /// What the joints of a file add up to, beside the joint items.
 #[derive(Default)]

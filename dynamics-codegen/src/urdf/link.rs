@@ -69,5 +69,5 @@ fn rotate_inertia(i: [f64; 6], rpy: [f64; 3]) -> [f64; 6] {
     if rpy == [0.0; 3] {
         return i;
     }
-    crate::model::merge::rotate_tensor(i, &crate::model::merge::rpy_matrix(rpy))
+    crate::rotation::rotate_tensor(i, &crate::rotation::rpy_matrix(rpy))
 }

@@ -28,4 +28,5 @@ mod reader;
 mod tokens;
 mod tree;
 
-pub use read::{load, Limits};
+pub use joint::Limits;
+pub use read::load;

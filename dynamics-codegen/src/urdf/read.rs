@@ -6,7 +6,7 @@ use std::path::{Path, PathBuf};
 
 use syn::LitStr;
 
-use super::joint::{joint, Joints};
+use super::joint::{joint, Joints, Limits};
 use super::link::inertial;
 use super::mimic::check_mimics;
 use super::reader::Reader;
@@ -14,19 +14,6 @@ use super::tokens::ident;
 use super::tree::check_tree;
 use crate::ctxt::Ctxt;
 use crate::parse::ast::{Binding, JointDecl, LinkDecl};
-
-/// Joint limits from `<limit>` (infinite where absent).
-#[derive(Clone, Copy, Debug)]
-pub struct Limits {
-    /// Lower position limit.
-    pub lower: f64,
-    /// Upper position limit.
-    pub upper: f64,
-    /// Effort limit.
-    pub effort: f64,
-    /// Velocity limit.
-    pub velocity: f64,
-}
 
 /// What a URDF file contributes.
 pub struct Loaded {

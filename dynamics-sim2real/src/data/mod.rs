@@ -1,19 +1,19 @@
 //! Measured data: joint positions, velocities and efforts sampled over time,
-//! in the CSV format of the design notes (`t`, `q_<joint>`, `qd_<joint>`,
+//! in the trajectory CSV format (docs/cli.md) (`t`, `q_<joint>`, `qd_<joint>`,
 //! `tau_<joint>`, matched by name; `.csv.gz` read as well), and recorded
 //! files in other layouts (text matrices, one file per quantity, NumPy
 //! `.npz`) through a column map ([`import`]).
 
+mod error;
 pub mod import;
 mod prepare;
 mod read;
 mod window;
 mod write;
 
-pub use prepare::{
-    prepare, GLITCH_THRESHOLD, HOLE_PERIODS, MAX_GLITCH_FRACTION, MIN_GLITCHES_REFUSED,
-};
-pub use read::{read_csv, read_csv_str, DataError};
+pub use error::{DataError, MAX_GLITCH_FRACTION, MIN_GLITCHES_REFUSED};
+pub use prepare::{prepare, GLITCH_THRESHOLD, HOLE_PERIODS};
+pub use read::{read_csv, read_csv_str};
 pub use write::write_csv;
 
 use crate::Warning;

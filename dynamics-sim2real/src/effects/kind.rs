@@ -1,5 +1,4 @@
-//! The vocabulary of unmodelled effects (design notes, "the diagnosis
-//! vocabulary"): each kind's name as it appears in CSV truth files, JSON
+//! The vocabulary of unmodelled effects (docs/diagnosis.md): each kind's name as it appears in CSV truth files, JSON
 //! reports and on the command line.
 
 use std::fmt;
@@ -37,7 +36,7 @@ pub enum EffectKind {
     JointElasticity,
     /// A dead zone of half-width delta between motor and link.
     Backlash,
-    /// `F = -mu |v|^(alpha-1) v` at the tip (seed 001 sec. 3.4).
+    /// `F = -mu |v|^(alpha-1) v` at the tip (dissertation, sec. 3.4).
     EnvironmentResistance,
     /// The encoder reads `q + offset`.
     EncoderOffset,

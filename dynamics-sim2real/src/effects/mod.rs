@@ -1,5 +1,5 @@
-//! Unmodelled effects as run-time add-ons to any generated robot (seed 001
-//! sec. 3.2-3.4; the design notes' diagnosis vocabulary): friction laws,
+//! Unmodelled effects as run-time add-ons to any generated robot (the dissertation
+//! sec. 3.2-3.4; the diagnosis vocabulary of docs/diagnosis.md): friction laws,
 //! rotor inertia, payload, two-mass elastic joints, backlash with
 //! event-located contact switching, environment resistance at the tip, and
 //! sensor faults applied to what is measured.

@@ -17,7 +17,7 @@
 
 use nalgebra::{DMatrix, DVector, Matrix4, SVector};
 
-use super::consistent::pseudo_inertia;
+use super::pseudo::pseudo_inertia;
 
 /// Newton steps per centring.
 const NEWTON: usize = 60;

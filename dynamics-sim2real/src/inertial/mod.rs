@@ -11,9 +11,11 @@ use thiserror::Error;
 
 mod barrier;
 mod consistent;
+mod pseudo;
 mod size;
 
-pub use consistent::{complete, margin, nearest_physical, pseudo_inertia, Completed};
+pub use consistent::{complete, nearest_physical, Completed};
+pub use pseudo::{margin, pseudo_inertia};
 pub use size::{units, LIGHTEST, SMALLEST};
 
 /// Names of the ten parameters, in order.

@@ -1,5 +1,5 @@
-//! Seed 001, chapter 4: the 3R arm (payload 2 kg, b1..b3 = 1) draws a
-//! circle with its tip under three controllers. The seed gives no circle
+//! Dissertation, chapter 4: the 3R arm (payload 2 kg, b1..b3 = 1) draws a
+//! circle with its tip under three controllers. The dissertation gives no circle
 //! data; here: centre (0.25, 0.15) m, radius 0.08 m, tool (link 3) kept
 //! horizontal, one turn in 4 s with a rest-to-rest angle profile
 //! `theta(t) = 2 pi (t/T - sin(2 pi t/T) / (2 pi))`, and the arm starting

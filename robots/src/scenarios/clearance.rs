@@ -1,4 +1,4 @@
-//! Seed 001, sec. 3.2: a joint with clearance (Figs. 3.12-3.18). The pin of
+//! Dissertation, sec. 3.2: a joint with clearance (Figs. 3.12-3.18). The pin of
 //! link 2 (radius r2) rolls inside the ring of link 1 (radius r1) while the
 //! ring pushes it; when the contact reaction Ru reaches zero the pin leaves
 //! the ring and flies freely inside the clearance until it hits the ring
@@ -7,52 +7,49 @@
 //! 1e-12 s), never by stepping over it.
 //!
 //! In contact (coordinates `(phi1, psi, u, phi2)` of [`crate::ClearanceArm`]) the
-//! constraints (3.25) hold. The OCR prints `f1 = u - (r1 - r2)` and
+//! constraints (3.25) hold. The available text prints `f1 = u - (r1 - r2)` and
 //! `f2 = r1 psi - r2 phi2`, the second with its sign garbled; derived again:
 //! the pin's material point at the contact moves with
 //! `(r1 - r2) (phi1' + psi') + r2 (phi1' + psi' + phi2')` along the ring,
 //! the ring's with `r1 phi1'`; no slip makes them equal, `r1 psi' + r2 phi2' = 0`,
 //! so `f2 = r1 psi + r2 phi2 - c0` with c0 fixed where contact begins.
-//! The motion follows the seed's eq. 3.37, `D A qdd = D (Q + Qqt + U)` with
+//! The motion follows the dissertation's eq. 3.37, `D A qdd = D (Q + Qqt + U)` with
 //! D^T spanning the motions the constraints allow, together with the
 //! second derivatives of (3.25) (Baumgarte-stabilised); the reaction is
 //! `R = A qdd - Q - Qqt - U` and Ru its u-row (sec. 3.2.2). The ring can
 //! only push: contact holds while `Ru < 0` (inward along u).
 //!
 //! Rolling needs a tangential force Ft, which friction can give only up to
-//! `mu |Ru|`: the seed's no-slip assumption holds while `|Ft| <= mu |Ru|`.
+//! `mu |Ru|`: the dissertation's no-slip assumption holds while `|Ft| <= mu |Ru|`.
 //! Where it fails the pin slides on the ring with Coulomb friction (only
 //! f1 holds), and rolls again when the slip stops and friction suffices;
 //! without this the model is inconsistent where Ru -> 0, because the
 //! no-slip force would stay finite while the normal force vanishes. Not in
-//! the seed, chosen here: mu = 0.15 (dry steel on steel, lubricated 0.1).
-//! (A very large mu, near the seed's rolling throughout, runs into
+//! the dissertation, chosen here: mu = 0.15 (dry steel on steel, lubricated 0.1).
+//! (A very large mu, near the dissertation's rolling throughout, runs into
 //! Painleve's paradox while sliding: the normal force of the sliding
 //! equations changes sign and the integration stops with an error.)
 //!
 //! In slide and flight the Cartesian model [`crate::ClearanceArmFree`]
 //! integrates (see [`super::clearance_modes`]). A pin that reaches the ring
-//! again hits it plastically and without friction (the seed gives no impact
+//! again hits it plastically and without friction (the dissertation gives no impact
 //! law; restitution 0, chosen here): the normal velocity is removed in the
 //! metric of A, which costs `1/2 vn^2 / (J A^-1 J^T)`; then it slides, or
 //! stays in flight if the ring would have to pull.
 //!
 //! Drives: `M1 = M0 sin(w t)` on link 1, `M2 = M0 cos(w t)` between the
-//! links, M0 = -1 N m, w = 2 rad/s. Not in the seed (it names phi10,
+//! links, M0 = -1 N m, w = 2 rad/s. Not in the dissertation (it names phi10,
 //! psi0, ... only), chosen here: at rest at t = 0, link 1 horizontal, link 2
 //! straight up, the pin at the bottom of the ring; the contact is then lost
 //! once within 4 s. (From both links horizontal the ring keeps pushing,
 //! |Ru| >= 0.49 N, for 10 s: clearance alone does not open the joint.)
-//! The OCR's `delta = 0.005 m` does not match r1 - r2 = 5e-5 m; the radii
+//! The available text's `delta = 0.005 m` does not match r1 - r2 = 5e-5 m; the radii
 //! are used.
 
 use std::f64::consts::FRAC_PI_2;
 
-use dynamics_runtime::ode::{JointState, Tolerances};
+use dynamics_runtime::ode::JointState;
 use nalgebra::{Vector2, Vector4};
-
-pub use super::clearance_run::simulate_from;
-use super::ScenarioError;
 
 /// Ring radius r1, m.
 pub const R1: f64 = 0.0025;
@@ -64,7 +61,7 @@ pub const GAP: f64 = R1 - R2;
 pub const M0: f64 = -1.0;
 /// Drive frequency w, rad/s.
 pub const OMEGA: f64 = 2.0;
-/// Friction coefficient pin-ring of the default case (chosen; not in the seed).
+/// Friction coefficient pin-ring of the default case (chosen; not in the dissertation).
 pub const MU: f64 = 0.15;
 /// Time tolerance of the event location, s.
 pub const EVENT_TOL: f64 = 1e-12;
@@ -101,14 +98,14 @@ pub struct Switch {
     pub g_after: f64,
     /// Energy the impact removed (re-contact), J.
     pub impact_loss: f64,
-    /// The state at the switch in the seed's coordinates, before the
+    /// The state at the switch in the dissertation's coordinates, before the
     /// change (velocities before an impact).
     pub q: Vector4<f64>,
     /// Its rates.
     pub qd: Vector4<f64>,
 }
 
-/// One output sample, in the seed's coordinates in every mode.
+/// One output sample, in the dissertation's coordinates in every mode.
 #[derive(Debug, Clone, Copy, PartialEq)]
 pub struct Sample {
     /// Time, s.
@@ -185,7 +182,7 @@ pub struct Start {
     pub rates: Vector2<f64>,
     /// Direction of the contact point from the ring's centre, world frame, rad.
     pub contact: f64,
-    /// Friction coefficient pin-ring (large: the seed's rolling throughout).
+    /// Friction coefficient pin-ring (large: the dissertation's rolling throughout).
     pub mu: f64,
 }
 
@@ -204,7 +201,7 @@ impl Default for Start {
 }
 
 impl Start {
-    /// The seed coordinates (phi1, psi, u, phi2) and rates (pin rolling).
+    /// The dissertation's coordinates (phi1, psi, u, phi2) and rates (pin rolling).
     pub fn seed(&self) -> (Vector4<f64>, Vector4<f64>) {
         let psi = self.contact - self.phi1;
         let k = R2 / GAP;
@@ -220,18 +217,7 @@ impl Start {
     }
 }
 
-/// The default start in seed coordinates.
+/// The default start in the dissertation's coordinates.
 pub fn start() -> (Vector4<f64>, Vector4<f64>) {
     Start::default().seed()
-}
-
-/// Simulates `[0, t_end]` sampled every `dt`.
-///
-/// ```
-/// use dynamics_runtime::ode::Tolerances;
-/// let run = robots::scenarios::clearance::simulate(0.05, 0.01, Tolerances::default()).unwrap();
-/// assert_eq!(run.samples.len(), 6);
-/// ```
-pub fn simulate(t_end: f64, dt: f64, tol: Tolerances) -> Result<ClearanceRun, ScenarioError> {
-    simulate_from(Start::default(), t_end, dt, tol)
 }

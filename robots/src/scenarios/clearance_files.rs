@@ -1,4 +1,4 @@
-//! Outputs of the clearance scenario (seed 001 sec. 3.2): CSV of the motion
+//! Outputs of the clearance scenario (dissertation, sec. 3.2): CSV of the motion
 //! and of the switches, the plots of Figs. 3.15-3.18, the joint without
 //! clearance for comparison, and the summary.
 
@@ -9,7 +9,8 @@ use dynamics_runtime::ode::Tolerances;
 use dynamics_runtime::{simulate_program, Baumgarte};
 use nalgebra::{Vector2, Vector4};
 
-use super::clearance::{drives, simulate, start, ClearanceRun, Mode, GAP};
+use super::clearance::{drives, start, ClearanceRun, Mode, GAP};
+use super::clearance_run::simulate;
 use super::support::trajectory_csv;
 use super::{write, ScenarioError};
 use crate::ClearanceArmFree;

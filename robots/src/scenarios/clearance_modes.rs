@@ -1,7 +1,7 @@
 //! The equations of the three contact modes of the clearance scenario and
 //! the changes of coordinates between them (see [`super::clearance`]).
 //!
-//! Roll uses the seed's coordinates `(phi1, psi, u, phi2)` of
+//! Roll uses the dissertation's coordinates `(phi1, psi, u, phi2)` of
 //! [`ClearanceArm`]; slide and flight the Cartesian pin coordinates
 //! `(phi1, x, y, phi)` of [`ClearanceArmFree`], regular everywhere inside
 //! the ring (the polar pair psi, u is singular at its centre, and in slide
@@ -35,8 +35,8 @@ pub fn residual(q: &Vector4<f64>, c0: f64) -> Vector2<f64> {
     Vector2::new(q[2] - GAP, R1 * q[1] + R2 * q[3] - c0)
 }
 
-/// Rolling contact (seed eqs. 3.25, 3.37): accelerations and the reaction
-/// `R = A qdd - Q - Qqt - U`; `R[2]` is the seed's Ru, `R[3] / r2` the
+/// Rolling contact (dissertation, eqs. 3.25, 3.37): accelerations and the reaction
+/// `R = A qdd - Q - Qqt - U`; `R[2]` is the dissertation's Ru, `R[3] / r2` the
 /// tangential force that keeps the pin from slipping.
 ///
 /// ```
@@ -94,7 +94,7 @@ pub fn slip_rate(q: &Vector4<f64>, qd: &Vector4<f64>) -> f64 {
 
 /// Sliding contact with Coulomb friction `mu` against slip direction
 /// `sigma`: accelerations and the normal multiplier lambda (the force on the
-/// pin along u, the seed's Ru; the ring pushes while it is negative).
+/// pin along u, the dissertation's Ru; the ring pushes while it is negative).
 pub fn slide(
     t: f64,
     q: &Vector4<f64>,
@@ -169,7 +169,7 @@ pub fn to_free(q: &Vector4<f64>, qd: &Vector4<f64>) -> (Vector4<f64>, Vector4<f6
     )
 }
 
-/// Cartesian pin -> seed coordinates, psi taken nearest `psi_near`.
+/// Cartesian pin -> the dissertation's coordinates, psi taken nearest `psi_near`.
 pub fn to_seed(q: &Vector4<f64>, qd: &Vector4<f64>, psi_near: f64) -> (Vector4<f64>, Vector4<f64>) {
     let (x, y) = (q[1], q[2]);
     let u = x.hypot(y).max(1e-300);

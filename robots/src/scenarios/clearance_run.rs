@@ -275,7 +275,7 @@ pub fn simulate_from(
         };
         (active, x) = match (active, k) {
             (Active::Roll { .. }, _) => {
-                // Leave the seed's coordinates for the Cartesian ones.
+                // Leave the dissertation's coordinates for the Cartesian ones.
                 let r = roll(t, &x.0.q, &x.0.qd, residual_c0(&x.0.q))?.1;
                 psi_last = x.0.q[1];
                 let (q, qd) = to_free(&x.0.q, &x.0.qd);
@@ -318,7 +318,18 @@ pub fn simulate_from(
     Ok(run)
 }
 
-/// The rolling constant of a seed state on the ring (for forces only).
+/// The rolling constant of a state in the dissertation's coordinates on the ring (for forces only).
 fn residual_c0(q: &Vector4<f64>) -> f64 {
     R1 * q[1] + R2 * q[3]
+}
+
+/// Simulates `[0, t_end]` sampled every `dt`.
+///
+/// ```
+/// use dynamics_runtime::ode::Tolerances;
+/// let run = robots::scenarios::clearance_run::simulate(0.05, 0.01, Tolerances::default()).unwrap();
+/// assert_eq!(run.samples.len(), 6);
+/// ```
+pub fn simulate(t_end: f64, dt: f64, tol: Tolerances) -> Result<ClearanceRun, ScenarioError> {
+    simulate_from(Start::default(), t_end, dt, tol)
 }

@@ -1,11 +1,11 @@
-//! Seed 001, sec. 3.3: the arm with an elastic grip (Figs. 3.19-3.21), the
+//! Dissertation, sec. 3.3: the arm with an elastic grip (Figs. 3.19-3.21), the
 //! four-coordinate model (phi, theta, u, y) of eq. 3.57 derived by `robot!`
 //! from the transfer matrices (3.49) and the potential (3.56), under the
 //! constant drives M10 = 0.2 N m, M20 = 0.5 N m, F0 = 7.5 N from rest.
 //!
 //! Two cases: the handle (push rod CD) massless (sec. 3.3.1, Fig. 3.20) and
 //! with its mass m0 = 0.75 kg lumped into M by the equivalent-kinetic-energy
-//! factor of eq. 3.58 (sec. 3.3.2, Fig. 3.21). The OCR of eq. 3.58 keeps
+//! factor of eq. 3.58 (sec. 3.3.2, Fig. 3.21). The available text of eq. 3.58 keeps
 //! only `km = 1/l3 int_0^l3 (eta_x / eta)^2 dx`; derived again: for a
 //! uniform rod clamped at C with the load at its end D, the static
 //! deflection shape is `eta_x / eta = (3 l3 x^2 - x^3) / (2 l3^3)`, so

@@ -1,4 +1,4 @@
-//! Seed 001, sec. 3.4: the piston's end point C follows the line KL
+//! Dissertation, sec. 3.4: the piston's end point C follows the line KL
 //! (eq. 3.89) while the environment resists its motion with the
 //! velocity-dependent force `F = -mu |v|^(alpha-1) v` (mu = 0.05 N s/m,
 //! alpha = 2), under the constant drives M1 = 7.5 N m, M2 = 0.5 N m,
@@ -122,7 +122,7 @@ pub fn run(dir: &Path) -> Result<Vec<String>, ScenarioError> {
     let dt = 1e-3;
     let with = simulate(MU, ALPHA, DURATION, dt)?;
     let without = simulate(0.0, ALPHA, DURATION, dt)?;
-    // Matlab's ode45 default tolerances (the seed computed with Matlab).
+    // Matlab's ode45 default tolerances (the dissertation computed with Matlab).
     let loose = Tolerances {
         rtol: 1e-3,
         atol: 1e-6,

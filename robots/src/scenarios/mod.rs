@@ -1,4 +1,4 @@
-//! The seeds' scenarios, runnable by name (`dynamics scenario NAME`): each
+//! The scenarios of the two source works (docs/references.md), runnable by name (`dynamics scenario NAME`): each
 //! writes a CSV of the motion and SVG plots into a folder and returns a
 //! short summary.
 
@@ -15,7 +15,7 @@ mod circle;
 pub mod clearance;
 mod clearance_files;
 pub mod clearance_modes;
-mod clearance_run;
+pub mod clearance_run;
 pub mod elastic_grip;
 pub mod environment;
 pub mod mar;
@@ -25,31 +25,31 @@ mod support;
 pub const SCENARIOS: &[(&str, &str)] = &[
     (
         "arm3r-free",
-        "seed 001 sec. 3.1.1: the 3R arm released from rest at q = 0 (Figs. 3.2-3.3)",
+        "dissertation, sec. 3.1.1: the 3R arm released from rest at q = 0 (Figs. 3.2-3.3)",
     ),
     (
         "rrp-line",
-        "seed 001 sec. 3.1.2: the RRP arm carrying M along the line KL (eq. 3.7/3.14)",
+        "dissertation, sec. 3.1.2: the RRP arm carrying M along the line KL (eq. 3.7/3.14)",
     ),
     (
         "arm3r-circle",
-        "seed 001 ch. 4: the 3R arm's tool on a circle under PD + gravity, computed torque and sliding mode",
+        "dissertation, ch. 4: the 3R arm's tool on a circle under PD + gravity, computed torque and sliding mode",
     ),
     (
         "mar-vibration",
-        "seed 000: inertial vibrations of the MAR's links 2 and 3 on the Table 2 path (Figs. 3-8)",
+        "vibration paper: inertial vibrations of the MAR's links 2 and 3 on the Table 2 path (Figs. 3-8)",
     ),
     (
         "environment",
-        "seed 001 sec. 3.4: the piston end C on the line KL against F = -mu |v|^(alpha-1) v",
+        "dissertation, sec. 3.4: the piston end C on the line KL against F = -mu |v|^(alpha-1) v",
     ),
     (
         "elastic-grip",
-        "seed 001 sec. 3.3: arm with an elastic push rod, handle massless or lumped by eq. 3.58",
+        "dissertation, sec. 3.3: arm with an elastic push rod, handle massless or lumped by eq. 3.58",
     ),
     (
         "clearance",
-        "seed 001 sec. 3.2: pin rolling in a ring with clearance, contact loss and re-contact by events",
+        "dissertation, sec. 3.2: pin rolling in a ring with clearance, contact loss and re-contact by events",
     ),
 ];
 

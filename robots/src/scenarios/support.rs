@@ -1,4 +1,4 @@
-//! Pieces shared by the seed-001 scenarios of sec. 3.2-3.4: dense sampling
+//! Pieces shared by the dissertation's scenarios of sec. 3.2-3.4: dense sampling
 //! of an adaptive Dormand-Prince run whose state carries more than a
 //! robot's (q, qd) (work integrals), and the CSV of an N-joint motion.
 
@@ -9,7 +9,7 @@ use dynamics_runtime::{Robot, SimError, Trajectory};
 
 use super::{io, write, ScenarioError};
 
-/// The trajectory as `<name>.csv` in the format of the design notes.
+/// The trajectory as `<name>.csv` in the trajectory CSV format (docs/cli.md).
 pub(crate) fn trajectory_csv<R: Robot<N>, const N: usize>(
     name: &str,
     tr: &Trajectory<N>,

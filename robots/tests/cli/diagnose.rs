@@ -179,10 +179,9 @@ fn report_traces_carry_the_fitted_effect() {
     assert!(err.to_string().contains("no joint `j9`"), "{err}");
 }
 
-/// The regression of the last commit on main: 4 s of arm3r data where j3's
-/// training velocity never reverses. Coulomb friction there is named, as
-/// ambiguous with an effort offset at j3 (these data cannot tell them
-/// apart), never `unexplained`.
+/// 4 s of arm3r data where j3's training velocity never reverses: Coulomb
+/// friction there is named, as ambiguous with an effort offset at j3 (these
+/// data cannot tell them apart), never `unexplained`.
 #[test]
 fn coulomb_friction_where_the_velocity_never_reverses_is_ambiguous() {
     use dynamics_sim2real::diagnose::{diagnose, Options};

@@ -1,4 +1,4 @@
-//! `dynamics check` and `dynamics eval`: the seed robots against their
+//! `dynamics check` and `dynamics eval`: the robots of the source works against their
 //! reference values, every field at the states of a file, bad input named.
 
 use crate::{dynamics, read_json, succeeds, tmp};

@@ -4,7 +4,7 @@
 use crate::{dynamics, fails, fresh_dir, succeeds};
 
 /// `simulate`: the arm3r with friction it is not told about follows pick
-/// and place; the CSV has the design notes' columns, its accelerations
+/// and place; the CSV has the trajectory CSV's columns, its accelerations
 /// agree with the velocities' differences, and the plots are written.
 #[test]
 fn simulate_writes_the_csv_and_plots() {

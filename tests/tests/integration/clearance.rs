@@ -1,4 +1,4 @@
-//! Seed 001 sec. 3.2: the joint with clearance. Every switch (loss of
+//! Dissertation, sec. 3.2: the joint with clearance. Every switch (loss of
 //! contact at Ru -> 0, re-contact, stick/slip) is located to 1e-9 s on the
 //! dense output; energy balance with the work of drives and friction and
 //! the impact losses; (3.25) held in contact; the rolling condition
@@ -8,8 +8,9 @@
 use dynamics_runtime::ode::Tolerances;
 use dynamics_runtime::Robot;
 use nalgebra::{Vector3, Vector4};
-use robots::scenarios::clearance::{simulate, Mode, Start, GAP, MU, R1, R2};
+use robots::scenarios::clearance::{Mode, Start, GAP, MU, R1, R2};
 use robots::scenarios::clearance_modes::{impact, roll, slide, slip_rate, to_free, to_seed};
+use robots::scenarios::clearance_run::simulate;
 use robots::{ClearanceArm, ClearanceArmFree};
 
 fn tol(rtol: f64) -> Tolerances {
@@ -141,7 +142,7 @@ fn local(arm: &ClearanceArm, f: usize, q: &Vector4<f64>, p: &Vector3<f64>) -> Ve
 
 #[test]
 fn rolling_condition_keeps_the_contact_points_together() {
-    // r1 psi' + r2 phi2' = 0 (the OCR's sign garbled): the pin's and the
+    // r1 psi' + r2 phi2' = 0 (the sign garbled in the available text): the pin's and the
     // ring's material points at the contact move alike, checked with the
     // generated frame poses alone.
     let arm = ClearanceArm::default();

@@ -1,5 +1,5 @@
-//! Seed 001 sec. 3.3: the arm with an elastic grip. The generated model is
-//! the seed's (kinetic energy of M written here by hand from the transfer
+//! Dissertation, sec. 3.3: the arm with an elastic grip. The generated model is
+//! the dissertation's (kinetic energy of M written here by hand from the transfer
 //! matrices 3.49, potential 3.56); the energy balance closes against the
 //! work of drives and drag; the equivalent-mass factor of eq. 3.58 is the
 //! integral it claims to be, and the equivalent-mass model agrees with the
@@ -13,7 +13,7 @@ use robots::scenarios::elastic_grip::{
 };
 use robots::{ElasticGrip, ElasticGripParams};
 
-/// Kinetic and potential energy written from the seed: M at
+/// Kinetic and potential energy written from the dissertation: M at
 /// `R(q1) [l1, 0] + R(q1 + q2) [l3 + q3, q4]`, arms J1 about O, J2 about A.
 fn hand_energies(q: &Vector4<f64>, qd: &Vector4<f64>, m: f64) -> (f64, f64) {
     let (l1, l3, g) = (0.3, 0.5, 10.0);
@@ -58,7 +58,7 @@ fn energy_change_equals_the_work_of_drives_and_drag() {
         let e0 = model.total_energy(&tr.q[0], &tr.qd[0]);
         let scale = run.drive_work.iter().fold(1.0f64, |m, w| m.max(w.abs()));
         // The work integrated beside the motion against Simpson's rule on
-        // the samples, with the seed's coefficients.
+        // the samples, with the dissertation's coefficients.
         let u = Vector4::from(DRIVES);
         let b = Vector4::from(DRAG);
         let power: Vec<f64> = tr

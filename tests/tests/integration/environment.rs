@@ -1,4 +1,4 @@
-//! Seed 001 sec. 3.4: the piston end C on the line KL against the
+//! Dissertation, sec. 3.4: the piston end C on the line KL against the
 //! environment's resistance. The orbit error stays below a stated bound,
 //! and the energy balance closes: the change of T + Pi equals the work of
 //! the drives, of the resistance (computed here from C's velocity, not by

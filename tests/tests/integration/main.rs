@@ -13,6 +13,7 @@ mod logs;
 mod mar_eq10;
 mod mar_vibration;
 mod mimic;
+mod module_graph;
 mod oracle;
 mod properties;
 mod regressor;

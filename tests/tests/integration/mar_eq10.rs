@@ -1,10 +1,10 @@
-//! Seed 000, eq. 10: the matrices [A], [B], [C] of the MAR's inertial
+//! Vibration paper, eq. 10: the matrices [A], [B], [C] of the MAR's inertial
 //! vibrations in the second step of motion (q1 fixed, q1d = q1dd = 0),
-//! printed in the seed, against our A, D = dF/dqd and K = dF/dq (with the
-//! drives of Table 1), term by term, and the seed's [Z] at x1 = 0 against our
+//! printed in the vibration paper, against our A, D = dF/dqd and K = dF/dq (with the
+//! drives of Table 1), term by term, and the paper's [Z] at x1 = 0 against our
 //! rigid inverse dynamics.
 //!
-//! Reading of the OCR text (symbols: m2, m3 link masses, L2, L3 link
+//! Reading of the paper's text (symbols: m2, m3 link masses, L2, L3 link
 //! lengths, s3 = S3, c_i, k_i drive damping and stiffness, g = 9.81):
 //! - [A], [B], [C21], [C22] are printed correctly.
 //! - [C11] is printed as `-[m3 (s3+q3) sin q2 + (m3 + m2/2) g cos q1 cos q2)
@@ -17,7 +17,7 @@
 //!   `cos q2` of the gravity term is lost (it is the one doubled in C11) and
 //!   `k2` does not belong here (the off-diagonal has no drive term).
 //!   Derived again: `C12 = m3 {2[(s3+q3) q2dd + q2d q3d] + g cos q1 cos q2}`.
-//! - [Z] carries stray `t` factors (`... x12 x13 t) sin q2 ...] t }`), OCR
+//! - [Z] carries stray `t` factors (`... x12 x13 t) sin q2 ...] t }`), text
 //!   debris that would make gravity grow with time; at x1 = 0 we drop them.
 
 use dynamics_runtime::Robot;
@@ -93,7 +93,7 @@ fn seed_c(s: &State) -> Matrix2<f64> {
     )
 }
 
-/// C11 and C12 read literally from the OCR text.
+/// C11 and C12 read literally from the paper's text.
 fn seed_c_literal(s: &State) -> (f64, f64) {
     let r = S3 + s.q[2];
     let k2 = DRIVE_STIFFNESS[1];
@@ -123,13 +123,13 @@ fn block(m: &nalgebra::Matrix3<f64>) -> Matrix2<f64> {
     m.fixed_view::<2, 2>(1, 1).into_owned()
 }
 
-fn assert_close(ours: &Matrix2<f64>, seed: &Matrix2<f64>, what: &str, i: usize) {
+fn assert_close(ours: &Matrix2<f64>, paper: &Matrix2<f64>, what: &str, i: usize) {
     for r in 0..2 {
         for c in 0..2 {
-            let (a, b) = (ours[(r, c)], seed[(r, c)]);
+            let (a, b) = (ours[(r, c)], paper[(r, c)]);
             assert!(
                 (a - b).abs() <= 1e-9 * (1.0 + b.abs()),
-                "state {i}: {what}[{}{}] ours {a} seed {b}",
+                "state {i}: {what}[{}{}] ours {a} paper {b}",
                 r + 1,
                 c + 1
             );
@@ -186,7 +186,7 @@ fn eq10_z_at_rest_perturbation_is_our_rigid_inverse_dynamics() {
         for j in 0..2 {
             assert!(
                 (tau[j + 1] - z[j]).abs() <= 1e-9 * (1.0 + z[j].abs()),
-                "state {i}: Z{} ours {} seed {}",
+                "state {i}: Z{} ours {} paper {}",
                 j + 1,
                 tau[j + 1],
                 z[j]

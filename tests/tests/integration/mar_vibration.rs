@@ -1,4 +1,4 @@
-//! Seed 000's MAR vibration scenario: the gripper path and its motion law,
+//! The MAR vibration scenario of the vibration paper: the gripper path and its motion law,
 //! the inverse kinematics against the generated forward kinematics, the
 //! inverse dynamics against a forward simulation, the linear perturbation
 //! equation against the nonlinear elastic-drive model, and the scenario's

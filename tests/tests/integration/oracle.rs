@@ -67,7 +67,7 @@ fn arm3r_matches_hand_derivation_at_zero() {
 
 #[test]
 fn seed_rrp_potential_force_matches_seed_eq_3_11() {
-    // Seed 001 eq. 3.11-3.12: Q(0)_3 = -dPi/dq3 - b3 qd3 with
+    // Dissertation, eq. 3.11-3.12: Q(0)_3 = -dPi/dq3 - b3 qd3 with
     // Pi = [m1 c1 + (m2+m3+m) l1] g sin q1 + [m2 c2 + m3 c3 + m l3 + (m3 + m) q3] g sin(q1+q2)
     //      + 1/2 c (l0 - q3)^2   (m1 c1 = m2 c2 = 0 here)
     let r = robots::Rrp::default();

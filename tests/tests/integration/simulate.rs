@@ -1,4 +1,4 @@
-//! Integration: energy conservation of the seed robots under DOPRI5, RK4's
+//! Integration: energy conservation of the robots of the source works under DOPRI5, RK4's
 //! order of convergence, event location, divergence errors.
 
 use dynamics_runtime::ode::{locate_event, rk4_step, Dopri5, JointState, Tolerances};

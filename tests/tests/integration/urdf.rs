@@ -79,7 +79,7 @@ fn urdf_damping_is_a_parameter_of_the_generalized_forces() {
     // difference is exact to a few ulp of those, not of the damping term.
     let tol = 4.0 * f64::EPSILON * q0_rigid.abs().max().max(1.0);
     assert!((diff - v * 0.003).abs().max() < tol, "{diff}");
-    // RRP: the URDF's 0.15, 0.15, 0.25 are the seed's b1..b3.
+    // RRP: the URDF's 0.15, 0.15, 0.25 are the dissertation's b1..b3.
     let rrp = robots::RrpUrdf::default();
     assert_eq!(rrp.params.get("damping_q3"), Some(0.25));
 }

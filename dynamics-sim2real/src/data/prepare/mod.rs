@@ -32,18 +32,11 @@ pub use glitch::THRESHOLD as GLITCH_THRESHOLD;
 
 use nalgebra::SVector;
 
-use super::{DataError, Measured};
+use super::error::{DataError, MAX_GLITCH_FRACTION, MIN_GLITCHES_REFUSED};
+use super::Measured;
 use crate::Warning;
 use clock::{speed_ratio, Clock};
 use grid::grid;
-
-/// Largest fraction of a column's rows that may be glitches before the
-/// file is refused.
-pub const MAX_GLITCH_FRACTION: f64 = 0.01;
-
-/// A column is refused only beyond this many glitches, however short the
-/// file (a 6 s log at 100 Hz has 600 rows: 1 % would be 6).
-pub const MIN_GLITCHES_REFUSED: usize = 10;
 
 /// Glitch warnings listed one by one per file; the rest are counted.
 const GLITCHES_LISTED: usize = 20;

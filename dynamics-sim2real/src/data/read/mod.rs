@@ -1,21 +1,17 @@
 //! Reading measured data from CSV (plain or gzip), matching columns to the
 //! robot's joints by name and saying exactly what is wrong otherwise.
 //!
-//! - `error.rs`: [`DataError`], what can be wrong with a file;
 //! - `columns.rs`: the header matched to the joints;
 //! - here: the text read (gzip or not) and its rows parsed and checked.
 
 mod columns;
-mod error;
-
-pub use error::DataError;
-use error::MIN_SAMPLES;
 
 use std::io::Read;
 use std::path::Path;
 
 use nalgebra::SVector;
 
+use super::error::{DataError, MIN_SAMPLES};
 use super::{differentiate, prepare, Measured};
 use crate::Warning;
 use columns::Columns;

@@ -3,7 +3,7 @@
 //!
 //! ```text
 //! dynamics                      # diagnose a built-in case (arm3r with a withheld effect)
-//! dynamics check                # every seed robot against the shipped Pinocchio values
+//! dynamics check                # every robot of the source works against the shipped Pinocchio values
 //! dynamics synth --robot NAME --effect KIND --joint J --out FILE.csv
 //! dynamics diagnose --robot NAME --train A.csv --holdout B.csv [--json OUT.json] [--report DIR] [--baseline OLD.json]
 //! dynamics simulate --robot NAME [--motion sines|chirp|pick-place|FILE.csv] [--effects FILE.json]

@@ -1,4 +1,4 @@
-//! Inverse kinematics of the MAR's second step of motion (seed 000, Fig. 4):
+//! Inverse kinematics of the MAR's second step of motion (vibration paper, Fig. 4):
 //! q1 stays fixed, q2 and q3 place the gripper on the flat path.
 //!
 //! In the plane of links 2 and 3 (link 1's x-y plane) the gripper sits at

@@ -1,4 +1,4 @@
-//! Seed 000: inertial vibrations of the MAR manipulator's links during the
+//! Vibration paper: inertial vibrations of the MAR manipulator's links during the
 //! second step of motion (q1 still, q2 and q3 moving the gripper along the
 //! flat path of Table 2). Pipeline, one file a step:
 //! [`path`] (gripper path and motion law, Figs. 2-3) -> [`ik`] (q2, q3,
@@ -160,7 +160,7 @@ fn vs_beta<'a>(v: &Vibration, name: &'a str, f: impl Fn(usize) -> f64) -> Series
     }
 }
 
-/// The seed's Figs. 3, 4, 5, 7, 8 (and the path of Fig. 2).
+/// The vibration paper's Figs. 3, 4, 5, 7, 8 (and the path of Fig. 2).
 fn figures(v: &Vibration, dir: &Path) -> Result<(), ScenarioError> {
     let r = &v.response;
     let beta = "beta [deg]";

@@ -1,8 +1,8 @@
-//! The gripper's flat trajectory of seed 000, Table 2 (Q = 0.05, L = 0.35,
+//! The gripper's flat trajectory of the vibration paper, Table 2 (Q = 0.05, L = 0.35,
 //! K = 0.05, R = 0.05 m), with its stops and start-ups, as a function of
 //! time and of the cycle angle beta.
 //!
-//! The seed shows the path only in its Fig. 2 and gives the formula in its
+//! The vibration paper shows the path only in its Fig. 2 and gives the formula in its
 //! reference [13], which we do not have. The choice made here fits the
 //! description (a flat path of straight runs and circular arcs, "described
 //! with a combination of trigonometric functions", with stops and

@@ -1,10 +1,10 @@
 //! The MAR with elastic drives and the inertial vibrations of its second
-//! step of motion (seed 000, eqs. 5-9).
+//! step of motion (vibration paper, eqs. 5-9).
 //!
 //! **The elastic-drive model.** Each joint's motor side and link side are
 //! joined by Table 1's drive stiffness `k_i` and damping `c_i`: the drive
 //! applies `U_i = k_i (q_m,i - q_i) + c_i (qd_m,i - qd_i)` to the rigid
-//! links. The motor side is not a body of its own: as in the seed, the
+//! links. The motor side is not a body of its own: as in the vibration paper, the
 //! drives *impose the nominal motion*, `q_m(t) = q_n(t)` (q1 held still,
 //! q2 and q3 from the inverse kinematics of the gripper path). The link then
 //! lags behind its motor by the perturbation `x1 = q - q_n`, driven by the
@@ -17,13 +17,13 @@
 //! Fig. 5):
 //!
 //! ```text
-//! A(x_n) x1dd + (D_r + c) x1d + (K_r + k) x1 = -tau_n(t)        (seed eq. 9)
+//! A(x_n) x1dd + (D_r + c) x1d + (K_r + k) x1 = -tau_n(t)        (vibration paper, eq. 9)
 //! ```
 //!
 //! `D_r + c` and `K_r + k` are exactly the perturbation Jacobians the macro
 //! emits for [`Mar`] with its drive parameters set (the drive's spring and
 //! damper enter `F` linearly), so [`perturbation_response`] integrates the
-//! equation with `dU = -tau_n(t)`: the seed's `[Z]` at `x1 = 0`.
+//! equation with `dU = -tau_n(t)`: the paper's `[Z]` at `x1 = 0`.
 
 use dynamics_runtime::ode::{JointState, Tolerances};
 use dynamics_runtime::{perturbation_response, simulate, Perturbed, Robot, Trajectory};
@@ -54,7 +54,7 @@ pub struct Drives {
 }
 
 impl Drives {
-    /// Table 1 of seed 000.
+    /// Table 1 of the vibration paper.
     pub const TABLE1: Drives = Drives {
         stiffness: DRIVE_STIFFNESS,
         damping: DRIVE_DAMPING,
@@ -160,7 +160,7 @@ impl Plan {
     }
 
     /// The rigid inverse dynamics along the plan (the driving quantities of
-    /// the nominal motion, seed Fig. 5): N m, N m, N.
+    /// the nominal motion, vibration paper, Fig. 5): N m, N m, N.
     pub fn driving(&self, t: f64) -> Vector3<f64> {
         let m = self.at(t).1;
         Mar::default().inverse_dynamics(&m.q, &m.qd, &m.qdd)
@@ -201,7 +201,7 @@ pub fn static_deflection(plan: &Plan, drives: &Drives) -> Result<Vector3<f64>, M
         .ok_or(MarError::SingularStiffness)
 }
 
-/// Integrates seed eq. 9 over one cycle, output every `dt`.
+/// Integrates the vibration paper's eq. 9 over one cycle, output every `dt`.
 ///
 /// ```
 /// use robots::scenarios::mar::vibration::{inertial_vibration, peaks, Drives, Plan};

@@ -1,9 +1,18 @@
-//! What can be wrong with a data file, each error naming the file.
+//! What can be wrong with a data file, each error naming the file, and the
+//! limits of what a data file may be.
 
 use thiserror::Error;
 
 /// Fewest samples a data file must hold.
 pub const MIN_SAMPLES: usize = 200;
+
+/// Largest fraction of a column's rows that may be glitches before the
+/// file is refused.
+pub const MAX_GLITCH_FRACTION: f64 = 0.01;
+
+/// A column is refused only beyond this many glitches, however short the
+/// file (a 6 s log at 100 Hz has 600 rows: 1 % would be 6).
+pub const MIN_GLITCHES_REFUSED: usize = 10;
 
 /// What is wrong with a data file. Every variant names the file.
 ///
@@ -107,7 +116,7 @@ pub enum DataError {
         ratio: Option<f64>,
     },
     /// Too many samples of a column are glitches.
-    #[error("{file}: column `{column}`: {count} of {rows} samples are glitches (far off their signal's course); more than {} % (and {}) is not a log to diagnose", crate::data::MAX_GLITCH_FRACTION * 100.0, crate::data::MIN_GLITCHES_REFUSED)]
+    #[error("{file}: column `{column}`: {count} of {rows} samples are glitches (far off their signal's course); more than {} % (and {}) is not a log to diagnose", MAX_GLITCH_FRACTION * 100.0, MIN_GLITCHES_REFUSED)]
     TooManyGlitches {
         /// The file.
         file: String,
