@@ -241,7 +241,6 @@ impl Verdict {
     /// false for `none` and `unexplained`.
     ///
     /// ```
-    /// use dynamics_sim2real::diagnose::Verdict;
     /// use dynamics_sim2real::diagnose::{Status, Verdict, VerdictKind};
     /// let v = Verdict { kind: VerdictKind::Unexplained, joint: None, point: None, channel: None,
     ///     status: Status::Unexplained, rival: None, separating_motion: None };
