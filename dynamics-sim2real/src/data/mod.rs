@@ -2,9 +2,12 @@
 //! in the CSV format of the design notes (`t`, `q_<joint>`, `qd_<joint>`,
 //! `tau_<joint>`, matched by name; `.csv.gz` read as well), and recorded
 //! files in other layouts (text matrices, one file per quantity, NumPy
-//! `.npz`) through a column map ([`import`]).
+//! `.npz`) through a column map ([`import`]), ROS 2 bags ([`bag`]) and
+//! Parquet files of the CSV's columns ([`parquet`]).
 
+pub mod bag;
 pub mod import;
+pub mod parquet;
 mod prepare;
 mod read;
 mod window;
