@@ -110,7 +110,10 @@ fn zero_stamps_partial_messages_and_missing_velocities() {
     // No velocities: differentiated from the positions, as for a CSV without qd.
     let m = bag("motion-no-velocity.mcap");
     assert!(!m.qd_measured);
-    assert_eq!((m.t.clone(), m.q.clone()), (truth.t.clone(), truth.q.clone()));
+    assert_eq!(
+        (m.t.clone(), m.q.clone()),
+        (truth.t.clone(), truth.q.clone())
+    );
     let k = 150;
     let central = (truth.q[k + 1] - truth.q[k - 1]) / (truth.t[k + 1] - truth.t[k - 1]);
     assert_eq!(m.qd[k], central);
@@ -121,11 +124,16 @@ fn zero_stamps_partial_messages_and_missing_velocities() {
 fn what_cannot_be_read_is_named() {
     let e = bag_err("motion-no-effort.db3");
     assert!(matches!(e, BagError::NoEffort { .. }), "{e}");
-    assert!(e.to_string().contains("motion-no-effort.db3: message id 1: no efforts"), "{e}");
-    let e = bag_err("motion-missing-joint.mcap");
     assert!(
         e.to_string()
-            .ends_with("topic `/joint_states` has no joint `j3` of this robot (its messages name: j1, j2)"),
+            .contains("motion-no-effort.db3: message id 1: no efforts"),
+        "{e}"
+    );
+    let e = bag_err("motion-missing-joint.mcap");
+    assert!(
+        e.to_string().ends_with(
+            "topic `/joint_states` has no joint `j3` of this robot (its messages name: j1, j2)"
+        ),
         "{e}"
     );
     for name in ["motion-wrong-type.mcap", "motion-wrong-type.db3"] {

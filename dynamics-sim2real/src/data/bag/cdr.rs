@@ -126,9 +126,9 @@ impl<'a> Cursor<'a> {
 /// b.extend(1u32.to_le_bytes()); b.push(0); b.extend([0; 3]); // "" then padding
 /// b.extend(1u32.to_le_bytes());
 /// b.extend(2u32.to_le_bytes()); b.extend(b"a\0"); b.extend([0; 2]);
-/// b.extend(1u32.to_le_bytes()); b.extend([0; 4]); b.extend(1.5f64.to_le_bytes());
+/// b.extend(1u32.to_le_bytes()); b.extend(1.5f64.to_le_bytes()); // at body offset 32: aligned
 /// b.extend(0u32.to_le_bytes());
-/// b.extend(1u32.to_le_bytes()); b.extend([0; 4]); b.extend(2.0f64.to_le_bytes());
+/// b.extend(1u32.to_le_bytes()); b.extend(2.0f64.to_le_bytes()); // at 48: aligned
 /// let m = decode_joint_state(&b).unwrap();
 /// assert_eq!(m.stamp_ns, 3_000_000_005);
 /// assert_eq!((m.name, m.position, m.velocity, m.effort), (vec!["a".to_string()], vec![1.5], vec![], vec![2.0]));

@@ -160,10 +160,13 @@ pub(super) fn read(bytes: &[u8], file: &str, topic: &str) -> Result<TopicMessage
         }
         let step = (|| -> Result<usize, BagError> {
             if rest.len() < 9 {
-                return Err(broken(at, format!(
-                    "the file ends inside a record's opcode and length ({} bytes left)",
-                    rest.len()
-                )));
+                return Err(broken(
+                    at,
+                    format!(
+                        "the file ends inside a record's opcode and length ({} bytes left)",
+                        rest.len()
+                    ),
+                ));
             }
             let op = rest[0];
             let mut len8 = [0u8; 8];
@@ -185,8 +188,8 @@ pub(super) fn read(bytes: &[u8], file: &str, topic: &str) -> Result<TopicMessage
             let body = &rest[9..end];
             let record = parse_record(op, body).map_err(|e| broken(at, e.to_string()))?;
             if let Record::Chunk { header, data } = record {
-                let limit = (header.compressed_size.saturating_mul(MAX_RATIO) + (64 << 10))
-                    .min(MAX_CHUNK);
+                let limit =
+                    (header.compressed_size.saturating_mul(MAX_RATIO) + (64 << 10)).min(MAX_CHUNK);
                 if header.uncompressed_size > limit {
                     return Err(broken(
                         at,
@@ -228,7 +231,10 @@ pub(super) fn read(bytes: &[u8], file: &str, topic: &str) -> Result<TopicMessage
         }
     }
     if !ended {
-        let e = broken(at, "the file ends without its closing magic bytes (cut short?)".into());
+        let e = broken(
+            at,
+            "the file ends without its closing magic bytes (cut short?)".into(),
+        );
         if walk.out.is_empty() {
             return Err(e);
         }

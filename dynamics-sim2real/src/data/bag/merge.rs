@@ -144,8 +144,8 @@ pub(super) fn samples<const N: usize>(
             for (slot, joint) in index[i].iter().enumerate() {
                 let Some(j) = *joint else { continue };
                 let set = |cell: &mut Option<f64>,
-                               values: &[f64],
-                               quantity: &'static str|
+                           values: &[f64],
+                           quantity: &'static str|
                  -> Result<(), BagError> {
                     let Some(&v) = values.get(slot) else {
                         return Ok(());

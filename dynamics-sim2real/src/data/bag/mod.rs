@@ -157,7 +157,9 @@ pub fn is_bag(path: &Path) -> bool {
             use std::io::Read;
             std::fs::File::open(path)
                 .and_then(|mut f| f.read_exact(&mut head))
-                .map(|_| head.starts_with(b"\x89MCAP0\r\n") || head.starts_with(b"SQLite format 3\0"))
+                .map(|_| {
+                    head.starts_with(b"\x89MCAP0\r\n") || head.starts_with(b"SQLite format 3\0")
+                })
                 .unwrap_or(false)
         }
     }
@@ -296,9 +298,10 @@ pub fn read_bag<const N: usize>(
         if files.is_empty() {
             return Err(BagError::NotABag {
                 file,
-                message: "a directory without .mcap or .db3 files (rosbag2 files compressed whole, \
+                message:
+                    "a directory without .mcap or .db3 files (rosbag2 files compressed whole, \
                           `.mcap.zstd`, are not read: `ros2 bag decompress` first)"
-                    .into(),
+                        .into(),
             });
         }
         files

@@ -46,7 +46,8 @@ pub(super) fn read(path: &Path, file: &str, topic: &str) -> Result<TopicMessages
         .collect::<Result<Vec<_>, _>>()
         .map_err(err)?;
     let Some((id, _, ty, format)) = rows.iter().find(|r| r.1 == topic) else {
-        let mut available: Vec<String> = rows.iter().map(|r| format!("{} ({})", r.1, r.2)).collect();
+        let mut available: Vec<String> =
+            rows.iter().map(|r| format!("{} ({})", r.1, r.2)).collect();
         available.sort();
         return Err(BagError::NoTopic {
             file: file.to_string(),
@@ -67,7 +68,9 @@ pub(super) fn read(path: &Path, file: &str, topic: &str) -> Result<TopicMessages
         });
     }
     let mut query = db
-        .prepare("SELECT id, timestamp, data FROM messages WHERE topic_id = ?1 ORDER BY timestamp, id")
+        .prepare(
+            "SELECT id, timestamp, data FROM messages WHERE topic_id = ?1 ORDER BY timestamp, id",
+        )
         .map_err(err)?;
     let messages = query
         .query_map([id], |r| {

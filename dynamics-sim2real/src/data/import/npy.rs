@@ -36,7 +36,12 @@ pub(crate) fn parse(bytes: &[u8], source: &str) -> Result<Table, String> {
     let npy = NpyFile::new(bytes).map_err(|e| format!("the header cannot be read: {e}"))?;
     let descr = match npy.dtype() {
         DType::Plain(ts) => ts,
-        other => return Err(format!("element type `{}` is not read (a structured array)", other.descr())),
+        other => {
+            return Err(format!(
+                "element type `{}` is not read (a structured array)",
+                other.descr()
+            ))
+        }
     };
     let unsupported =
         || format!("element type `{descr}` is not read (floats f4/f8, integers i1-i8/u1-u8 are)");

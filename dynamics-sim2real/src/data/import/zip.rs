@@ -34,12 +34,14 @@ pub(crate) fn entries(bytes: &[u8]) -> Result<Vec<(String, Vec<u8>)>, String> {
         (&mut entry)
             .take(size)
             .read_to_end(&mut data)
-            .map_err(|e| format!("entry `{name}` is damaged: size or CRC-32 does not match ({e})"))?;
+            .map_err(|e| {
+                format!("entry `{name}` is damaged: size or CRC-32 does not match ({e})")
+            })?;
         // Reading to the end checks the CRC-32.
         let mut rest = [0u8; 1];
-        let more = entry
-            .read(&mut rest)
-            .map_err(|e| format!("entry `{name}` is damaged: size or CRC-32 does not match ({e})"))?;
+        let more = entry.read(&mut rest).map_err(|e| {
+            format!("entry `{name}` is damaged: size or CRC-32 does not match ({e})")
+        })?;
         if data.len() as u64 != size || more != 0 {
             return Err(format!(
                 "entry `{name}` is damaged: size or CRC-32 does not match"

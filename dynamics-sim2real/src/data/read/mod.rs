@@ -88,26 +88,76 @@ pub fn read_csv_str<const N: usize>(
         .iter()
         .map(str::to_string)
         .collect();
+    let rows = reader.records().enumerate().map(|(row, record)| {
+        let record = record.map_err(csv_err)?;
+        let line = record.position().map_or(row + 2, |p| p.line() as usize);
+        Ok(CsvRow { record, line })
+    });
+    read_rows(&header, rows, joints, file)
+}
+
+/// One row of a table: its cells as numbers on request, and its line.
+pub(crate) trait Row {
+    /// Cells in the row.
+    fn len(&self) -> usize;
+    /// The 1-based line of the row (a binary table: row `k` counts as line `k + 2`, as in
+    /// the CSV of the same data).
+    fn line(&self) -> usize;
+    /// Cell `c` as a finite number, or what it holds instead.
+    fn cell(&self, c: usize) -> Result<f64, String>;
+}
+
+/// A CSV record and its line.
+struct CsvRow {
+    record: csv::StringRecord,
+    line: usize,
+}
+
+impl Row for CsvRow {
+    fn len(&self) -> usize {
+        self.record.len()
+    }
+    fn line(&self) -> usize {
+        self.line
+    }
+    fn cell(&self, c: usize) -> Result<f64, String> {
+        let value = self.record.get(c).unwrap_or("");
+        value
+            .parse::<f64>()
+            .ok()
+            .filter(|v| v.is_finite())
+            .ok_or_else(|| value.to_string())
+    }
+}
+
+/// The rows of a table with columns `header` (our CSV's: `t`, `q_<joint>`,
+/// ...), checked and prepared as [`read_csv_str`] says.
+pub(crate) fn read_rows<const N: usize, R: Row>(
+    header: &[String],
+    rows: impl Iterator<Item = Result<R, DataError>>,
+    joints: &[&str; N],
+    file: &str,
+) -> Result<Measured<N>, DataError> {
     let Columns {
         t: t_col,
         q: q_cols,
         tau: tau_cols,
         qd: qd_cols,
         warnings,
-    } = Columns::find(&header, joints, file)?;
+    } = Columns::find(header, joints, file)?;
     let mut m = Measured::<N> {
         qd_measured: qd_cols.is_some(),
         joints: joints.iter().map(|j| j.to_string()).collect(),
         ..Default::default()
     };
-    let mut records = reader.records().enumerate().peekable();
+    let mut records = rows.peekable();
     // Whole rows written twice (time included), and the first such line.
     let (mut twice, mut twice_line) = (0usize, 0usize);
     // Line of each row kept (rows written twice are dropped).
     let mut lines = Vec::new();
-    while let Some((row, record)) = records.next() {
-        let record = record.map_err(csv_err)?;
-        let line = record.position().map_or(row + 2, |p| p.line() as usize);
+    while let Some(record) = records.next() {
+        let record = record?;
+        let line = record.line();
         if record.len() != header.len() {
             return Err(DataError::RowLength {
                 file: file.to_string(),
@@ -118,23 +168,16 @@ pub fn read_csv_str<const N: usize>(
             });
         }
         let cell = |c: usize| -> Result<f64, DataError> {
-            let value = record.get(c).unwrap_or("");
-            value
-                .parse::<f64>()
-                .ok()
-                .filter(|v| v.is_finite())
-                .ok_or_else(|| DataError::BadNumber {
-                    file: file.to_string(),
-                    line,
-                    column: header[c].clone(),
-                    value: value.to_string(),
-                })
+            record.cell(c).map_err(|value| DataError::BadNumber {
+                file: file.to_string(),
+                line,
+                column: header[c].clone(),
+                value,
+            })
         };
         let t = cell(t_col)?;
         if let Some(&previous) = m.t.last() {
-            if t == previous
-                && record_repeats(&record, &m, &q_cols, &tau_cols, qd_cols.as_ref(), &cell)?
-            {
+            if t == previous && record_repeats(&m, &q_cols, &tau_cols, qd_cols.as_ref(), &cell)? {
                 twice += 1;
                 if twice_line == 0 {
                     twice_line = line;
@@ -202,7 +245,6 @@ pub fn read_csv_str<const N: usize>(
 
 /// Whether `record` (at the time of the last row read) repeats that row.
 fn record_repeats<const N: usize>(
-    _record: &csv::StringRecord,
     m: &Measured<N>,
     q_cols: &[usize; N],
     tau_cols: &[usize; N],
