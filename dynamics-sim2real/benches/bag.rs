@@ -2,8 +2,12 @@
 //! `/joint_states` at 1 kHz, 7 joints (positions, velocities, efforts) plus
 //! a gripper joint the robot does not have, beside a second topic; as an
 //! MCAP file with zstd chunks (the `mcap` crate's writer) and as an sqlite3
-//! bag (`rusqlite`). Run: `cargo bench -p dynamics-sim2real --features
-//! rosbag --bench bag`.
+//! bag (`rusqlite`). Measured in thread CPU time (as robots/benches do:
+//! on a shared machine wall-clock time counts other processes too). Run:
+//! `cargo bench -p dynamics-sim2real --features rosbag --bench bag`.
+
+#[path = "../../robots/benches/support/cpu_time.rs"]
+mod cpu_time;
 
 use std::collections::BTreeMap;
 use std::path::{Path, PathBuf};
@@ -129,7 +133,7 @@ fn write_db3(path: &Path, msgs: &[(u64, Vec<u8>)]) {
     tx.commit().unwrap();
 }
 
-fn bench(c: &mut Criterion) {
+fn bench(c: &mut Criterion<cpu_time::ThreadCpuTime>) {
     let msgs = messages();
     let dir = std::env::temp_dir();
     let files: [(&str, PathBuf); 2] = [
@@ -150,5 +154,9 @@ fn bench(c: &mut Criterion) {
     g.finish();
 }
 
-criterion_group!(benches, bench);
+criterion_group! {
+    name = benches;
+    config = Criterion::default().with_measurement(cpu_time::ThreadCpuTime);
+    targets = bench
+}
 criterion_main!(benches);

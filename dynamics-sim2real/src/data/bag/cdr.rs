@@ -93,14 +93,16 @@ impl<'a> Cursor<'a> {
         Ok(n)
     }
 
-    fn string(&mut self, what: &str) -> Result<String, String> {
+    /// A string's bytes (without its terminating NUL), checked to be UTF-8.
+    fn string(&mut self, what: &str) -> Result<&'a str, String> {
         let n = self.count(1, what)?;
         let bytes = self.take(n)?;
         let text = bytes.strip_suffix(&[0]).unwrap_or(bytes);
-        String::from_utf8(text.to_vec()).map_err(|_| format!("{what}: not UTF-8 text"))
+        std::str::from_utf8(text).map_err(|_| format!("{what}: not UTF-8 text"))
     }
 
-    fn doubles(&mut self, what: &str) -> Result<Vec<f64>, String> {
+    /// A sequence of doubles, appended to `out`.
+    fn doubles(&mut self, what: &str, out: &mut Vec<f64>) -> Result<(), String> {
         let n = self.count(8, what)?;
         if n > 0 {
             self.align(8)?;
@@ -109,7 +111,70 @@ impl<'a> Cursor<'a> {
         if n.saturating_mul(8) > self.bytes.len() - self.at {
             return Err(format!("{what}: {n} values do not fit in the message"));
         }
-        (0..n).map(|_| self.f64()).collect()
+        out.reserve(n);
+        for _ in 0..n {
+            out.push(self.f64()?);
+        }
+        Ok(())
+    }
+}
+
+/// A message decoded into buffers reused from one message to the next:
+/// the names as byte ranges of the message ([`Parts::name`]).
+#[derive(Debug, Default)]
+pub(crate) struct Parts {
+    pub(crate) stamp_ns: i64,
+    pub(crate) names: Vec<(usize, usize)>,
+    pub(crate) position: Vec<f64>,
+    pub(crate) velocity: Vec<f64>,
+    pub(crate) effort: Vec<f64>,
+}
+
+impl Parts {
+    /// Name `i` of the message `bytes` these parts were decoded from.
+    pub(crate) fn name<'b>(&self, bytes: &'b [u8], i: usize) -> &'b str {
+        let (a, b) = self.names[i];
+        std::str::from_utf8(&bytes[a..b]).unwrap_or("")
+    }
+
+    /// Decodes `bytes` into these buffers (cleared first).
+    pub(crate) fn decode(&mut self, bytes: &[u8]) -> Result<(), String> {
+        self.names.clear();
+        self.position.clear();
+        self.velocity.clear();
+        self.effort.clear();
+        let (head, body) = bytes
+            .split_first_chunk::<4>()
+            .ok_or("shorter than the 4-byte CDR encapsulation header")?;
+        let little = match (head[0], head[1]) {
+            (0, 1) | (0, 7) | (0, 3) => true,
+            (0, 0) | (0, 6) | (0, 2) => false,
+            (a, b) => {
+                return Err(format!(
+                    "encapsulation {a:02x} {b:02x} is not a CDR one (00 00 or 00 01)"
+                ))
+            }
+        };
+        let mut c = Cursor {
+            bytes: body,
+            at: 0,
+            little,
+        };
+        let sec = c.u32()? as i32;
+        let nanosec = c.u32()?;
+        let _frame = c.string("header.frame_id")?;
+        let n = c.count(4, "name")?;
+        self.names.reserve(n);
+        for _ in 0..n {
+            let name = c.string("a name")?;
+            let start = name.as_ptr() as usize - bytes.as_ptr() as usize;
+            self.names.push((start, start + name.len()));
+        }
+        c.doubles("position", &mut self.position)?;
+        c.doubles("velocity", &mut self.velocity)?;
+        c.doubles("effort", &mut self.effort)?;
+        self.stamp_ns = sec as i64 * 1_000_000_000 + nanosec as i64;
+        Ok(())
     }
 }
 
@@ -135,39 +200,16 @@ impl<'a> Cursor<'a> {
 /// assert!(decode_joint_state(&b[..30]).is_err());
 /// ```
 pub fn decode_joint_state(bytes: &[u8]) -> Result<JointState, String> {
-    let (head, body) = bytes
-        .split_first_chunk::<4>()
-        .ok_or("shorter than the 4-byte CDR encapsulation header")?;
-    let little = match (head[0], head[1]) {
-        (0, 1) | (0, 7) | (0, 3) => true,
-        (0, 0) | (0, 6) | (0, 2) => false,
-        (a, b) => {
-            return Err(format!(
-                "encapsulation {a:02x} {b:02x} is not a CDR one (00 00 or 00 01)"
-            ))
-        }
-    };
-    let mut c = Cursor {
-        bytes: body,
-        at: 0,
-        little,
-    };
-    let sec = c.u32()? as i32;
-    let nanosec = c.u32()?;
-    let _frame = c.string("header.frame_id")?;
-    let n = c.count(4, "name")?;
-    let name = (0..n)
-        .map(|_| c.string("a name"))
-        .collect::<Result<Vec<_>, _>>()?;
-    let position = c.doubles("position")?;
-    let velocity = c.doubles("velocity")?;
-    let effort = c.doubles("effort")?;
+    let mut parts = Parts::default();
+    parts.decode(bytes)?;
     Ok(JointState {
-        stamp_ns: sec as i64 * 1_000_000_000 + nanosec as i64,
-        name,
-        position,
-        velocity,
-        effort,
+        stamp_ns: parts.stamp_ns,
+        name: (0..parts.names.len())
+            .map(|i| parts.name(bytes, i).to_string())
+            .collect(),
+        position: parts.position,
+        velocity: parts.velocity,
+        effort: parts.effort,
     })
 }
 

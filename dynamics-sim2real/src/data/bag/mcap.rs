@@ -9,7 +9,8 @@ use std::collections::HashMap;
 use mcap::read::{parse_record, ChunkReader};
 use mcap::records::Record;
 
-use super::{BagError, Place, Raw, TopicMessages, JOINT_STATE};
+use super::merge::Collector;
+use super::{BagError, Place, JOINT_STATE};
 
 const MAGIC: &[u8] = b"\x89MCAP0\r\n";
 
@@ -33,16 +34,17 @@ struct Channel {
 }
 
 /// What the walk has seen.
-#[derive(Default)]
-struct Walk {
+struct Walk<'c, 'j, const N: usize> {
     schemas: HashMap<u16, (String, String)>,
     channels: HashMap<u16, Channel>,
-    out: Vec<Raw>,
+    out: &'c mut Collector<'j, N>,
+    /// Messages on the topic.
+    taken: usize,
     /// Channels on the topic, checked once.
     wanted: HashMap<u16, bool>,
 }
 
-impl Walk {
+impl<const N: usize> Walk<'_, '_, N> {
     /// Handles one record (top-level or from a chunk) at `place`.
     fn record(
         &mut self,
@@ -98,11 +100,8 @@ impl Walk {
                     }
                 };
                 if wanted {
-                    self.out.push(Raw {
-                        received_ns: header.log_time as i64,
-                        data: data.into_owned(),
-                        place,
-                    });
+                    self.taken += 1;
+                    self.out.push(header.log_time as i64, &data, place)?;
                 }
             }
             _ => {}
@@ -134,8 +133,14 @@ impl Walk {
     }
 }
 
-/// The messages on `topic` of the MCAP file `bytes`.
-pub(super) fn read(bytes: &[u8], file: &str, topic: &str) -> Result<TopicMessages, BagError> {
+/// The messages on `topic` of the MCAP file `bytes`, into `out`; the
+/// warnings (a file cut short).
+pub(super) fn read<const N: usize>(
+    bytes: &[u8],
+    file: &str,
+    topic: &str,
+    out: &mut Collector<'_, N>,
+) -> Result<Vec<String>, BagError> {
     if !is_mcap(bytes) {
         return Err(BagError::Mcap {
             file: file.to_string(),
@@ -143,7 +148,13 @@ pub(super) fn read(bytes: &[u8], file: &str, topic: &str) -> Result<TopicMessage
             message: "no MCAP magic bytes".into(),
         });
     }
-    let mut walk = Walk::default();
+    let mut walk = Walk {
+        schemas: HashMap::new(),
+        channels: HashMap::new(),
+        out,
+        taken: 0,
+        wanted: HashMap::new(),
+    };
     let mut warnings = Vec::new();
     let mut at = MAGIC.len();
     let broken = |offset: usize, message: String| BagError::Mcap {
@@ -217,12 +228,12 @@ pub(super) fn read(bytes: &[u8], file: &str, topic: &str) -> Result<TopicMessage
         match step {
             Ok(n) => at += n,
             Err(e @ BagError::Mcap { .. }) => {
-                if walk.out.is_empty() {
+                if walk.taken == 0 {
                     return Err(e);
                 }
                 warnings.push(format!(
                     "{e}: the {} messages of `{topic}` before it are read, nothing after",
-                    walk.out.len()
+                    walk.taken
                 ));
                 ended = true;
                 break;
@@ -235,7 +246,7 @@ pub(super) fn read(bytes: &[u8], file: &str, topic: &str) -> Result<TopicMessage
             at,
             "the file ends without its closing magic bytes (cut short?)".into(),
         );
-        if walk.out.is_empty() {
+        if walk.taken == 0 {
             return Err(e);
         }
         warnings.push(e.to_string());
@@ -247,8 +258,5 @@ pub(super) fn read(bytes: &[u8], file: &str, topic: &str) -> Result<TopicMessage
             available: walk.topics(),
         });
     }
-    Ok(TopicMessages {
-        messages: walk.out,
-        warnings,
-    })
+    Ok(warnings)
 }

@@ -24,6 +24,8 @@ mod sqlite;
 
 pub use error::BagError;
 
+use merge::Collector;
+
 use std::path::{Path, PathBuf};
 
 use super::{prepare, Measured};
@@ -63,24 +65,6 @@ impl std::fmt::Display for Place {
             Place::Row(id) => write!(f, "message id {id}"),
         }
     }
-}
-
-/// One serialized message as stored.
-#[derive(Debug, Clone)]
-pub(crate) struct Raw {
-    /// When the recorder received it, ns since the epoch.
-    pub(crate) received_ns: i64,
-    /// Its CDR bytes.
-    pub(crate) data: Vec<u8>,
-    /// Where it is.
-    pub(crate) place: Place,
-}
-
-/// The messages of one topic of one storage file, and what the reader noted.
-#[derive(Debug, Default)]
-pub(crate) struct TopicMessages {
-    pub(crate) messages: Vec<Raw>,
-    pub(crate) warnings: Vec<String>,
 }
 
 /// What was read from a bag, for the report's header.
@@ -216,27 +200,32 @@ fn storage_files(dir: &Path) -> Vec<PathBuf> {
     files
 }
 
-/// The messages on `topic` of one storage file.
-fn read_storage(path: &Path, topic: &str) -> Result<TopicMessages, BagError> {
+/// The messages on `topic` of one storage file, into `out`; the warnings.
+fn read_storage<const N: usize>(
+    path: &Path,
+    topic: &str,
+    out: &mut Collector<'_, N>,
+) -> Result<Vec<String>, BagError> {
     let file = path.display().to_string();
     let bytes = std::fs::read(path).map_err(|source| BagError::Io {
         file: file.clone(),
         source,
     })?;
-    read_storage_bytes(&bytes, path, &file, topic)
+    read_storage_bytes(&bytes, path, &file, topic, out)
 }
 
 #[cfg(feature = "rosbag")]
-fn read_storage_bytes(
+fn read_storage_bytes<const N: usize>(
     bytes: &[u8],
     path: &Path,
     file: &str,
     topic: &str,
-) -> Result<TopicMessages, BagError> {
+    out: &mut Collector<'_, N>,
+) -> Result<Vec<String>, BagError> {
     if mcap::is_mcap(bytes) {
-        mcap::read(bytes, file, topic)
+        mcap::read(bytes, file, topic, out)
     } else if sqlite::is_sqlite(bytes) {
-        sqlite::read(path, file, topic)
+        sqlite::read(path, file, topic, out)
     } else {
         Err(BagError::NotABag {
             file: file.to_string(),
@@ -246,12 +235,13 @@ fn read_storage_bytes(
 }
 
 #[cfg(not(feature = "rosbag"))]
-fn read_storage_bytes(
+fn read_storage_bytes<const N: usize>(
     _bytes: &[u8],
     _path: &Path,
     file: &str,
     _topic: &str,
-) -> Result<TopicMessages, BagError> {
+    _out: &mut Collector<'_, N>,
+) -> Result<Vec<String>, BagError> {
     Err(BagError::NotBuilt {
         file: file.to_string(),
         format: "rosbag2",
@@ -273,8 +263,9 @@ pub fn read_mcap_bytes<const N: usize>(
     topic: &str,
     file: &str,
 ) -> Result<(Measured<N>, BagSummary), BagError> {
-    let read = mcap::read(bytes, file, topic)?;
-    finish(vec![read], joints, topic, file)
+    let mut out = Collector::new(joints, file, topic);
+    let warnings = mcap::read(bytes, file, topic, &mut out)?;
+    finish(out, warnings, topic, file)
 }
 
 /// Reads the JointState messages on `topic` of the bag at `path` (a
@@ -308,31 +299,27 @@ pub fn read_bag<const N: usize>(
     } else {
         vec![path.to_path_buf()]
     };
-    let reads = files
-        .iter()
-        .map(|f| read_storage(f, topic))
-        .collect::<Result<Vec<_>, _>>()?;
-    finish(reads, joints, topic, &file)
+    let mut out = Collector::new(joints, &file, topic);
+    let mut warnings = Vec::new();
+    for f in &files {
+        warnings.extend(read_storage(f, topic, &mut out)?);
+    }
+    finish(out, warnings, topic, &file)
 }
 
-/// The samples of the messages read, prepared.
+/// The samples of the messages collected, prepared.
 fn finish<const N: usize>(
-    reads: Vec<TopicMessages>,
-    joints: &[&str; N],
+    out: Collector<'_, N>,
+    read_warnings: Vec<String>,
     topic: &str,
     file: &str,
 ) -> Result<(Measured<N>, BagSummary), BagError> {
-    let mut warnings: Vec<Warning> = Vec::new();
-    let mut messages = Vec::new();
-    for r in reads {
-        warnings.extend(
-            r.warnings
-                .into_iter()
-                .map(|message| Warning::Imported { message }),
-        );
-        messages.extend(r.messages);
-    }
-    let (m, first_ns, last_ns) = merge::samples(&messages, joints, file, topic, &mut warnings)?;
+    let mut warnings: Vec<Warning> = read_warnings
+        .into_iter()
+        .map(|message| Warning::Imported { message })
+        .collect();
+    let messages = out.received();
+    let (m, first_ns, last_ns) = out.finish(&mut warnings)?;
     if m.len() < MIN_SAMPLES {
         return Err(BagError::TooFewSamples {
             file: file.to_string(),
@@ -347,7 +334,7 @@ fn finish<const N: usize>(
     let summary = BagSummary {
         file: file.to_string(),
         topic: topic.to_string(),
-        messages: messages.len(),
+        messages,
         first_ns,
         last_ns,
     };

@@ -7,7 +7,8 @@ use std::path::Path;
 
 use rusqlite::{Connection, OpenFlags};
 
-use super::{BagError, Place, Raw, TopicMessages, JOINT_STATE};
+use super::merge::Collector;
+use super::{BagError, Place, JOINT_STATE};
 
 const MAGIC: &[u8] = b"SQLite format 3\0";
 
@@ -16,8 +17,13 @@ pub(super) fn is_sqlite(bytes: &[u8]) -> bool {
     bytes.starts_with(MAGIC)
 }
 
-/// The messages on `topic` of the bag database at `path`.
-pub(super) fn read(path: &Path, file: &str, topic: &str) -> Result<TopicMessages, BagError> {
+/// The messages on `topic` of the bag database at `path`, into `out`.
+pub(super) fn read<const N: usize>(
+    path: &Path,
+    file: &str,
+    topic: &str,
+    out: &mut Collector<'_, N>,
+) -> Result<Vec<String>, BagError> {
     let err = |e: rusqlite::Error| BagError::Sqlite {
         file: file.to_string(),
         message: e.to_string(),
@@ -72,19 +78,15 @@ pub(super) fn read(path: &Path, file: &str, topic: &str) -> Result<TopicMessages
             "SELECT id, timestamp, data FROM messages WHERE topic_id = ?1 ORDER BY timestamp, id",
         )
         .map_err(err)?;
-    let messages = query
-        .query_map([id], |r| {
-            Ok(Raw {
-                place: Place::Row(r.get::<_, i64>(0)?),
-                received_ns: r.get::<_, i64>(1)?,
-                data: r.get::<_, Vec<u8>>(2)?,
-            })
-        })
-        .map_err(err)?
-        .collect::<Result<Vec<_>, _>>()
-        .map_err(err)?;
-    Ok(TopicMessages {
-        messages,
-        warnings: Vec::new(),
-    })
+    let mut rows = query.query([id]).map_err(err)?;
+    while let Some(row) = rows.next().map_err(err)? {
+        let place = Place::Row(row.get::<_, i64>(0).map_err(err)?);
+        let received = row.get::<_, i64>(1).map_err(err)?;
+        let data = row
+            .get_ref(2)
+            .and_then(|v| v.as_blob().map_err(Into::into))
+            .map_err(err)?;
+        out.push(received, data, place)?;
+    }
+    Ok(Vec::new())
 }

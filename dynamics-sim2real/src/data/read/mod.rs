@@ -35,26 +35,48 @@ use columns::Columns;
 /// ```
 pub fn read_csv<const N: usize>(path: &Path, joints: &[&str; N]) -> Result<Measured<N>, DataError> {
     let file = path.display().to_string();
-    let io = |source| DataError::Io {
+    let bytes = std::fs::read(path).map_err(|source| DataError::Io {
         file: file.clone(),
         source,
+    })?;
+    read_csv_bytes(&bytes, joints, &file)
+}
+
+/// Reads the bytes of a CSV file (gzip-compressed or not) named `file`.
+///
+/// ```
+/// use dynamics_sim2real::data::read_csv_bytes;
+/// let mut text = String::from("t,q_j,tau_j\n");
+/// for k in 0..300 { text.push_str(&format!("{},0,1\n", k as f64 * 1e-3)); }
+/// assert_eq!(read_csv_bytes(text.as_bytes(), &["j"], "m.csv").unwrap().len(), 300);
+/// assert!(read_csv_bytes(&[0xff, 0xfe], &["j"], "m.csv").is_err());
+/// ```
+pub fn read_csv_bytes<const N: usize>(
+    bytes: &[u8],
+    joints: &[&str; N],
+    file: &str,
+) -> Result<Measured<N>, DataError> {
+    let io = |source| DataError::Io {
+        file: file.to_string(),
+        source,
     };
-    let bytes = std::fs::read(path).map_err(io)?;
+    let decoded;
     let text = if bytes.starts_with(&[0x1f, 0x8b]) {
         let mut s = String::new();
-        flate2::read::MultiGzDecoder::new(&bytes[..])
+        flate2::read::MultiGzDecoder::new(bytes)
             .read_to_string(&mut s)
             .map_err(io)?;
-        s
+        decoded = s;
+        decoded.as_str()
     } else {
-        String::from_utf8(bytes).map_err(|e| {
+        std::str::from_utf8(bytes).map_err(|e| {
             io(std::io::Error::new(
                 std::io::ErrorKind::InvalidData,
                 format!("not UTF-8 text ({e}); a gzip file must start with the gzip magic bytes"),
             ))
         })?
     };
-    read_csv_str(&text, joints, &file)
+    read_csv_str(text, joints, file)
 }
 
 /// Reads CSV text; `file` names it in errors.
