@@ -14,7 +14,8 @@ mod window;
 mod write;
 
 pub use prepare::{
-    prepare, GLITCH_THRESHOLD, HOLE_PERIODS, MAX_GLITCH_FRACTION, MIN_GLITCHES_REFUSED,
+    max_grid_samples, prepare, GLITCH_THRESHOLD, HOLE_PERIODS, MAX_GLITCH_FRACTION,
+    MIN_GLITCHES_REFUSED,
 };
 pub use read::{read_csv, read_csv_bytes, read_csv_str, DataError};
 pub use write::write_csv;

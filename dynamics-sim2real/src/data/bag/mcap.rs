@@ -3,11 +3,15 @@
 //! walked here, from the magic bytes on (each an opcode and a 64-bit
 //! length), so that a damaged or cut file is named with the byte offset of
 //! the record that breaks; the messages before it are kept, with a warning.
+//! A chunk is decompressed by the crate's sans-io reader with a bound on
+//! the length of every record inside it (its `ChunkReader` has none: a
+//! hostile length there asked for exabytes).
 
 use std::collections::HashMap;
 
-use mcap::read::{parse_record, ChunkReader};
+use mcap::read::parse_record;
 use mcap::records::Record;
+use mcap::sans_io::{LinearReadEvent, LinearReader, LinearReaderOptions};
 
 use super::merge::Collector;
 use super::{BagError, Place, JOINT_STATE};
@@ -198,7 +202,7 @@ pub(super) fn read<const N: usize>(
                 })?;
             let body = &rest[9..end];
             let record = parse_record(op, body).map_err(|e| broken(at, e.to_string()))?;
-            if let Record::Chunk { header, data } = record {
+            if let Record::Chunk { header, .. } = record {
                 let limit =
                     (header.compressed_size.saturating_mul(MAX_RATIO) + (64 << 10)).min(MAX_CHUNK);
                 if header.uncompressed_size > limit {
@@ -210,15 +214,35 @@ pub(super) fn read<const N: usize>(
                         ),
                     ));
                 }
-                let reader =
-                    ChunkReader::new(header, &data).map_err(|e| broken(at, e.to_string()))?;
-                for (index, inner) in reader.enumerate() {
-                    let inner = inner.map_err(|e| broken(at, format!("in the chunk: {e}")))?;
-                    let place = Place::InChunk {
-                        chunk: at as u64,
-                        index,
-                    };
-                    walk.record(inner, place, file, topic)?;
+                // The chunk record alone through the sans-io reader, which
+                // decompresses it and bounds every record inside by `limit`.
+                let mut reader = LinearReader::new_with_options(
+                    LinearReaderOptions::default()
+                        .with_skip_start_magic(true)
+                        .with_skip_end_magic(true)
+                        .with_record_length_limit(limit as usize),
+                );
+                let mut src = &rest[..end];
+                let mut index = 0;
+                while let Some(event) = reader.next_event() {
+                    match event.map_err(|e| broken(at, format!("in the chunk: {e}")))? {
+                        LinearReadEvent::ReadRequest(need) => {
+                            let n = need.min(src.len());
+                            reader.insert(n).copy_from_slice(&src[..n]);
+                            reader.notify_read(n);
+                            src = &src[n..];
+                        }
+                        LinearReadEvent::Record { data, opcode } => {
+                            let inner = parse_record(opcode, data)
+                                .map_err(|e| broken(at, format!("in the chunk: {e}")))?;
+                            let place = Place::InChunk {
+                                chunk: at as u64,
+                                index,
+                            };
+                            walk.record(inner, place, file, topic)?;
+                            index += 1;
+                        }
+                    }
                 }
             } else {
                 walk.record(record, Place::Record(at as u64), file, topic)?;

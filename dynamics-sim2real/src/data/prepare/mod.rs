@@ -45,6 +45,17 @@ pub const MAX_GLITCH_FRACTION: f64 = 0.01;
 /// file (a 6 s log at 100 Hz has 600 rows: 1 % would be 6).
 pub const MIN_GLITCHES_REFUSED: usize = 10;
 
+/// The most samples the uniform grid of `n` recorded samples may hold:
+/// `4 n + 10^6` (a record whose gaps are longer is refused rather than
+/// filled: a stamp off by years asked for terabytes).
+///
+/// ```
+/// assert_eq!(dynamics_sim2real::data::max_grid_samples(1000), 1_004_000);
+/// ```
+pub fn max_grid_samples(n: usize) -> usize {
+    n.saturating_mul(4).saturating_add(1_000_000)
+}
+
 /// Glitch warnings listed one by one per file; the rest are counted.
 const GLITCHES_LISTED: usize = 20;
 
@@ -160,6 +171,19 @@ pub fn prepare<const N: usize>(m: &Measured<N>, file: &str) -> Result<Measured<N
         });
     }
     let damaged = bad.iter().any(|b| b.iter().any(|&x| x));
+    if !clock.uniform || damaged {
+        let span = m.t[n - 1] - m.t[0];
+        let samples = span / clock.interval + 1.0;
+        if !(samples <= max_grid_samples(n) as f64) {
+            return Err(DataError::GridTooLong {
+                file: file.to_string(),
+                span,
+                interval: clock.interval,
+                grid: samples.floor(),
+                rows: n,
+            });
+        }
+    }
     if clock.uniform && !damaged {
         return Ok(Measured {
             warnings,

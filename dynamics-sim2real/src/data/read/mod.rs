@@ -327,4 +327,19 @@ mod tests {
         .unwrap_err();
         assert!(e.to_string().contains("10 samples; at least 200"), "{e}");
     }
+
+    #[test]
+    fn a_gap_of_years_is_refused_not_filled() {
+        // 300 rows at 1 kHz, then one a million seconds later: a grid of 10^9
+        // samples would be filled; the reader names the span instead.
+        let ok = |k: usize| format!("{},{},0,1\n", k as f64 * 1e-3, k as f64 * 1e-4);
+        let text = format!("t,q_j,qd_j,tau_j\n{}1000000,0.03,0,1\n", rows(300, ok));
+        let e = read_csv_str::<1>(&text, &["j"], "a.csv").unwrap_err();
+        assert!(matches!(e, DataError::GridTooLong { rows: 301, .. }), "{e}");
+        assert!(
+            e.to_string()
+                .starts_with("a.csv: the samples span 1000000 s at an interval of 0.001 s"),
+            "{e}"
+        );
+    }
 }
