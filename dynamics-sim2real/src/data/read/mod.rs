@@ -338,7 +338,7 @@ mod tests {
         assert!(matches!(e, DataError::GridTooLong { rows: 301, .. }), "{e}");
         assert!(
             e.to_string()
-                .starts_with("a.csv: the samples span 1000000 s at an interval of 0.001 s"),
+                .starts_with("a.csv: the samples span 1000000 s at an interval of 0.001"),
             "{e}"
         );
     }
