@@ -31,7 +31,7 @@ const EPOCH_NS: u64 = 1_764_000_000_000_000_000;
 fn joint_state(stamp: u64, names: &[&str], q: &[f64], qd: &[f64], tau: &[f64]) -> Vec<u8> {
     let mut b = vec![0, 1, 0, 0];
     let pad = |b: &mut Vec<u8>, n: usize| {
-        while (b.len() - 4) % n != 0 {
+        while !(b.len() - 4).is_multiple_of(n) {
             b.push(0);
         }
     };
@@ -80,17 +80,21 @@ fn messages() -> Vec<(u64, Vec<u8>)> {
 }
 
 fn write_mcap(path: &Path, msgs: &[(u64, Vec<u8>)]) {
-    let file = std::io::BufWriter::new(std::fs::File::create(path).unwrap());
-    let mut w = mcap::Writer::new(file).unwrap();
+    let file = std::io::BufWriter::new(std::fs::File::create(path).expect("the benchmark's bag"));
+    let mut w = mcap::Writer::new(file).expect("the benchmark's bag");
     let schema = w
         .add_schema("sensor_msgs/msg/JointState", "ros2msg", b"")
-        .unwrap();
-    let other = w.add_schema("std_msgs/msg/String", "ros2msg", b"").unwrap();
+        .expect("the benchmark's bag");
+    let other = w
+        .add_schema("std_msgs/msg/String", "ros2msg", b"")
+        .expect("the benchmark's bag");
     let none = BTreeMap::new();
     let js = w
         .add_channel(schema, "/joint_states", "cdr", &none)
-        .unwrap();
-    let log = w.add_channel(other, "/rosout", "cdr", &none).unwrap();
+        .expect("the benchmark's bag");
+    let log = w
+        .add_channel(other, "/rosout", "cdr", &none)
+        .expect("the benchmark's bag");
     for (k, (stamp, data)) in msgs.iter().enumerate() {
         let header = |channel_id| mcap::records::MessageHeader {
             channel_id,
@@ -98,18 +102,19 @@ fn write_mcap(path: &Path, msgs: &[(u64, Vec<u8>)]) {
             log_time: stamp + 200_000,
             publish_time: *stamp,
         };
-        w.write_to_known_channel(&header(js), data).unwrap();
+        w.write_to_known_channel(&header(js), data)
+            .expect("the benchmark's bag");
         if k % 100 == 0 {
             w.write_to_known_channel(&header(log), &[0, 1, 0, 0, 1, 0, 0, 0, 0])
-                .unwrap();
+                .expect("the benchmark's bag");
         }
     }
-    w.finish().unwrap();
+    w.finish().expect("the benchmark's bag");
 }
 
 fn write_db3(path: &Path, msgs: &[(u64, Vec<u8>)]) {
     let _ = std::fs::remove_file(path);
-    let mut db = rusqlite::Connection::open(path).unwrap();
+    let mut db = rusqlite::Connection::open(path).expect("the benchmark's bag");
     db.execute_batch(
         "CREATE TABLE topics(id INTEGER PRIMARY KEY, name TEXT NOT NULL, type TEXT NOT NULL, \
          serialization_format TEXT NOT NULL, offered_qos_profiles TEXT NOT NULL);
@@ -118,19 +123,19 @@ fn write_db3(path: &Path, msgs: &[(u64, Vec<u8>)]) {
          CREATE INDEX timestamp_idx ON messages (timestamp ASC);
          INSERT INTO topics VALUES (1, '/joint_states', 'sensor_msgs/msg/JointState', 'cdr', '');",
     )
-    .unwrap();
-    let tx = db.transaction().unwrap();
+    .expect("the benchmark's bag");
+    let tx = db.transaction().expect("the benchmark's bag");
     {
         let mut insert = tx
             .prepare("INSERT INTO messages (topic_id, timestamp, data) VALUES (1, ?1, ?2)")
-            .unwrap();
+            .expect("the benchmark's bag");
         for (stamp, data) in msgs {
             insert
                 .execute(rusqlite::params![(*stamp + 200_000) as i64, data])
-                .unwrap();
+                .expect("the benchmark's bag");
         }
     }
-    tx.commit().unwrap();
+    tx.commit().expect("the benchmark's bag");
 }
 
 fn bench(c: &mut Criterion<cpu_time::ThreadCpuTime>) {
@@ -145,10 +150,10 @@ fn bench(c: &mut Criterion<cpu_time::ThreadCpuTime>) {
     let mut g = c.benchmark_group("read_and_prepare_bag_60s_1khz_7_joints");
     g.sample_size(10);
     for (name, path) in &files {
-        let (m, summary) = read_bag(path, &JOINTS, DEFAULT_TOPIC).unwrap();
+        let (m, summary) = read_bag(path, &JOINTS, DEFAULT_TOPIC).expect("the benchmark's bag");
         assert_eq!((m.len(), summary.messages), (60_000, 60_000));
         g.bench_function(*name, |b| {
-            b.iter(|| read_bag(path, &JOINTS, DEFAULT_TOPIC).unwrap())
+            b.iter(|| read_bag(path, &JOINTS, DEFAULT_TOPIC).expect("the benchmark's bag"))
         });
     }
     g.finish();

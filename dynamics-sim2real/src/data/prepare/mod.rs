@@ -174,7 +174,7 @@ pub fn prepare<const N: usize>(m: &Measured<N>, file: &str) -> Result<Measured<N
     if !clock.uniform || damaged {
         let span = m.t[n - 1] - m.t[0];
         let samples = span / clock.interval + 1.0;
-        if !(samples <= max_grid_samples(n) as f64) {
+        if samples.is_nan() || samples > max_grid_samples(n) as f64 {
             return Err(DataError::GridTooLong {
                 file: file.to_string(),
                 span,
