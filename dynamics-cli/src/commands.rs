@@ -69,7 +69,39 @@ pub fn eval<R: Robot<N>, const N: usize>(
     Ok(())
 }
 
-/// `dynamics synth`: training and held-out CSVs of a robot with a withheld effect.
+/// Our CSV text (`write_csv`'s: a header, then numbers written exactly) as
+/// a Parquet file of the same columns.
+///
+/// ```
+/// let text = "t,q_j,tau_j\n0,0.5,1\n0.001,0.25,2\n";
+/// let bytes = dynamics_cli::commands::csv_as_parquet(text).unwrap();
+/// assert!(bytes.starts_with(b"PAR1") && bytes.ends_with(b"PAR1"));
+/// ```
+pub fn csv_as_parquet(text: &str) -> Result<Vec<u8>, Box<dyn std::error::Error>> {
+    let mut lines = text.lines();
+    let header: Vec<String> = lines
+        .next()
+        .unwrap_or_default()
+        .split(',')
+        .map(str::to_string)
+        .collect();
+    let mut columns = vec![Vec::new(); header.len()];
+    for (k, line) in lines.enumerate() {
+        for (c, cell) in line.split(',').enumerate() {
+            let v: f64 = cell
+                .parse()
+                .map_err(|_| format!("line {}: `{cell}` is not a number", k + 2))?;
+            if let Some(col) = columns.get_mut(c) {
+                col.push(v);
+            }
+        }
+    }
+    let mut out = Vec::new();
+    dynamics_sim2real::data::parquet::write_parquet_table(&mut out, &header, &columns)?;
+    Ok(out)
+}
+
+/// `dynamics synth`: training and held-out CSVs (or Parquet files) of a robot with a withheld effect.
 #[allow(clippy::too_many_arguments)]
 pub fn synth_cmd<R: Robot<N> + Clone, const N: usize>(
     robot: &R,
@@ -104,9 +136,19 @@ pub fn synth_cmd<R: Robot<N> + Clone, const N: usize>(
     };
     let data = crate::gap::synth_recorded(robot, motion, &req, recording)?;
     let stem = out.file_stem().and_then(|s| s.to_str()).unwrap_or("data");
-    let hold = out.with_file_name(format!("{stem}-holdout.csv"));
-    std::fs::write(out, &data.train).map_err(|e| format!("{}: {e}", out.display()))?;
-    std::fs::write(&hold, &data.holdout).map_err(|e| format!("{}: {e}", hold.display()))?;
+    let parquet = out.extension().and_then(|e| e.to_str()) == Some("parquet");
+    let hold = out.with_file_name(format!(
+        "{stem}-holdout.{}",
+        if parquet { "parquet" } else { "csv" }
+    ));
+    for (path, text) in [(out, &data.train), (hold.as_path(), &data.holdout)] {
+        let bytes = if parquet {
+            csv_as_parquet(text)?
+        } else {
+            text.clone().into_bytes()
+        };
+        std::fs::write(path, bytes).map_err(|e| format!("{}: {e}", path.display()))?;
+    }
     eprintln!("wrote {} and {}", out.display(), hold.display());
     if let Some(t) = truth {
         std::fs::write(&t, serde_json::to_string_pretty(&data.truth)?)

@@ -32,9 +32,12 @@ pub fn diagnose_cmd<R: Robot<N> + Clone + Sync, const N: usize>(
         noise,
         ..Options::default()
     };
-    let (report, warnings) =
-        crate::gap::diagnose_data(robot, &train, &holdout, &options, &progress)?;
+    let (report, warnings, about) =
+        crate::gap::diagnose_data_described(robot, &train, &holdout, &options, &progress)?;
     bar.finish_and_clear();
+    for line in &about {
+        println!("{line}");
+    }
     for w in warnings {
         eprintln!("warning: {w}");
     }
@@ -155,7 +158,7 @@ pub fn diagnose_cmd<R: Robot<N> + Clone + Sync, const N: usize>(
     }
     if let Some(dir) = report_dir {
         let traces = crate::gap::traces_data(robot, &train, &holdout, &report, &options)?;
-        crate::report::write(&dir, &report, &traces, &options)?;
+        crate::report::write_described(&dir, &report, &traces, &options, &about)?;
         eprintln!("wrote the report to {}", dir.join("report.md").display());
     }
     Ok(())

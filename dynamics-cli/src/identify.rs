@@ -7,7 +7,6 @@
 use std::path::PathBuf;
 
 use dynamics_runtime::Robot;
-use dynamics_sim2real::data::read_csv;
 use dynamics_sim2real::identify::{identify, Estimate, Options};
 use dynamics_sim2real::inertial::describe;
 use serde_json::{json, Value};
@@ -18,16 +17,20 @@ fn estimate(e: Estimate) -> Value {
     json!({ "value": e.value, "std": e.std })
 }
 
-/// Identifies `robot`'s corrections on `train`, judges them on `holdout`,
-/// prints them and writes the JSON to `json` when given.
+/// Identifies `robot`'s corrections on `train`, judges them on `holdout`
+/// (CSV, Parquet or ROS 2 bags: [`crate::gap::DataFile`]), prints them and
+/// writes the JSON to `json` when given.
 pub fn identify_cmd<R: Robot<N>, const N: usize>(
     robot: &R,
-    train: PathBuf,
-    holdout: PathBuf,
+    train: crate::gap::DataFile,
+    holdout: crate::gap::DataFile,
     json_out: Option<PathBuf>,
 ) -> Res {
-    let a = read_csv(&train, &R::JOINT_NAMES)?;
-    let b = read_csv(&holdout, &R::JOINT_NAMES)?;
+    let (a, about_a) = train.read_described(&R::JOINT_NAMES)?;
+    let (b, about_b) = holdout.read_described(&R::JOINT_NAMES)?;
+    for about in about_a.iter().chain(&about_b) {
+        println!("data: {about}");
+    }
     let all: Vec<_> = a.warnings.iter().chain(&b.warnings).cloned().collect();
     for w in crate::warnings::lines(&all) {
         eprintln!("warning: {w}");

@@ -37,11 +37,31 @@ pub fn diagnose_data<R: Robot<N> + Clone + Sync, const N: usize>(
     options: &Options,
     progress: &(dyn Fn(usize, usize) + Sync),
 ) -> Result<(Report, Vec<String>), GapError> {
-    let a = train.read(&R::JOINT_NAMES)?;
-    let b = holdout.read(&R::JOINT_NAMES)?;
+    diagnose_data_described(robot, train, holdout, options, progress).map(|(r, w, _)| (r, w))
+}
+
+/// [`diagnose_data`], and what was read of each file that says more than
+/// its samples (a bag's topic, message count and time range: the lines of
+/// the report's header).
+pub fn diagnose_data_described<R: Robot<N> + Clone + Sync, const N: usize>(
+    robot: &R,
+    train: &DataFile,
+    holdout: &DataFile,
+    options: &Options,
+    progress: &(dyn Fn(usize, usize) + Sync),
+) -> Result<(Report, Vec<String>, Vec<String>), GapError> {
+    let (a, about_a) = train.read_described(&R::JOINT_NAMES)?;
+    let (b, about_b) = holdout.read_described(&R::JOINT_NAMES)?;
     let report = diagnose(robot, &a, &b, options, progress)?;
     let warnings = crate::warnings::lines(&report.warnings);
-    Ok((report, warnings))
+    let about = [
+        about_a.map(|s| format!("training data: {s}")),
+        about_b.map(|s| format!("held-out data: {s}")),
+    ]
+    .into_iter()
+    .flatten()
+    .collect();
+    Ok((report, warnings, about))
 }
 
 /// The time series behind `report` (the readable report's plots), from the

@@ -6,13 +6,16 @@ mod files;
 mod source;
 mod synth;
 
-pub use files::{diagnose_data, diagnose_files, traces_data, traces_files};
+pub use files::{
+    diagnose_data, diagnose_data_described, diagnose_files, traces_data, traces_files,
+};
 pub use source::{parse_window, DataFile};
 pub use synth::{
     holdout_window, synth, synth_recorded, Motion, Recording, SynthOutput, SynthRequest, Truth,
     TruthWindow,
 };
 
+use dynamics_sim2real::data::bag::BagError;
 use dynamics_sim2real::data::import::ImportError;
 use dynamics_sim2real::data::DataError;
 use dynamics_sim2real::diagnose::traces::TracesError;
@@ -37,6 +40,9 @@ pub enum GapError {
     /// Reading a recorded file through a column map.
     #[error(transparent)]
     Import(#[from] ImportError),
+    /// Reading a ROS 2 bag or a Parquet file.
+    #[error(transparent)]
+    Bag(#[from] BagError),
     /// Generating data.
     #[error(transparent)]
     Synth(#[from] SynthError),

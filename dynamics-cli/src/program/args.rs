@@ -63,12 +63,17 @@ pub enum RobotCommand {
 /// `identify`.
 #[derive(Args, Debug)]
 pub struct IdentifyArgs {
-    /// Training data (CSV or CSV.gz).
+    /// Training data: CSV or CSV.gz, Parquet, or a ROS 2 bag (a rosbag2 directory, .mcap or
+    /// .db3).
     #[arg(long)]
     pub train: PathBuf,
     /// Held-out data.
     #[arg(long)]
     pub holdout: PathBuf,
+    /// The topic of sensor_msgs/msg/JointState messages read from a ROS 2 bag
+    /// (default /joint_states).
+    #[arg(long, value_name = "NAME")]
+    pub topic: Option<String>,
     /// Write the result as JSON here.
     #[arg(long)]
     pub json: Option<PathBuf>,
@@ -138,7 +143,8 @@ pub struct SynthArgs {
     /// Effort noise as a fraction of each joint's peak effort.
     #[arg(long, default_value_t = 2e-3)]
     pub noise_tau: f64,
-    /// Training CSV to write (the held-out set goes beside it as `<stem>-holdout.csv`).
+    /// Training data to write: CSV, or Parquet when named `.parquet` (the held-out set goes
+    /// beside it as `<stem>-holdout.csv` or `.parquet`).
     #[arg(long)]
     pub out: PathBuf,
     /// Where to write the truth (JSON); default: none written.
@@ -181,8 +187,9 @@ pub struct SynthArgs {
 /// `diagnose`.
 #[derive(Args, Debug, Default)]
 pub struct DiagnoseArgs {
-    /// Training data (CSV or CSV.gz; with --columns: a text matrix, a .npz or .npy, or a
-    /// directory of one file per quantity).
+    /// Training data: CSV or CSV.gz, Parquet (the CSV's columns), a ROS 2 bag (a rosbag2
+    /// directory, .mcap or .db3; see --topic); with --columns: a text matrix, a .npz or .npy,
+    /// or a directory of one file per quantity.
     #[arg(long, requires = "holdout")]
     pub train: Option<PathBuf>,
     /// Held-out data (may be the training file with another window).
@@ -195,6 +202,10 @@ pub struct DiagnoseArgs {
     /// (`*1e-3` for milliseconds, `*-1` for the opposite sign).
     #[arg(long, value_name = "MAP", requires = "train")]
     pub columns: Option<String>,
+    /// The topic of sensor_msgs/msg/JointState messages read from a ROS 2 bag
+    /// (default /joint_states); other topics are skipped.
+    #[arg(long, value_name = "NAME", requires = "train")]
+    pub topic: Option<String>,
     /// Use only this part of the training data: START:END, seconds from its first sample.
     #[arg(long, value_name = "START:END", requires = "train")]
     pub train_window: Option<String>,
@@ -256,11 +267,13 @@ impl DiagnoseArgs {
                 path: train,
                 columns: columns.clone(),
                 window: window(&self.train_window)?,
+                topic: self.topic.clone(),
             },
             crate::gap::DataFile {
                 path: holdout,
                 columns,
                 window: window(&self.holdout_window)?,
+                topic: self.topic.clone(),
             },
         ))
     }

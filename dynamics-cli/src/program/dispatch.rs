@@ -112,7 +112,11 @@ pub fn run_on<R: Robot<N> + Clone + Sync, const N: usize>(
         }
         RobotCommand::Identify(a) => {
             let robot = nominal(robot, &a.model, None)?;
-            crate::identify::identify_cmd(&robot, a.train, a.holdout, a.json)
+            let file = |path| crate::gap::DataFile {
+                topic: a.topic.clone(),
+                ..crate::gap::DataFile::csv(path)
+            };
+            crate::identify::identify_cmd(&robot, file(a.train), file(a.holdout), a.json)
         }
     }
 }

@@ -148,12 +148,31 @@ pub fn write(
     traces: &Traces,
     options: &Options,
 ) -> Result<Vec<PathBuf>, ReportError> {
+    write_described(dir, report, traces, options, &[])
+}
+
+/// [`write`], with lines saying what was read (a bag's topic, message count
+/// and time range: [`crate::gap::diagnose_data_described`]) under the
+/// report's title.
+pub fn write_described(
+    dir: &Path,
+    report: &Report,
+    traces: &Traces,
+    options: &Options,
+    about: &[String],
+) -> Result<Vec<PathBuf>, ReportError> {
     let io = |path: &Path| {
         let path = path.display().to_string();
         move |source| ReportError::Io { path, source }
     };
     std::fs::create_dir_all(dir).map_err(io(dir))?;
     let mut files = render(report, traces, options);
+    if let (Some((_, md)), false) = (files.first_mut(), about.is_empty()) {
+        // After the title line and its blank line.
+        let at = md.find("\n\n").map_or(0, |i| i + 2);
+        let lines: String = about.iter().map(|l| format!("- {l}\n")).collect();
+        md.insert_str(at, &format!("Recorded data read:\n\n{lines}\n"));
+    }
     files.push((
         "report.json".into(),
         serde_json::to_string_pretty(report)? + "\n",

@@ -127,6 +127,21 @@ pub enum DataError {
         /// Rows.
         rows: usize,
     },
+    /// The record's gaps are so long that its uniform grid would hold far
+    /// more samples than were recorded ([`crate::data::max_grid_samples`]).
+    #[error("{file}: the samples span {span} s at an interval of {interval} s: a uniform grid of {grid} samples for {rows} recorded (at most 4 x the recorded + 1000000); its gaps are too long: cut the record with a time window")]
+    GridTooLong {
+        /// The file.
+        file: String,
+        /// From the first sample to the last, s.
+        span: f64,
+        /// The grid's interval, s.
+        interval: f64,
+        /// Samples the grid would hold.
+        grid: f64,
+        /// Samples recorded.
+        rows: usize,
+    },
     /// Too few rows.
     #[error("{file}: {rows} samples; at least {MIN_SAMPLES} are needed")]
     TooFewSamples {

@@ -2,18 +2,21 @@
 //! in the trajectory CSV format (docs/cli.md) (`t`, `q_<joint>`, `qd_<joint>`,
 //! `tau_<joint>`, matched by name; `.csv.gz` read as well), and recorded
 //! files in other layouts (text matrices, one file per quantity, NumPy
-//! `.npz`) through a column map ([`import`]).
+//! `.npz`) through a column map ([`import`]), ROS 2 bags ([`bag`]) and
+//! Parquet files of the CSV's columns ([`parquet`]).
 
+pub mod bag;
 mod error;
 pub mod import;
+pub mod parquet;
 mod prepare;
 mod read;
 mod window;
 mod write;
 
 pub use error::{DataError, MAX_GLITCH_FRACTION, MIN_GLITCHES_REFUSED};
-pub use prepare::{prepare, GLITCH_THRESHOLD, HOLE_PERIODS};
-pub use read::{read_csv, read_csv_str};
+pub use prepare::{max_grid_samples, prepare, GLITCH_THRESHOLD, HOLE_PERIODS};
+pub use read::{read_csv, read_csv_bytes, read_csv_str};
 pub use write::write_csv;
 
 use crate::Warning;

@@ -1,10 +1,12 @@
 //! The `dynamics` program as a user runs it, one module a command or
 //! option: `check` and `eval` (`eval.rs`), `scenario` (`scenario.rs`),
 //! `simulate` (`simulate.rs`), `synth` (`synth.rs`), `diagnose`
-//! (`diagnose.rs`) and its readable report (`report.rs`), `new` (`new.rs`:
+//! (`diagnose.rs`) and its readable report (`report.rs`), recorded data as
+//! ROS 2 bags and Parquet (`bags.rs`), `new` (`new.rs`:
 //! a scaffolded crate built and run), `--set` (`set.rs`) and `--baseline`
 //! (`baseline.rs`); the default command here.
 
+mod bags;
 mod baseline;
 mod diagnose;
 mod eval;

@@ -60,7 +60,42 @@ pub fn import<const N: usize>(
 ) -> Result<Measured<N>, ImportError> {
     let file = path.display().to_string();
     let mut warnings = Vec::new();
-    let mut sources = Sources::open(path, &file, &mut warnings)?;
+    let sources = Sources::open(path, &file, &mut warnings)?;
+    import_from(sources, file, warnings, map, joints, window)
+}
+
+/// [`import`] of the bytes of one file named `file` (a text matrix, a
+/// `.npz` or a `.npy`; what the fuzz target reads).
+///
+/// ```
+/// use dynamics_sim2real::data::import::{import_bytes, ColumnMap};
+/// let text: String = (0..300).map(|k| format!("{} {} 0.5\n", k as f64 * 1e-3, k as f64 * 2e-3)).collect();
+/// let map: ColumnMap = "t=:1,q=:2,tau=:3".parse().unwrap();
+/// let m = import_bytes(text.as_bytes(), "m.txt", &map, &["j"], None).unwrap();
+/// assert_eq!(m.len(), 300);
+/// assert!(import_bytes(b"PK\x03\x04 broken", "m.npz", &map, &["j"], None).is_err());
+/// ```
+pub fn import_bytes<const N: usize>(
+    bytes: &[u8],
+    file: &str,
+    map: &ColumnMap,
+    joints: &[&str; N],
+    window: Option<(f64, f64)>,
+) -> Result<Measured<N>, ImportError> {
+    let mut warnings = Vec::new();
+    let sources = Sources::from_bytes(bytes, file, &mut warnings)?;
+    import_from(sources, file.to_string(), warnings, map, joints, window)
+}
+
+/// The record of `sources` (named `file`), as [`import`] says.
+fn import_from<const N: usize>(
+    mut sources: Sources,
+    file: String,
+    mut warnings: Vec<String>,
+    map: &ColumnMap,
+    joints: &[&str; N],
+    window: Option<(f64, f64)>,
+) -> Result<Measured<N>, ImportError> {
     let t = sources.column(&map.t, "t", 1, None)?;
     let n = t.rows;
     let q = sources.column(&map.q, "q", N, Some(n))?;
@@ -191,38 +226,57 @@ fn read_text(path: &Path, warnings: &mut Vec<String>) -> Result<Table, ImportErr
 
 impl Sources {
     fn open(path: &Path, file: &str, warnings: &mut Vec<String>) -> Result<Self, ImportError> {
+        if path.is_dir() {
+            return Ok(Sources {
+                file: file.to_string(),
+                kind: Kind::Directory(path.to_path_buf()),
+                tables: BTreeMap::new(),
+                warnings: Vec::new(),
+            });
+        }
+        Self::from_bytes(&read_bytes(path)?, file, warnings)
+    }
+
+    /// The tables of one file's bytes.
+    fn from_bytes(
+        bytes: &[u8],
+        file: &str,
+        warnings: &mut Vec<String>,
+    ) -> Result<Self, ImportError> {
         let mut tables = BTreeMap::new();
         let npy_err = |array: &str, message: String| ImportError::Npy {
             file: file.to_string(),
             array: array.to_string(),
             message,
         };
-        let kind = if path.is_dir() {
-            Kind::Directory(path.to_path_buf())
-        } else {
-            let bytes = read_bytes(path)?;
-            if bytes.starts_with(b"PK") {
-                let entries = zip::entries(&bytes).map_err(|message| ImportError::Zip {
-                    file: file.to_string(),
-                    message,
-                })?;
-                for (name, data) in entries {
-                    let name = name.strip_suffix(".npy").unwrap_or(&name).to_string();
-                    let table = npy::parse(&data, &format!("{file}:{name}"))
-                        .map_err(|m| npy_err(&name, m))?;
-                    tables.insert(name, table);
-                }
-                Kind::Archive
-            } else if bytes.starts_with(b"\x93NUMPY") {
-                tables.insert(
-                    String::new(),
-                    npy::parse(&bytes, file).map_err(|m| npy_err("", m))?,
-                );
-                Kind::Single
-            } else {
-                tables.insert(String::new(), read_text(path, warnings)?);
-                Kind::Single
+        let kind = if bytes.starts_with(b"PK") {
+            let entries = zip::entries(bytes).map_err(|message| ImportError::Zip {
+                file: file.to_string(),
+                message,
+            })?;
+            for (name, data) in entries {
+                let name = name.strip_suffix(".npy").unwrap_or(&name).to_string();
+                let table =
+                    npy::parse(&data, &format!("{file}:{name}")).map_err(|m| npy_err(&name, m))?;
+                tables.insert(name, table);
             }
+            Kind::Archive
+        } else if bytes.starts_with(b"\x93NUMPY") {
+            tables.insert(
+                String::new(),
+                npy::parse(bytes, file).map_err(|m| npy_err("", m))?,
+            );
+            Kind::Single
+        } else {
+            let text = std::str::from_utf8(bytes).map_err(|e| ImportError::Io {
+                file: file.to_string(),
+                source: std::io::Error::new(
+                    std::io::ErrorKind::InvalidData,
+                    format!("not UTF-8 text ({e})"),
+                ),
+            })?;
+            tables.insert(String::new(), text::parse(text, file, warnings)?);
+            Kind::Single
         };
         Ok(Sources {
             file: file.to_string(),

@@ -1,52 +1,56 @@
-//! NumPy `.npy` arrays (format versions 1-3): the header dictionary
-//! (`descr`, `fortran_order`, `shape`) and the data of a 0-, 1- or 2-D array
-//! of floating-point or integer numbers, as a [`Table`] (a 1-D array is one
-//! column).
+//! NumPy `.npy` arrays through the `npyz` crate: a 0-, 1- or 2-D array of
+//! floating-point or integer numbers (either byte order, C or Fortran
+//! order) as a [`Table`] (a 1-D array is one column). The data's size is
+//! checked against the bytes there before anything is read, so that a
+//! hostile shape costs no memory.
+
+use npyz::{DType, NpyFile, Order, TypeChar};
 
 use super::table::Table;
 
+#[cfg(test)]
 const MAGIC: &[u8] = b"\x93NUMPY";
-
-/// The element types read: (size in bytes, kind).
-#[derive(Clone, Copy)]
-enum Kind {
-    Float,
-    Signed,
-    Unsigned,
-}
 
 /// Reads the `.npy` bytes of array `source`; the error is a plain message
 /// (the caller names the file and the array).
 pub(crate) fn parse(bytes: &[u8], source: &str) -> Result<Table, String> {
-    if !bytes.starts_with(MAGIC) || bytes.len() < 10 {
+    if !bytes.starts_with(b"\x93NUMPY") || bytes.len() < 10 {
         return Err("no .npy magic bytes (\\x93NUMPY)".into());
     }
-    let major = bytes[6];
-    let (header_len, start) = match major {
-        1 => (u16::from_le_bytes([bytes[8], bytes[9]]) as usize, 10),
-        2 | 3 if bytes.len() >= 12 => (
-            u32::from_le_bytes([bytes[8], bytes[9], bytes[10], bytes[11]]) as usize,
-            12,
-        ),
-        _ => {
+    // The header's length, to know how many data bytes follow it.
+    let header_end = match bytes[6] {
+        1 => 10 + u16::from_le_bytes([bytes[8], bytes[9]]) as usize,
+        2 | 3 if bytes.len() >= 12 => {
+            12 + u32::from_le_bytes([bytes[8], bytes[9], bytes[10], bytes[11]]) as usize
+        }
+        major => {
             return Err(format!(
                 ".npy format version {major} is not read (1, 2 and 3 are)"
             ))
         }
     };
-    let header = bytes
-        .get(start..start + header_len)
+    let data_len = bytes
+        .len()
+        .checked_sub(header_end)
         .ok_or("the header is cut short")?;
-    let header = std::str::from_utf8(header).map_err(|_| "the header is not text")?;
-    let descr = value_of(header, "descr").ok_or("the header has no 'descr'")?;
-    let descr = quoted(descr).ok_or("the header's 'descr' is not a quoted type")?;
-    let fortran = match value_of(header, "fortran_order") {
-        Some(v) if v.starts_with("True") => true,
-        Some(v) if v.starts_with("False") => false,
-        _ => return Err("the header has no 'fortran_order'".into()),
+    let npy = NpyFile::new(bytes).map_err(|e| format!("the header cannot be read: {e}"))?;
+    let descr = match npy.dtype() {
+        DType::Plain(ts) => ts,
+        other => {
+            return Err(format!(
+                "element type `{}` is not read (a structured array)",
+                other.descr()
+            ))
+        }
     };
-    let shape = shape_of(header)?;
-    let (little, kind, size) = dtype(descr)?;
+    let unsupported =
+        || format!("element type `{descr}` is not read (floats f4/f8, integers i1-i8/u1-u8 are)");
+    let size = descr.size_field() as usize;
+    match (descr.type_char(), size) {
+        (TypeChar::Float, 4 | 8) | (TypeChar::Int | TypeChar::Uint, 1 | 2 | 4 | 8) => {}
+        _ => return Err(unsupported()),
+    }
+    let shape: Vec<usize> = npy.shape().iter().map(|&n| n as usize).collect();
     let (rows, cols) = match shape.as_slice() {
         [] => (1, 1),
         [n] => (*n, 1),
@@ -58,19 +62,38 @@ pub(crate) fn parse(bytes: &[u8], source: &str) -> Result<Table, String> {
             ))
         }
     };
-    let count = rows * cols;
-    let data = &bytes[start + header_len..];
-    if data.len() < count * size {
+    let count = rows.checked_mul(cols).ok_or("the shape overflows")?;
+    let need = count.checked_mul(size).ok_or("the shape overflows")?;
+    if data_len < need {
         return Err(format!(
-            "shape {shape:?} needs {} bytes of data, the array has {}",
-            count * size,
-            data.len()
+            "shape {shape:?} needs {need} bytes of data, the array has {data_len}"
         ));
     }
-    let mut values: Vec<f64> = data[..count * size]
-        .chunks_exact(size)
-        .map(|c| number(c, little, kind))
-        .collect();
+    let fortran = npy.order() == Order::Fortran;
+    let read = |e: std::io::Error| format!("the data cannot be read: {e}");
+    let mut values: Vec<f64> = match (descr.type_char(), size) {
+        (TypeChar::Float, 8) => npy.into_vec::<f64>().map_err(read)?,
+        (TypeChar::Float, _) => floats(npy.into_vec::<f32>().map_err(read)?),
+        (TypeChar::Int, 1) => floats(npy.into_vec::<i8>().map_err(read)?),
+        (TypeChar::Int, 2) => floats(npy.into_vec::<i16>().map_err(read)?),
+        (TypeChar::Int, 4) => floats(npy.into_vec::<i32>().map_err(read)?),
+        (TypeChar::Int, _) => npy
+            .into_vec::<i64>()
+            .map_err(read)?
+            .into_iter()
+            .map(|v| v as f64)
+            .collect(),
+        (TypeChar::Uint, 1) => floats(npy.into_vec::<u8>().map_err(read)?),
+        (TypeChar::Uint, 2) => floats(npy.into_vec::<u16>().map_err(read)?),
+        (TypeChar::Uint, 4) => floats(npy.into_vec::<u32>().map_err(read)?),
+        (TypeChar::Uint, _) => npy
+            .into_vec::<u64>()
+            .map_err(read)?
+            .into_iter()
+            .map(|v| v as f64)
+            .collect(),
+        _ => return Err(unsupported()),
+    };
     if fortran && rows > 1 && cols > 1 {
         let column_major = values;
         values = (0..count)
@@ -86,87 +109,9 @@ pub(crate) fn parse(bytes: &[u8], source: &str) -> Result<Table, String> {
     })
 }
 
-/// The text after `'key':` in the header dictionary.
-fn value_of<'a>(header: &'a str, key: &str) -> Option<&'a str> {
-    let at = header
-        .find(&format!("'{key}'"))
-        .or_else(|| header.find(&format!("\"{key}\"")))?;
-    let rest = &header[at + key.len() + 2..];
-    Some(rest.trim_start().strip_prefix(':')?.trim_start())
-}
-
-/// The text of the quoted string `text` starts with.
-fn quoted(text: &str) -> Option<&str> {
-    let quote = text.chars().next().filter(|c| *c == '\'' || *c == '"')?;
-    text[1..].split(quote).next()
-}
-
-/// The `shape` tuple.
-fn shape_of(header: &str) -> Result<Vec<usize>, String> {
-    let v = value_of(header, "shape").ok_or("the header has no 'shape'")?;
-    let inner = v
-        .strip_prefix('(')
-        .and_then(|s| s.split(')').next())
-        .ok_or("the header's 'shape' is not a tuple")?;
-    inner
-        .split(',')
-        .map(str::trim)
-        .filter(|s| !s.is_empty())
-        .map(|s| {
-            s.trim_end_matches('L')
-                .parse::<usize>()
-                .map_err(|_| format!("the header's 'shape' has `{s}`"))
-        })
-        .collect()
-}
-
-/// Byte order, kind and size of a `descr` like `<f8`.
-fn dtype(descr: &str) -> Result<(bool, Kind, usize), String> {
-    let unsupported =
-        || format!("element type `{descr}` is not read (floats f4/f8, integers i1-i8/u1-u8 are)");
-    let mut chars = descr.chars();
-    let order = chars.next().ok_or_else(unsupported)?;
-    let little = match order {
-        '<' | '|' | '=' => true,
-        '>' => false,
-        _ => return Err(unsupported()),
-    };
-    let kind = match chars.next() {
-        Some('f') => Kind::Float,
-        Some('i') => Kind::Signed,
-        Some('u') => Kind::Unsigned,
-        _ => return Err(unsupported()),
-    };
-    let size: usize = chars.as_str().parse().map_err(|_| unsupported())?;
-    match (kind, size) {
-        (Kind::Float, 4 | 8) | (Kind::Signed | Kind::Unsigned, 1 | 2 | 4 | 8) => {
-            Ok((little, kind, size))
-        }
-        _ => Err(unsupported()),
-    }
-}
-
-/// One element as f64.
-fn number(bytes: &[u8], little: bool, kind: Kind) -> f64 {
-    let mut b = [0u8; 8];
-    if little {
-        b[..bytes.len()].copy_from_slice(bytes);
-    } else {
-        for (i, x) in bytes.iter().rev().enumerate() {
-            b[i] = *x;
-        }
-    }
-    let n = bytes.len();
-    match (kind, n) {
-        (Kind::Float, 4) => f32::from_le_bytes([b[0], b[1], b[2], b[3]]) as f64,
-        (Kind::Float, _) => f64::from_le_bytes(b),
-        (Kind::Unsigned, _) => u64::from_le_bytes(b) as f64,
-        (Kind::Signed, _) => {
-            // sign-extend from n bytes
-            let shift = 64 - 8 * n as u32;
-            ((u64::from_le_bytes(b) << shift) as i64 >> shift) as f64
-        }
-    }
+/// Numbers of a narrower type as f64 (exact).
+fn floats<T: Into<f64>>(v: Vec<T>) -> Vec<f64> {
+    v.into_iter().map(Into::into).collect()
 }
 
 /// The `.npy` bytes of a 2-D array of `<f8` (tests: a writer to read back).

@@ -38,6 +38,17 @@ use crate::Warning;
 use clock::{speed_ratio, Clock};
 use grid::grid;
 
+/// The most samples the uniform grid of `n` recorded samples may hold:
+/// `4 n + 10^6` (a record whose gaps are longer is refused rather than
+/// filled: a stamp off by years asked for terabytes).
+///
+/// ```
+/// assert_eq!(dynamics_sim2real::data::max_grid_samples(1000), 1_004_000);
+/// ```
+pub fn max_grid_samples(n: usize) -> usize {
+    n.saturating_mul(4).saturating_add(1_000_000)
+}
+
 /// Glitch warnings listed one by one per file; the rest are counted.
 const GLITCHES_LISTED: usize = 20;
 
@@ -153,6 +164,19 @@ pub fn prepare<const N: usize>(m: &Measured<N>, file: &str) -> Result<Measured<N
         });
     }
     let damaged = bad.iter().any(|b| b.iter().any(|&x| x));
+    if !clock.uniform || damaged {
+        let span = m.t[n - 1] - m.t[0];
+        let samples = span / clock.interval + 1.0;
+        if samples.is_nan() || samples > max_grid_samples(n) as f64 {
+            return Err(DataError::GridTooLong {
+                file: file.to_string(),
+                span,
+                interval: clock.interval,
+                grid: samples.floor(),
+                rows: n,
+            });
+        }
+    }
     if clock.uniform && !damaged {
         return Ok(Measured {
             warnings,

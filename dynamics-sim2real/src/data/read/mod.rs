@@ -31,26 +31,48 @@ use columns::Columns;
 /// ```
 pub fn read_csv<const N: usize>(path: &Path, joints: &[&str; N]) -> Result<Measured<N>, DataError> {
     let file = path.display().to_string();
-    let io = |source| DataError::Io {
+    let bytes = std::fs::read(path).map_err(|source| DataError::Io {
         file: file.clone(),
         source,
+    })?;
+    read_csv_bytes(&bytes, joints, &file)
+}
+
+/// Reads the bytes of a CSV file (gzip-compressed or not) named `file`.
+///
+/// ```
+/// use dynamics_sim2real::data::read_csv_bytes;
+/// let mut text = String::from("t,q_j,tau_j\n");
+/// for k in 0..300 { text.push_str(&format!("{},0,1\n", k as f64 * 1e-3)); }
+/// assert_eq!(read_csv_bytes(text.as_bytes(), &["j"], "m.csv").unwrap().len(), 300);
+/// assert!(read_csv_bytes(&[0xff, 0xfe], &["j"], "m.csv").is_err());
+/// ```
+pub fn read_csv_bytes<const N: usize>(
+    bytes: &[u8],
+    joints: &[&str; N],
+    file: &str,
+) -> Result<Measured<N>, DataError> {
+    let io = |source| DataError::Io {
+        file: file.to_string(),
+        source,
     };
-    let bytes = std::fs::read(path).map_err(io)?;
+    let decoded;
     let text = if bytes.starts_with(&[0x1f, 0x8b]) {
         let mut s = String::new();
-        flate2::read::MultiGzDecoder::new(&bytes[..])
+        flate2::read::MultiGzDecoder::new(bytes)
             .read_to_string(&mut s)
             .map_err(io)?;
-        s
+        decoded = s;
+        decoded.as_str()
     } else {
-        String::from_utf8(bytes).map_err(|e| {
+        std::str::from_utf8(bytes).map_err(|e| {
             io(std::io::Error::new(
                 std::io::ErrorKind::InvalidData,
                 format!("not UTF-8 text ({e}); a gzip file must start with the gzip magic bytes"),
             ))
         })?
     };
-    read_csv_str(&text, joints, &file)
+    read_csv_str(text, joints, file)
 }
 
 /// Reads CSV text; `file` names it in errors.
@@ -84,26 +106,76 @@ pub fn read_csv_str<const N: usize>(
         .iter()
         .map(str::to_string)
         .collect();
+    let rows = reader.records().enumerate().map(|(row, record)| {
+        let record = record.map_err(csv_err)?;
+        let line = record.position().map_or(row + 2, |p| p.line() as usize);
+        Ok(CsvRow { record, line })
+    });
+    read_rows(&header, rows, joints, file)
+}
+
+/// One row of a table: its cells as numbers on request, and its line.
+pub(crate) trait Row {
+    /// Cells in the row.
+    fn len(&self) -> usize;
+    /// The 1-based line of the row (a binary table: row `k` counts as line `k + 2`, as in
+    /// the CSV of the same data).
+    fn line(&self) -> usize;
+    /// Cell `c` as a finite number, or what it holds instead.
+    fn cell(&self, c: usize) -> Result<f64, String>;
+}
+
+/// A CSV record and its line.
+struct CsvRow {
+    record: csv::StringRecord,
+    line: usize,
+}
+
+impl Row for CsvRow {
+    fn len(&self) -> usize {
+        self.record.len()
+    }
+    fn line(&self) -> usize {
+        self.line
+    }
+    fn cell(&self, c: usize) -> Result<f64, String> {
+        let value = self.record.get(c).unwrap_or("");
+        value
+            .parse::<f64>()
+            .ok()
+            .filter(|v| v.is_finite())
+            .ok_or_else(|| value.to_string())
+    }
+}
+
+/// The rows of a table with columns `header` (our CSV's: `t`, `q_<joint>`,
+/// ...), checked and prepared as [`read_csv_str`] says.
+pub(crate) fn read_rows<const N: usize, R: Row>(
+    header: &[String],
+    rows: impl Iterator<Item = Result<R, DataError>>,
+    joints: &[&str; N],
+    file: &str,
+) -> Result<Measured<N>, DataError> {
     let Columns {
         t: t_col,
         q: q_cols,
         tau: tau_cols,
         qd: qd_cols,
         warnings,
-    } = Columns::find(&header, joints, file)?;
+    } = Columns::find(header, joints, file)?;
     let mut m = Measured::<N> {
         qd_measured: qd_cols.is_some(),
         joints: joints.iter().map(|j| j.to_string()).collect(),
         ..Default::default()
     };
-    let mut records = reader.records().enumerate().peekable();
+    let mut records = rows.peekable();
     // Whole rows written twice (time included), and the first such line.
     let (mut twice, mut twice_line) = (0usize, 0usize);
     // Line of each row kept (rows written twice are dropped).
     let mut lines = Vec::new();
-    while let Some((row, record)) = records.next() {
-        let record = record.map_err(csv_err)?;
-        let line = record.position().map_or(row + 2, |p| p.line() as usize);
+    while let Some(record) = records.next() {
+        let record = record?;
+        let line = record.line();
         if record.len() != header.len() {
             return Err(DataError::RowLength {
                 file: file.to_string(),
@@ -114,23 +186,16 @@ pub fn read_csv_str<const N: usize>(
             });
         }
         let cell = |c: usize| -> Result<f64, DataError> {
-            let value = record.get(c).unwrap_or("");
-            value
-                .parse::<f64>()
-                .ok()
-                .filter(|v| v.is_finite())
-                .ok_or_else(|| DataError::BadNumber {
-                    file: file.to_string(),
-                    line,
-                    column: header[c].clone(),
-                    value: value.to_string(),
-                })
+            record.cell(c).map_err(|value| DataError::BadNumber {
+                file: file.to_string(),
+                line,
+                column: header[c].clone(),
+                value,
+            })
         };
         let t = cell(t_col)?;
         if let Some(&previous) = m.t.last() {
-            if t == previous
-                && record_repeats(&record, &m, &q_cols, &tau_cols, qd_cols.as_ref(), &cell)?
-            {
+            if t == previous && record_repeats(&m, &q_cols, &tau_cols, qd_cols.as_ref(), &cell)? {
                 twice += 1;
                 if twice_line == 0 {
                     twice_line = line;
@@ -198,7 +263,6 @@ pub fn read_csv_str<const N: usize>(
 
 /// Whether `record` (at the time of the last row read) repeats that row.
 fn record_repeats<const N: usize>(
-    _record: &csv::StringRecord,
     m: &Measured<N>,
     q_cols: &[usize; N],
     tau_cols: &[usize; N],
@@ -258,5 +322,20 @@ mod tests {
         )
         .unwrap_err();
         assert!(e.to_string().contains("10 samples; at least 200"), "{e}");
+    }
+
+    #[test]
+    fn a_gap_of_years_is_refused_not_filled() {
+        // 300 rows at 1 kHz, then one a million seconds later: a grid of 10^9
+        // samples would be filled; the reader names the span instead.
+        let ok = |k: usize| format!("{},{},0,1\n", k as f64 * 1e-3, k as f64 * 1e-4);
+        let text = format!("t,q_j,qd_j,tau_j\n{}1000000,0.03,0,1\n", rows(300, ok));
+        let e = read_csv_str::<1>(&text, &["j"], "a.csv").unwrap_err();
+        assert!(matches!(e, DataError::GridTooLong { rows: 301, .. }), "{e}");
+        assert!(
+            e.to_string()
+                .starts_with("a.csv: the samples span 1000000 s at an interval of 0.001"),
+            "{e}"
+        );
     }
 }

@@ -1,0 +1,296 @@
+//! Parquet files with the CSV's columns (`t`, `q_<joint>`, `qd_<joint>`,
+//! `tau_<joint>`, matched by name, other columns ignored with a warning),
+//! read and written through the `parquet` crate (without Arrow; snappy and
+//! zstd pages) under the cargo feature `parquet`. The rows then go through
+//! the CSV reader's checks and [`prepare`](crate::data::prepare); a row's
+//! place is given as the line it would have in the CSV of the same data
+//! (row `k`, from 0, on line `k + 2`).
+
+use std::path::Path;
+
+use super::bag::BagError;
+use super::Measured;
+
+/// Reads the Parquet file at `path` for a robot with joints `joints`.
+///
+/// ```
+/// # #[cfg(feature = "parquet")] {
+/// use dynamics_sim2real::data::parquet::{read_parquet, write_parquet};
+/// use dynamics_sim2real::data::Measured;
+/// let m = Measured::<1> {
+///     t: (0..300).map(|k| k as f64 * 1e-3).collect(),
+///     q: (0..300).map(|k| [k as f64 * 1e-3].into()).collect(),
+///     tau: vec![[1.5].into(); 300],
+///     ..Default::default()
+/// };
+/// let path = std::env::temp_dir().join("dynamics-doc-read.parquet");
+/// write_parquet(std::fs::File::create(&path).unwrap(), &m, &["j"]).unwrap();
+/// let back = read_parquet(&path, &["j"]).unwrap();
+/// assert_eq!((back.t, back.q, back.tau), (m.t, m.q, m.tau));
+/// assert!(!back.qd_measured && (back.qd[100][0] - 1.0).abs() < 1e-9);
+/// # }
+/// ```
+pub fn read_parquet<const N: usize>(
+    path: &Path,
+    joints: &[&str; N],
+) -> Result<Measured<N>, BagError> {
+    let file = path.display().to_string();
+    let bytes = std::fs::read(path).map_err(|source| BagError::Io {
+        file: file.clone(),
+        source,
+    })?;
+    read_parquet_bytes(bytes, joints, &file)
+}
+
+/// Whether `path` is named `.parquet` or starts with Parquet's magic bytes.
+///
+/// ```
+/// assert!(dynamics_sim2real::data::parquet::is_parquet(std::path::Path::new("run.parquet")));
+/// ```
+pub fn is_parquet(path: &Path) -> bool {
+    if path.extension().and_then(|e| e.to_str()) == Some("parquet") {
+        return true;
+    }
+    use std::io::Read;
+    let mut head = [0u8; 4];
+    std::fs::File::open(path)
+        .and_then(|mut f| f.read_exact(&mut head))
+        .map(|_| &head == b"PAR1")
+        .unwrap_or(false)
+}
+
+#[cfg(feature = "parquet")]
+mod imp {
+    use std::sync::Arc;
+
+    use parquet::basic::{Compression, Repetition, Type as PhysicalType};
+    use parquet::data_type::DoubleType;
+    use parquet::file::properties::WriterProperties;
+    use parquet::file::reader::{FileReader, SerializedFileReader};
+    use parquet::file::writer::SerializedFileWriter;
+    use parquet::record::Field;
+    use parquet::schema::types::Type;
+
+    use super::super::read::{read_rows, Row};
+    use super::super::Measured;
+    use crate::data::bag::BagError;
+
+    /// One row: its numbers (or what a cell holds instead) and its line.
+    struct ParquetRow {
+        cells: Vec<Result<f64, String>>,
+        line: usize,
+    }
+
+    impl Row for ParquetRow {
+        fn len(&self) -> usize {
+            self.cells.len()
+        }
+        fn line(&self) -> usize {
+            self.line
+        }
+        fn cell(&self, c: usize) -> Result<f64, String> {
+            match self.cells.get(c) {
+                Some(Ok(v)) if v.is_finite() => Ok(*v),
+                Some(Ok(v)) => Err(v.to_string()),
+                Some(Err(e)) => Err(e.clone()),
+                None => Err(String::new()),
+            }
+        }
+    }
+
+    fn number(field: &Field) -> Result<f64, String> {
+        Ok(match field {
+            Field::Double(v) => *v,
+            Field::Float(v) => f64::from(*v),
+            Field::Byte(v) => f64::from(*v),
+            Field::Short(v) => f64::from(*v),
+            Field::Int(v) => f64::from(*v),
+            Field::Long(v) => *v as f64,
+            Field::UByte(v) => f64::from(*v),
+            Field::UShort(v) => f64::from(*v),
+            Field::UInt(v) => f64::from(*v),
+            Field::ULong(v) => *v as f64,
+            Field::Null => return Err("null".into()),
+            other => return Err(format!("{other}")),
+        })
+    }
+
+    pub(super) fn read<const N: usize>(
+        bytes: Vec<u8>,
+        joints: &[&str; N],
+        file: &str,
+    ) -> Result<Measured<N>, BagError> {
+        let err = |e: parquet::errors::ParquetError| BagError::Parquet {
+            file: file.to_string(),
+            message: e.to_string(),
+        };
+        let reader = SerializedFileReader::new(bytes::Bytes::from(bytes)).map_err(err)?;
+        let header: Vec<String> = reader
+            .metadata()
+            .file_metadata()
+            .schema()
+            .get_fields()
+            .iter()
+            .map(|f| f.name().to_string())
+            .collect();
+        let rows = reader.get_row_iter(None).map_err(err)?;
+        let rows = rows.enumerate().map(|(k, row)| {
+            let row = row.map_err(|e| crate::data::DataError::Csv {
+                file: file.to_string(),
+                message: format!("Parquet row {}: {e}", k + 1),
+            })?;
+            Ok(ParquetRow {
+                cells: row.get_column_iter().map(|(_, f)| number(f)).collect(),
+                line: k + 2,
+            })
+        });
+        Ok(read_rows(&header, rows, joints, file)?)
+    }
+
+    pub(super) fn write(
+        out: impl std::io::Write + Send,
+        header: &[String],
+        columns: &[Vec<f64>],
+    ) -> Result<(), parquet::errors::ParquetError> {
+        let fields = header
+            .iter()
+            .map(|name| {
+                Type::primitive_type_builder(name, PhysicalType::DOUBLE)
+                    .with_repetition(Repetition::REQUIRED)
+                    .build()
+                    .map(Arc::new)
+            })
+            .collect::<Result<Vec<_>, _>>()?;
+        let schema = Arc::new(
+            Type::group_type_builder("measured")
+                .with_fields(fields)
+                .build()?,
+        );
+        let props = Arc::new(
+            WriterProperties::builder()
+                .set_compression(Compression::SNAPPY)
+                .build(),
+        );
+        let mut writer = SerializedFileWriter::new(out, schema, props)?;
+        let mut group = writer.next_row_group()?;
+        let mut k = 0;
+        while let Some(mut column) = group.next_column()? {
+            let values = columns.get(k).map(Vec::as_slice).unwrap_or(&[]);
+            column
+                .typed::<DoubleType>()
+                .write_batch(values, None, None)?;
+            column.close()?;
+            k += 1;
+        }
+        group.close()?;
+        writer.close()?;
+        Ok(())
+    }
+}
+
+/// [`read_parquet`] of the bytes of a file named `file` (what the fuzz
+/// target reads).
+///
+/// ```
+/// use dynamics_sim2real::data::parquet::read_parquet_bytes;
+/// assert!(read_parquet_bytes::<1>(b"PAR1 not really".to_vec(), &["j"], "x.parquet").is_err());
+/// ```
+pub fn read_parquet_bytes<const N: usize>(
+    bytes: Vec<u8>,
+    joints: &[&str; N],
+    file: &str,
+) -> Result<Measured<N>, BagError> {
+    #[cfg(feature = "parquet")]
+    {
+        imp::read(bytes, joints, file)
+    }
+    #[cfg(not(feature = "parquet"))]
+    {
+        let _ = (bytes, joints);
+        Err(BagError::NotBuilt {
+            file: file.to_string(),
+            format: "Parquet",
+            feature: "parquet",
+        })
+    }
+}
+
+/// Writes columns of numbers, each named by `header`, as one row group of
+/// required DOUBLE columns, snappy-compressed.
+///
+/// ```
+/// # #[cfg(feature = "parquet")] {
+/// use dynamics_sim2real::data::parquet::{read_parquet_bytes, write_parquet_table};
+/// let header = ["t", "q_j", "tau_j"].map(String::from);
+/// let t: Vec<f64> = (0..250).map(|k| k as f64 * 0.01).collect();
+/// let columns = [t.clone(), t.iter().map(|x| x.sin()).collect(), vec![2.0; 250]];
+/// let mut out = Vec::new();
+/// write_parquet_table(&mut out, &header, &columns).unwrap();
+/// let m = read_parquet_bytes(out, &["j"], "x.parquet").unwrap();
+/// assert_eq!(m.t, t);
+/// # }
+/// ```
+pub fn write_parquet_table(
+    out: impl std::io::Write + Send,
+    header: &[String],
+    columns: &[Vec<f64>],
+) -> Result<(), BagError> {
+    #[cfg(feature = "parquet")]
+    {
+        imp::write(out, header, columns).map_err(|e| BagError::Parquet {
+            file: "the Parquet output".into(),
+            message: e.to_string(),
+        })
+    }
+    #[cfg(not(feature = "parquet"))]
+    {
+        let _ = (out, header, columns);
+        Err(BagError::NotBuilt {
+            file: "the Parquet output".into(),
+            format: "Parquet",
+            feature: "parquet",
+        })
+    }
+}
+
+/// Writes `m` as Parquet with the CSV's columns ([`crate::data::write_csv`]'s:
+/// `t`, `q_<joint>`, `qd_<joint>` when measured, `tau_<joint>`).
+///
+/// ```
+/// # #[cfg(feature = "parquet")] {
+/// use dynamics_sim2real::data::parquet::{read_parquet_bytes, write_parquet};
+/// use dynamics_sim2real::data::Measured;
+/// let m = Measured::<1> {
+///     t: (0..300).map(|k| k as f64 * 1e-3).collect(),
+///     q: vec![[0.25].into(); 300],
+///     qd: vec![[0.0].into(); 300],
+///     tau: vec![[1.5].into(); 300],
+///     qd_measured: true,
+///     ..Default::default()
+/// };
+/// let mut out = Vec::new();
+/// write_parquet(&mut out, &m, &["j"]).unwrap();
+/// let back = read_parquet_bytes(out, &["j"], "m.parquet").unwrap();
+/// assert_eq!((back.t, back.q, back.qd, back.tau), (m.t, m.q, m.qd, m.tau));
+/// # }
+/// ```
+pub fn write_parquet<const N: usize>(
+    out: impl std::io::Write + Send,
+    m: &Measured<N>,
+    joints: &[&str; N],
+) -> Result<(), BagError> {
+    let mut header = vec!["t".to_string()];
+    let mut columns = vec![m.t.clone()];
+    let mut quantities: Vec<(&str, &Vec<nalgebra::SVector<f64, N>>)> = vec![("q", &m.q)];
+    if m.qd_measured {
+        quantities.push(("qd", &m.qd));
+    }
+    quantities.push(("tau", &m.tau));
+    for (prefix, values) in quantities {
+        for (i, j) in joints.iter().enumerate() {
+            header.push(format!("{prefix}_{j}"));
+            columns.push(values.iter().map(|v| v[i]).collect());
+        }
+    }
+    write_parquet_table(out, &header, &columns)
+}

@@ -1,0 +1,12 @@
+//! A Parquet file of the CSV's columns on any bytes.
+#![no_main]
+
+use libfuzzer_sys::fuzz_target;
+
+fuzz_target!(|data: &[u8]| {
+    let _ = dynamics_sim2real::data::parquet::read_parquet_bytes(
+        data.to_vec(),
+        &["j1", "j2", "j3"],
+        "fuzz.parquet",
+    );
+});
