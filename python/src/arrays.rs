@@ -44,12 +44,16 @@ impl<'py> Arg<'py> {
         self.array.shape().to_vec()
     }
 
-    /// The entries row-major: the array's own memory when C-contiguous.
+    /// The entries row-major: the array's own memory when C-contiguous,
+    /// else a copy in row-major order (`as_slice` alone would also lend a
+    /// Fortran-ordered array's memory, column-major).
     fn data(&self) -> Cow<'_, [f64]> {
-        match self.array.as_slice() {
-            Ok(s) => Cow::Borrowed(s),
-            Err(_) => Cow::Owned(self.array.as_array().iter().copied().collect()),
+        if self.array.is_c_contiguous() {
+            if let Ok(s) = self.array.as_slice() {
+                return Cow::Borrowed(s);
+            }
         }
+        Cow::Owned(self.array.as_array().iter().copied().collect())
     }
 }
 
