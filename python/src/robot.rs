@@ -79,8 +79,7 @@ impl PyRobot {
                 None => PyValueError::new_err(e.source.to_string()),
             })?;
         }
-        Ok(outs
-            .into_iter()
+        outs.into_iter()
             .zip(&shapes)
             .map(|(o, s)| -> PyResult<Bound<'py, PyAny>> {
                 if s.is_empty() && batch.batch.is_none() {
@@ -94,7 +93,7 @@ impl PyRobot {
                     Ok(o.into_any())
                 }
             })
-            .collect::<PyResult<_>>()?)
+            .collect::<PyResult<_>>()
     }
 
     fn one<'py>(
