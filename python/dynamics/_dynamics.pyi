@@ -4,9 +4,9 @@ Conventions: ``N`` joints; every array argument is one state ``(N,)`` or a
 batch ``(B, N)`` (all arguments of a call alike), float64 or convertible to
 it, C-contiguous or not (read in place when C-contiguous). Results are new
 float64 arrays: ``(N,)`` / ``(B, N)`` vectors, ``(N, N)`` / ``(B, N, N)``
-matrices, floats / ``(B,)`` for energies. A batch of ``PARALLEL_FROM`` states
-or more runs without the GIL over threads; a batch gives exactly what a loop
-of single calls gives.
+matrices, floats / ``(B,)`` for energies. A batch runs without the GIL, over
+threads from ``PARALLEL_FROM`` states on; it gives exactly what a loop of
+single calls gives.
 
 Errors: ``ValueError`` for a wrong shape, an entry that is NaN or infinite
 (naming the argument and entry), or a state where the dynamics fail (a

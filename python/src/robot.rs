@@ -69,7 +69,9 @@ impl PyRobot {
                 .map_err(|e| PyValueError::new_err(e.to_string()))?;
             let inputs = batch.slices();
             let (n, kernel) = (batch.len(), &self.kernel);
-            let result = if n >= crate::kernel::PARALLEL_FROM {
+            // A batch runs without the GIL; one state keeps it (releasing
+            // and taking it back would cost about what the state costs).
+            let result = if batch.batch.is_some() {
                 py.detach(|| kernel.eval(what, n, &inputs, &mut slices))
             } else {
                 kernel.eval(what, n, &inputs, &mut slices)
