@@ -1,9 +1,11 @@
 //! `dynamics new DIR --urdf FILE`: a ready crate for a user's own robot —
 //! Cargo.toml, the URDF copied beside it, `src/main.rs` with the `robot!`
 //! call and one line that hands `main` to the generic program
-//! ([`crate::run`]). The inputs are checked first, the URDF by the macro's
-//! own pipeline (`dynamics_codegen::expand`), so that a crate that is
-//! written also builds.
+//! ([`crate::run`]). With `--python`, a maturin package instead: `src/lib.rs`
+//! with the `robot!` call and one line that hands the robot to the Python
+//! bindings of the workspace (`python/`, docs/python.md). The inputs are
+//! checked first, the URDF by the macro's own pipeline
+//! (`dynamics_codegen::expand`), so that a crate that is written also builds.
 //!
 //! Here: the command's arguments, errors and steps; the names in
 //! `names.rs`, the files written in `template.rs`.
