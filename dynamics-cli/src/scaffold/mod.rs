@@ -1,9 +1,11 @@
 //! `dynamics new DIR --urdf FILE`: a ready crate for a user's own robot —
 //! Cargo.toml, the URDF copied beside it, `src/main.rs` with the `robot!`
 //! call and one line that hands `main` to the generic program
-//! ([`crate::run`]). The inputs are checked first, the URDF by the macro's
-//! own pipeline (`dynamics_codegen::expand`), so that a crate that is
-//! written also builds.
+//! ([`crate::run`]). With `--python`, a maturin package instead: `src/lib.rs`
+//! with the `robot!` call and one line that hands the robot to the Python
+//! bindings of the workspace (`python/`, docs/python.md). The inputs are
+//! checked first, the URDF by the macro's own pipeline
+//! (`dynamics_codegen::expand`), so that a crate that is written also builds.
 //!
 //! Here: the command's arguments, errors and steps; the names in
 //! `names.rs`, the files written in `template.rs`.
@@ -19,7 +21,7 @@ use clap::Args;
 use thiserror::Error;
 
 use names::{camel, package_name, urdf_robot_name};
-use template::{check_model, files, robot_body};
+use template::{check_model, files, python_files, robot_body};
 
 /// `new`.
 #[derive(Args, Debug, Clone)]
@@ -47,6 +49,11 @@ pub struct NewArgs {
     /// Depend on the crates' registry versions instead of a checkout.
     #[arg(long)]
     pub registry: bool,
+    /// Write a Python package instead of a program: `pip install DIR` builds it (maturin)
+    /// and `import NAME` (the folder's name, `-` as `_`) gives `NAME.Robot()`, this robot with
+    /// the API of the package `dynamics` (needs a checkout: not with --registry).
+    #[arg(long, conflicts_with = "registry")]
+    pub python: bool,
 }
 
 /// Why a crate could not be written.
@@ -95,6 +102,10 @@ pub enum NewError {
         source: std::io::Error,
     },
 }
+
+/// The PyO3 version of `python/` (the bindings): a package for a user's
+/// robot must use the same.
+const PYO3: &str = "0.30";
 
 /// The checkout this program was built from.
 fn built_from() -> PathBuf {
@@ -170,14 +181,29 @@ pub fn new(args: &NewArgs) -> crate::Res {
                 ws.join(c).display().to_string()
             )
         };
-        (
-            dep("dynamics-macros") + &dep("dynamics-runtime") + &dep("dynamics-cli"),
-            Some(ws),
-        )
+        let deps = if args.python {
+            // The bindings without the built-in robots, and the PyO3 they use.
+            dep("dynamics-macros")
+                + &dep("dynamics-runtime")
+                + &format!(
+                    "dynamics-python = {{ path = {:?}, default-features = false }}\npyo3 = \"{}\"\n",
+                    ws.join("python").display().to_string(),
+                    PYO3
+                )
+        } else {
+            dep("dynamics-macros") + &dep("dynamics-runtime") + &dep("dynamics-cli")
+        };
+        (deps, Some(ws))
     };
     let package = package_name(dir);
+    let module = package.replace('-', "_");
     std::fs::create_dir_all(dir.join("src")).map_err(io(dir))?;
-    for (path, content) in files(&package, &name, &body, &file_name, &deps) {
+    let written = if args.python {
+        python_files(&package, &module, &name, &body, &file_name, &deps)
+    } else {
+        files(&package, &name, &body, &file_name, &deps)
+    };
+    for (path, content) in written {
         let path = dir.join(path);
         std::fs::write(&path, content).map_err(io(&path))?;
     }
@@ -185,12 +211,32 @@ pub fn new(args: &NewArgs) -> crate::Res {
     std::fs::write(&copy, &text).map_err(io(&copy))?;
     if let Some(ws) = &workspace {
         // The same dependency versions as the workspace (and an offline build).
-        let lock = ws.join("Cargo.lock");
+        let lock = if args.python {
+            ws.join("python").join("Cargo.lock")
+        } else {
+            ws.join("Cargo.lock")
+        };
         if lock.is_file() {
             std::fs::copy(&lock, dir.join("Cargo.lock")).map_err(io(&lock))?;
         }
     }
     let shown = dir.display();
+    if args.python {
+        println!(
+            "wrote {shown}: pyproject.toml, Cargo.toml, src/lib.rs, {file_name} (robot {name}, Python module {module})"
+        );
+        println!("install and use it:");
+        println!("  pip install {shown}");
+        println!("  python -c \"import {module}; arm = {module}.Robot(); print(arm.joint_names)\"");
+        if let Some(ws) = &workspace {
+            println!(
+                "to share the compiled dependencies with the workspace and build for this CPU as it does:\n  \
+                 CARGO_TARGET_DIR={} RUSTFLAGS=\"-C target-cpu=native\" pip install {shown}",
+                ws.join("target").display()
+            );
+        }
+        return Ok(());
+    }
     println!("wrote {shown}: Cargo.toml, src/main.rs, {file_name} (robot {name})");
     println!("build and run it:");
     println!("  cd {shown} && cargo build --release");

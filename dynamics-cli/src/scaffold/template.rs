@@ -96,3 +96,75 @@ fn main() -> std::process::ExitCode {{
         (".gitignore".into(), "/target\n".into()),
     ]
 }
+
+/// What `new --python` writes: a maturin package whose module `module`
+/// holds the class `Robot` of the bindings (`python/` of the workspace),
+/// `Robot()` making this robot: the `robot!` call and one line of bindings.
+pub(super) fn python_files(
+    package: &str,
+    module: &str,
+    name: &str,
+    body: &str,
+    urdf_file: &str,
+    deps: &str,
+) -> Vec<(String, String)> {
+    let cargo = format!(
+        r#"[package]
+name = "{package}"
+version = "0.1.0"
+edition = "2021"
+publish = false
+
+[lib]
+name = "{module}"
+crate-type = ["cdylib"]
+
+[dependencies]
+{deps}
+# Its own workspace: builds outside the dynamics workspace.
+[workspace]
+
+[profile.release]
+debug = false
+"#
+    );
+    let pyproject = format!(
+        r#"[build-system]
+requires = ["maturin>=1.5,<2"]
+build-backend = "maturin"
+
+[project]
+name = "{package}"
+version = "0.1.0"
+description = "The dynamics of the robot of {urdf_file}, from NumPy (written by `dynamics new --python`)"
+requires-python = ">=3.9"
+dependencies = ["numpy>=1.21"]
+
+[tool.maturin]
+module-name = "{module}"
+"#
+    );
+    let lib = format!(
+        r#"//! The Python module `{module}` for the robot of `{urdf_file}` (written by
+//! `dynamics new --python`): `{module}.Robot()` is this robot, with the API
+//! of the package `dynamics` (docs/python.md of the dynamics workspace).
+
+dynamics_macros::robot! {{
+    /// The robot of `{urdf_file}`.
+    {body}
+}}
+
+/// The module: the class `Robot`, whose `Robot()` is [`{name}`].
+#[pyo3::pymodule]
+fn {module}(m: &pyo3::Bound<'_, pyo3::types::PyModule>) -> pyo3::PyResult<()> {{
+    _dynamics::add_robot_module(m, "{module}", || _dynamics::kernel({name}::default()), _dynamics::Limits::of({name}::LOWER, {name}::UPPER, {name}::VELOCITY, {name}::EFFORT))
+}}
+"#
+    );
+    vec![
+        ("Cargo.toml".into(), cargo),
+        ("pyproject.toml".into(), pyproject),
+        ("src/lib.rs".into(), lib),
+        (".gitignore".into(), "/target\n".into()),
+    ]
+}

@@ -180,6 +180,52 @@ fn new_refuses_bad_input_with_the_cause() {
         err.contains("joint `j`") && err.contains("unknown link"),
         "{err}"
     );
-    assert!(!dir.join("a").exists() && !dir.join("b").exists());
+    // A Python package builds against the checkout's bindings only.
+    let err = new(&dir.join("c"), &urdf, &["--python", "--registry"]);
+    assert!(
+        err.contains("--python") && err.contains("--registry"),
+        "{err}"
+    );
+    assert!(!dir.join("a").exists() && !dir.join("b").exists() && !dir.join("c").exists());
+    let _ = std::fs::remove_dir_all(&dir);
+}
+
+/// `new --python` writes a maturin package whose module is the folder's
+/// name: the `robot!` call and one line of bindings (python/tests builds
+/// and installs one into a fresh virtual environment).
+#[test]
+fn new_python_writes_a_package_for_the_bindings() {
+    let dir = fresh_dir("newpy");
+    let krate = dir.join("my-arm");
+    let said = succeeds(
+        dynamics()
+            .arg("new")
+            .arg(&krate)
+            .arg("--urdf")
+            .arg(workspace().join("robots/data/urdf/ur5.urdf"))
+            .arg("--python"),
+    );
+    assert!(
+        said.contains("Python module my_arm") && said.contains("pip install"),
+        "{said}"
+    );
+    let read = |f: &str| std::fs::read_to_string(krate.join(f)).expect("written");
+    let cargo = read("Cargo.toml");
+    assert!(
+        cargo.contains("name = \"my_arm\"\ncrate-type = [\"cdylib\"]"),
+        "{cargo}"
+    );
+    assert!(
+        cargo.contains("dynamics-python = { path = ") && cargo.contains("default-features = false")
+    );
+    assert!(read("pyproject.toml").contains("module-name = \"my_arm\""));
+    let lib = read("src/lib.rs");
+    assert!(
+        lib.contains("pub robot Ur5;") && lib.contains("fn my_arm("),
+        "{lib}"
+    );
+    assert!(lib.contains("_dynamics::kernel(Ur5::default())"), "{lib}");
+    assert!(krate.join("ur5.urdf").is_file() && krate.join("Cargo.lock").is_file());
+    assert!(!krate.join("src/main.rs").exists());
     let _ = std::fs::remove_dir_all(&dir);
 }

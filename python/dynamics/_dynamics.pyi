@@ -1,0 +1,150 @@
+"""Type stubs of the extension module ``dynamics._dynamics``.
+
+Conventions: ``N`` joints; every array argument is one state ``(N,)`` or a
+batch ``(B, N)`` (all arguments of a call alike), float64 or convertible to
+it, C-contiguous or not (read in place when C-contiguous). Results are new
+float64 arrays: ``(N,)`` / ``(B, N)`` vectors, ``(N, N)`` / ``(B, N, N)``
+matrices, floats / ``(B,)`` for energies. A batch runs without the GIL, over
+threads from ``PARALLEL_FROM`` states on; it gives exactly what a loop of
+single calls gives.
+
+Errors: ``ValueError`` for a wrong shape, an entry that is NaN or infinite
+(naming the argument and entry), or a state where the dynamics fail (a
+mass matrix that is not positive definite; naming the state of a batch);
+``KeyError`` for an unknown robot, parameter or frame (listing the known ones).
+"""
+
+from os import PathLike
+from typing import Any, Callable, Dict, List, Mapping, Optional, Sequence, Tuple, Union
+
+import numpy as np
+import numpy.typing as npt
+
+ArrayLike = npt.ArrayLike
+Array = npt.NDArray[np.float64]
+Data = Union[str, PathLike, Mapping[str, ArrayLike], Any]
+Window = Union[str, Tuple[float, float]]
+Levels = Union[float, Sequence[float]]
+
+PARALLEL_FROM: int
+"""Batches of at least this many states run on several threads."""
+
+def robots() -> List[Tuple[str, str]]:
+    """The robots ``Robot(name)`` knows: ``(name, one line about it)``."""
+
+class Robot:
+    """A robot: its dynamics at one state or a batch of states.
+
+    ``Robot("panda")``: a built-in robot (``robots()`` lists them). A
+    package made by ``dynamics new DIR --urdf FILE --python`` makes its own
+    robot with ``Robot()``.
+    """
+
+    def __init__(self, name: Optional[str] = None) -> None: ...
+    @property
+    def name(self) -> str:
+        """The robot's name."""
+    @property
+    def joint_names(self) -> List[str]:
+        """Joint names in coordinate order."""
+    @property
+    def nq(self) -> int:
+        """Number of joint coordinates N."""
+    @property
+    def params(self) -> Dict[str, float]:
+        """Run-time parameters, name -> value (a copy; change one with ``set``)."""
+    def set(self, name: str, value: float) -> None:
+        """Sets a run-time parameter. KeyError (listing the known names) for an
+        unknown one, ValueError for a value that is not finite."""
+    @property
+    def lower(self) -> Array:
+        """Lower position limits ``(N,)`` (URDF; -inf where none)."""
+    @property
+    def upper(self) -> Array:
+        """Upper position limits ``(N,)`` (URDF; +inf where none)."""
+    @property
+    def velocity_limit(self) -> Array:
+        """Velocity limits ``(N,)`` (URDF; +inf where none)."""
+    @property
+    def effort_limit(self) -> Array:
+        """Effort limits ``(N,)`` (URDF; +inf where none)."""
+    @property
+    def link_names(self) -> List[str]:
+        """The L links of the inertial regressor, in its column order."""
+    @property
+    def frame_names(self) -> List[str]:
+        """Frames ``frame_pose`` knows (one per link)."""
+    def inertial_parameters(self) -> Array:
+        """``(10 L,)``: per link ``[m, m cx, m cy, m cz, Ixx, Ixy, Iyy, Ixz, Iyz, Izz]``
+        (Pinocchio's order, about the link frame's origin)."""
+    def rnea(self, q: ArrayLike, v: ArrayLike, a: ArrayLike) -> Array:
+        """Inverse dynamics: the efforts ``tau`` that give accelerations ``a``
+        (with the model's damping and friction, if any)."""
+    def mass_matrix(self, q: ArrayLike) -> Array:
+        """The inertia matrix ``M(q)``: ``(N, N)`` or ``(B, N, N)``."""
+    def gravity(self, q: ArrayLike) -> Array:
+        """Gravity efforts ``g(q)``: what holds the robot still."""
+    def nle(self, q: ArrayLike, v: ArrayLike) -> Array:
+        """Efforts at zero acceleration: ``C(q, v) v + g(q)`` (plus damping, friction, springs)."""
+    def coriolis_matrix(self, q: ArrayLike, v: ArrayLike) -> Array:
+        """The Christoffel Coriolis matrix ``C(q, v)`` (``dM/dt - 2 C`` is skew)."""
+    def aba(self, q: ArrayLike, v: ArrayLike, tau: ArrayLike) -> Array:
+        """Forward dynamics: the accelerations under ``tau``. ValueError where
+        ``M`` is not positive definite."""
+    def rnea_derivatives(self, q: ArrayLike, v: ArrayLike, a: ArrayLike) -> Tuple[Array, Array]:
+        """``(dtau_dq, dtau_dv)`` (Pinocchio's ``computeRNEADerivatives``)."""
+    def aba_derivatives(
+        self, q: ArrayLike, v: ArrayLike, tau: ArrayLike
+    ) -> Tuple[Array, Array, Array]:
+        """``(ddq_dq, ddq_dv, ddq_dtau)`` at fixed ``tau``; ``ddq_dtau = M^-1``
+        (Pinocchio's ``computeABADerivatives``)."""
+    def regressor(self, q: ArrayLike, v: ArrayLike, a: ArrayLike) -> Array:
+        """The inertial regressor ``Y``, ``(N, 10 L)``: ``Y @ inertial_parameters()``
+        is the rigid-body part of ``rnea``."""
+    def kinetic_energy(self, q: ArrayLike, v: ArrayLike) -> Union[float, Array]:
+        """``T = v' M v / 2``: a float, or ``(B,)``."""
+    def potential_energy(self, q: ArrayLike) -> Union[float, Array]:
+        """Gravity and spring potential: a float, or ``(B,)``."""
+    def frame_pose(self, frame: str, q: ArrayLike) -> Array:
+        """World pose of a frame, 4 x 4 homogeneous: ``(4, 4)`` or ``(B, 4, 4)``."""
+    def synth(
+        self,
+        effect: Optional[str] = None,
+        joint: Optional[str] = None,
+        magnitude: Optional[float] = None,
+        seed: int = 1,
+        excitation: str = "sines",
+        duration: float = 8.0,
+        noise_q: float = 2e-5,
+        noise_qd: float = 2e-3,
+        noise_tau: float = 2e-3,
+    ) -> Dict[str, Any]:
+        """Synthetic measured data with a withheld effect, as ``dynamics synth``
+        writes them: ``{"train": csv_text, "holdout": csv_text, "truth": dict}``."""
+    def diagnose(
+        self,
+        train: Data,
+        holdout: Data,
+        *,
+        columns: Optional[str] = None,
+        train_window: Optional[Window] = None,
+        holdout_window: Optional[Window] = None,
+        noise_tau: Optional[Levels] = None,
+        noise_q: Optional[Levels] = None,
+        noise_qd: Optional[Levels] = None,
+        progress: Optional[Callable[[int, int], Any]] = None,
+    ) -> Dict[str, Any]:
+        """The gap diagnosis: the JSON report of ``dynamics diagnose --json`` as a dict.
+
+        ``train``/``holdout``: a path (every format the command line reads;
+        ``columns`` as its ``--columns``), a pandas DataFrame with the CSV's
+        columns (``t, q_<joint>, [qd_<joint>,] tau_<joint>``), or a mapping
+        ``{"t": (T,), "q": (T, N), "qd": (T, N) (optional), "tau": (T, N)}``.
+        Windows: ``"START:END"`` or ``(START, END)`` seconds from the first
+        sample. ``noise_*``: the known sensor noise (one level or one per joint),
+        as ``--noise-tau/--noise-q/--noise-qd``. ``progress(done, total)`` is
+        called as candidates are fitted. Warnings go to the ``dynamics`` logger
+        too. ValueError with the cause when the data cannot be read or diagnosed.
+        """
+    def copy(self) -> "Robot":
+        """A copy with its own parameters."""
