@@ -148,6 +148,7 @@ fn source(
             path: path.into(),
             columns,
             window,
+            topic: None,
         }));
     }
     if columns.is_some() {
