@@ -18,6 +18,8 @@ fn files() -> Vec<PathBuf> {
         root.join("tests/data"),
         root.join("../fuzz/seeds/csv"),
         root.join("../fuzz/seeds/npz"),
+        // Inputs the fuzz targets found harmful once (each a regression test).
+        root.join("../fuzz/seeds/mcap"),
     ];
     while let Some(dir) = dirs.pop() {
         for entry in std::fs::read_dir(&dir).expect("a seed directory") {

@@ -25,6 +25,48 @@ pub const MAX_CHUNK: u64 = 1 << 30;
 /// See [`MAX_CHUNK`].
 pub const MAX_RATIO: u64 = 1024;
 
+/// Whether every length-prefixed field of a record this reader parses
+/// (schema, channel, chunk header) lies inside its body: the crate's record
+/// parser allocates a field's declared length before reading it, so a
+/// hostile length must be refused first. Other records are not parsed.
+fn lengths_fit(op: u8, body: &[u8]) -> bool {
+    let u32_at = |at: usize| -> Option<usize> {
+        let b: [u8; 4] = body.get(at..at.checked_add(4)?)?.try_into().ok()?;
+        Some(u32::from_le_bytes(b) as usize)
+    };
+    // Skips `count` length-prefixed fields from `at`; the end, if inside.
+    let fields = |mut at: usize, count: usize| -> Option<usize> {
+        for _ in 0..count {
+            let len = u32_at(at)?;
+            at = at.checked_add(4)?.checked_add(len)?;
+            if at > body.len() {
+                return None;
+            }
+        }
+        Some(at)
+    };
+    match op {
+        // Schema: id u16, name, encoding, data.
+        0x03 => fields(2, 3).is_some(),
+        // Channel: id u16, schema id u16, topic, encoding, then a map of
+        // string pairs whose byte length comes first.
+        0x04 => (|| {
+            let at = fields(4, 2)?;
+            let map = u32_at(at)?;
+            let end = at.checked_add(4)?.checked_add(map)?;
+            let mut k = at + 4;
+            while k < end {
+                k = fields(k, 2)?;
+            }
+            (k == end && end <= body.len()).then_some(())
+        })()
+        .is_some(),
+        // Chunk: three u64, a u32, then the compression string.
+        0x06 => fields(28, 1).is_some(),
+        _ => true,
+    }
+}
+
 /// Whether `bytes` start like an MCAP file.
 pub(super) fn is_mcap(bytes: &[u8]) -> bool {
     bytes.starts_with(MAGIC)
@@ -201,6 +243,15 @@ pub(super) fn read<const N: usize>(
                     )
                 })?;
             let body = &rest[9..end];
+            if !matches!(op, 0x03..=0x06) {
+                return Ok(end);
+            }
+            if !lengths_fit(op, body) {
+                return Err(broken(
+                    at,
+                    format!("a record (opcode {op:#04x}) whose fields run past its end"),
+                ));
+            }
             let record = parse_record(op, body).map_err(|e| broken(at, e.to_string()))?;
             if let Record::Chunk { header, .. } = record {
                 let limit =
@@ -233,6 +284,16 @@ pub(super) fn read<const N: usize>(
                             src = &src[n..];
                         }
                         LinearReadEvent::Record { data, opcode } => {
+                            if !matches!(opcode, 0x03..=0x05) {
+                                index += 1;
+                                continue;
+                            }
+                            if !lengths_fit(opcode, data) {
+                                return Err(broken(
+                                    at,
+                                    format!("in the chunk: a record (opcode {opcode:#04x}) whose fields run past its end"),
+                                ));
+                            }
                             let inner = parse_record(opcode, data)
                                 .map_err(|e| broken(at, format!("in the chunk: {e}")))?;
                             let place = Place::InChunk {
