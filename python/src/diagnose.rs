@@ -144,12 +144,12 @@ fn source(
             .map(str::parse)
             .transpose()
             .map_err(|e| PyValueError::new_err(format!("columns: {e}")))?;
-        return Ok(Source::File(DataFile {
+        return Ok(Source::File(Box::new(DataFile {
             path: path.into(),
             columns,
             window,
             topic: None,
-        }));
+        })));
     }
     if columns.is_some() {
         return Err(PyValueError::new_err(format!(

@@ -80,7 +80,7 @@ pub struct BatchError {
 #[derive(Debug, Clone)]
 pub enum Source {
     /// A file as the command line reads it.
-    File(DataFile),
+    File(Box<DataFile>),
     /// CSV text in the file format (from arrays or a DataFrame); `name`
     /// names it in errors and warnings.
     Csv {
@@ -117,7 +117,7 @@ impl Source {
 
     /// A CSV file read whole.
     pub fn path(path: impl Into<PathBuf>) -> Self {
-        Source::File(DataFile::csv(path))
+        Source::File(Box::new(DataFile::csv(path)))
     }
 }
 
