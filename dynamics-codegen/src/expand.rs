@@ -22,6 +22,28 @@ pub fn robot(input: TokenStream, options: &Options) -> TokenStream {
     }
 }
 
+/// Parses and builds the model only. Never panics.
+pub fn check(input: TokenStream, options: &Options) -> Result<(), TokenStream> {
+    let run = || {
+        let mut cx = Ctxt::default();
+        let ast = parse::parse(input, &mut cx);
+        let complete = cx.is_ok();
+        let model = model::build(ast, complete, &options.base_dir, &mut cx);
+        match (cx.check(), model) {
+            (Ok(()), Some(_)) => Ok(()),
+            (Err(err), _) => Err(err.to_compile_error()),
+            (Ok(()), None) => Err(quote! {
+                ::core::compile_error!("internal error in `robot!`: the model was rejected without a message");
+            }),
+        }
+    };
+    catch_unwind(AssertUnwindSafe(run)).unwrap_or_else(|_| {
+        Err(quote! {
+            ::core::compile_error!("internal error in `robot!` (a bug: please report it with this input)");
+        })
+    })
+}
+
 pub(crate) fn expand(input: TokenStream, options: &Options) -> TokenStream {
     let mut cx = Ctxt::default();
     let ast = parse::parse(input, &mut cx);

@@ -68,3 +68,29 @@ pub struct Options {
 pub fn expand(input: TokenStream, options: &Options) -> TokenStream {
     expand::robot(input, options)
 }
+
+/// Reads and validates the body of `robot! { ... }` (including the URDF it
+/// names) without deriving or emitting anything: the reader half of
+/// [`expand`], for tools that check a description quickly (an editor, a
+/// linter, a fuzzer). `Err` holds the same `compile_error!` invocations
+/// `expand` would give.
+///
+/// ```
+/// use quote::quote;
+///
+/// let input = quote! {
+///     pub robot Pendulum;
+///     gravity = [0.0, -9.81, 0.0];
+///     link base;
+///     link bob { mass = 1.0; com = [0.5, 0.0, 0.0]; inertia = [1e-4, 1e-4, 1e-4]; }
+///     joint hinge = revolute(base -> bob) { transfer = [rot_z(q)]; }
+/// };
+/// assert!(dynamics_codegen::check(input, &dynamics_codegen::Options::default()).is_ok());
+///
+/// let wrong = quote! { pub robot Pendulum; gravity = [0.0]; };
+/// let err = dynamics_codegen::check(wrong, &dynamics_codegen::Options::default()).unwrap_err();
+/// assert!(err.to_string().contains("compile_error"));
+/// ```
+pub fn check(input: TokenStream, options: &Options) -> Result<(), TokenStream> {
+    expand::check(input, options)
+}

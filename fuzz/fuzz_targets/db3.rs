@@ -4,6 +4,9 @@
 
 use libfuzzer_sys::fuzz_target;
 
+#[global_allocator]
+static ALLOC: dynamics_fuzz::Bounded = dynamics_fuzz::Bounded;
+
 fuzz_target!(|data: &[u8]| {
     let path = std::env::temp_dir().join(format!("dynamics-fuzz-{}.db3", std::process::id()));
     if std::fs::write(&path, data).is_ok() {

@@ -5,6 +5,9 @@
 use dynamics_sim2real::data::import::{import_bytes, ColumnMap};
 use libfuzzer_sys::fuzz_target;
 
+#[global_allocator]
+static ALLOC: dynamics_fuzz::Bounded = dynamics_fuzz::Bounded;
+
 fuzz_target!(|data: &[u8]| {
     let archive: ColumnMap = "t=times,q=positions,qd=velocities,tau=torques"
         .parse()

@@ -1,8 +1,12 @@
-//! A URDF file read by the `robot!` pipeline (`urdf = "..."`) on any bytes:
-//! `compile_error!`s or a robot, never a panic.
+//! A URDF file read and validated by `robot!`'s reader (`urdf = "..."`,
+//! parse and model, no derivation) on any bytes:
+//! `compile_error!`s or a model, never a panic.
 #![no_main]
 
 use libfuzzer_sys::fuzz_target;
+
+#[global_allocator]
+static ALLOC: dynamics_fuzz::Bounded = dynamics_fuzz::Bounded;
 
 fuzz_target!(|data: &[u8]| {
     let dir = std::env::temp_dir().join(format!("dynamics-fuzz-urdf-{}", std::process::id()));
@@ -18,5 +22,5 @@ fuzz_target!(|data: &[u8]| {
         base_dir: dir,
         ir_dir: None,
     };
-    let _ = dynamics_codegen::expand(tokens, &options);
+    let _ = dynamics_codegen::check(tokens, &options);
 });
