@@ -16,6 +16,7 @@ pub fn diagnose_cmd<R: Robot<N> + Clone + Sync, const N: usize>(
     json: Option<PathBuf>,
     report_dir: Option<PathBuf>,
     noise: Option<dynamics_sim2real::diagnose::SensorNoise>,
+    sensors: &[dynamics_sim2real::effects::Effect],
 ) -> Res {
     use dynamics_sim2real::diagnose::Options;
     use indicatif::{ProgressBar, ProgressStyle};
@@ -33,75 +34,13 @@ pub fn diagnose_cmd<R: Robot<N> + Clone + Sync, const N: usize>(
         ..Options::default()
     };
     let (report, warnings, about) =
-        crate::gap::diagnose_data_described(robot, &train, &holdout, &options, &progress)?;
+        crate::gap::diagnose_calibrated(robot, sensors, &train, &holdout, &options, &progress)?;
     bar.finish_and_clear();
     for line in &about {
         println!("{line}");
     }
     for w in warnings {
         eprintln!("warning: {w}");
-    }
-    println!("where (training data, nominal model):");
-    for j in &report.where_.joints {
-        let prediction = match (j.prediction_rms, j.prediction_ratio) {
-            (Some(e), Some(r)) => format!("{e:.2e} = {r:.1} x an exact model's"),
-            _ => "not made (warnings)".into(),
-        };
-        println!(
-            "  {:8} torque residual {:.4} = {:.1} x noise; 0.1 s prediction error {prediction}",
-            j.joint, j.torque_rms, j.torque_ratio
-        );
-        for w in j.windows.iter().take(2) {
-            println!(
-                "           {:.2}-{:.2} s {} ({:.1} x noise)",
-                w.start, w.end, w.phase, w.ratio
-            );
-        }
-    }
-    println!("which (best first):");
-    for r in report.which.ranked.iter().take(5) {
-        let place = r.joint.clone().or(r.point.clone()).unwrap_or_default();
-        let params: Vec<String> = r
-            .parameters
-            .iter()
-            .map(|p| format!("{} = {:.4e} +- {:.1e}", p.name, p.value, p.std))
-            .collect();
-        println!(
-            "  {:24} {:8} dAICc {:9.1}  explains {:5.1} % (held-out {:5.1} %)  {}",
-            r.kind,
-            place,
-            r.delta_aicc,
-            100.0 * r.share,
-            100.0 * r.holdout_share,
-            params.join(", ")
-        );
-    }
-    let v = &report.which.verdict;
-    println!(
-        "verdict: {} {} ({})",
-        v.kind,
-        v.joint.clone().or(v.point.clone()).unwrap_or_default(),
-        v.status
-    );
-    if let Some(c) = &v.channel {
-        println!("  late channel: {c}");
-    }
-    let verdict_place = v.joint.clone().or(v.point.clone());
-    let in_explanation = report.which.effects.iter().any(|e| {
-        Some(e.kind) == v.effect() && e.joint.clone().or(e.point.clone()) == verdict_place
-    });
-    if v.names_effect() && !report.which.effects.is_empty() && !in_explanation {
-        println!(
-            "  (the best single effect; the explanation below does without it: its effects \
-             account for its part together)"
-        );
-    }
-    if let (Some(r), Some(m)) = (&v.rival, &v.separating_motion) {
-        println!(
-            "  rival: {} {}; to separate them: {m}",
-            r.kind,
-            r.joint.clone().or(r.point.clone()).unwrap_or_default()
-        );
     }
     for line in explanation_lines(&report) {
         println!("{line}");
@@ -143,6 +82,79 @@ pub fn diagnose_cmd<R: Robot<N> + Clone + Sync, const N: usize>(
             );
         }
     }
+    for e in &report.which.suggested {
+        println!(
+            "  suggested, not confirmed: {} {}: {}",
+            e.kind,
+            e.joint.clone().or(e.point.clone()).unwrap_or_default(),
+            e.reason
+        );
+    }
+    println!("where (training data, nominal model):");
+    for j in &report.where_.joints {
+        let prediction = match (j.prediction_rms, j.prediction_ratio) {
+            (Some(e), Some(r)) => format!("{e:.2e} = {r:.1} x an exact model's"),
+            _ => "not made (warnings)".into(),
+        };
+        println!(
+            "  {:8} torque residual {:.4} = {:.1} x noise; 0.1 s prediction error {prediction}",
+            j.joint, j.torque_rms, j.torque_ratio
+        );
+        for w in j.windows.iter().take(2) {
+            println!(
+                "           {:.2}-{:.2} s {} ({:.1} x noise)",
+                w.start, w.end, w.phase, w.ratio
+            );
+        }
+    }
+    println!("the best single effects (supporting detail; best first):");
+    for r in report.which.ranked.iter().take(5) {
+        let place = r.joint.clone().or(r.point.clone()).unwrap_or_default();
+        let params: Vec<String> = r
+            .parameters
+            .iter()
+            .map(|p| match &p.note {
+                Some(note) => format!("{}: {note}", p.name),
+                None => format!("{} = {:.4e} +- {:.1e}", p.name, p.value, p.std),
+            })
+            .collect();
+        println!(
+            "  {:24} {:8} dAICc {:9.1}  explains {:5.1} % (held-out {:5.1} %)  {}",
+            r.kind,
+            place,
+            r.delta_aicc,
+            100.0 * r.share,
+            100.0 * r.holdout_share,
+            params.join(", ")
+        );
+    }
+    let v = &report.which.verdict;
+    println!(
+        "verdict: {} {} ({})",
+        v.kind,
+        v.joint.clone().or(v.point.clone()).unwrap_or_default(),
+        v.status
+    );
+    if let Some(c) = &v.channel {
+        println!("  late channel: {c}");
+    }
+    let verdict_place = v.joint.clone().or(v.point.clone());
+    let in_explanation = report.which.effects.iter().any(|e| {
+        Some(e.kind) == v.effect() && e.joint.clone().or(e.point.clone()) == verdict_place
+    });
+    if v.names_effect() && !report.which.effects.is_empty() && !in_explanation {
+        println!(
+            "  (the best single effect; the explanation below does without it: its effects \
+             account for its part together)"
+        );
+    }
+    if let (Some(r), Some(m)) = (&v.rival, &v.separating_motion) {
+        println!(
+            "  rival: {} {}; to separate them: {m}",
+            r.kind,
+            r.joint.clone().or(r.point.clone()).unwrap_or_default()
+        );
+    }
     let simulation = match report.shrink.simulation_fraction {
         Some(x) => format!("-{:.1} %", 100.0 * x),
         None => "not measured (warnings)".into(),
@@ -168,7 +180,7 @@ pub fn diagnose_cmd<R: Robot<N> + Clone + Sync, const N: usize>(
 /// order of its gains with its place, share of the training gap, held-out
 /// contribution, the held-out gap above noise left once it is added, and
 /// its parameters (or its words, when it has some); then the plain figure.
-/// Nothing when the explanation is empty.
+/// One line saying so when the explanation is empty.
 ///
 /// ```
 /// use dynamics_cli::diagnose::explanation_lines;
@@ -193,7 +205,10 @@ pub fn diagnose_cmd<R: Robot<N> + Clone + Sync, const N: usize>(
 pub fn explanation_lines(report: &dynamics_sim2real::diagnose::Report) -> Vec<String> {
     let effects = &report.which.effects;
     if effects.is_empty() {
-        return Vec::new();
+        return vec![
+            "explanation: no effect both explains the training gap by the margins and holds on the held-out data"
+                .to_string(),
+        ];
     }
     let n = effects.len();
     let mut lines = vec![format!(
@@ -229,7 +244,10 @@ pub fn explanation_lines(report: &dynamics_sim2real::diagnose::Report) -> Vec<St
         let detail = e.description.clone().unwrap_or_else(|| {
             e.parameters
                 .iter()
-                .map(|p| format!("{} = {:.4e} +- {:.1e}", p.name, p.value, p.std))
+                .map(|p| match &p.note {
+                    Some(note) => format!("{}: {note}", p.name),
+                    None => format!("{} = {:.4e} +- {:.1e}", p.name, p.value, p.std),
+                })
                 .collect::<Vec<_>>()
                 .join(", ")
         });

@@ -253,20 +253,29 @@ fn entry(v: &Value) -> Result<Entry, String> {
                 .get("name")
                 .and_then(Value::as_str)
                 .ok_or(format!("parameters[{i}].name missing, or not a string"))?;
-            let value = p
-                .get("value")
-                .and_then(Value::as_f64)
-                .ok_or(format!("parameters[{i}].value missing, or not a number"))?;
+            let value = p.get("value").and_then(Value::as_f64).ok_or_else(|| {
+                match p.get("note").and_then(Value::as_str) {
+                    Some(note) => format!("parameters[{i}] ({name}) has no value: {note}"),
+                    None => format!("parameters[{i}].value missing, or not a number"),
+                }
+            })?;
             Ok(Parameter {
                 name: name.to_string(),
                 value,
                 std: p.get("std").and_then(Value::as_f64).unwrap_or(f64::NAN),
+                note: None,
             })
         })
         .collect::<Result<Vec<_>, String>>()?;
+    let point = match v.get("point") {
+        None | Some(Value::Null) => None,
+        Some(Value::String(s)) => Some(s.clone()),
+        Some(_) => return Err("`point` is not a string".into()),
+    };
     Ok(Entry {
         kind,
         joint,
+        point,
         channel,
         parameters,
     })

@@ -15,6 +15,9 @@ pub struct Entry {
     pub kind: String,
     /// Joint name, for joint effects.
     pub joint: Option<String>,
+    /// Point or link name, for effects at a point (the link of an
+    /// `inertial_parameters` correction).
+    pub point: Option<String>,
     /// For `time_delay`: the late channel (`None`: `all`, the motion late
     /// against the effort).
     pub channel: Option<Channel>,
@@ -36,6 +39,16 @@ pub enum BaselineError {
         /// The joint named (or `None`).
         joint: Option<String>,
         /// The robot's joints.
+        known: String,
+    },
+    /// A link correction without a link, or a link the robot does not have.
+    #[error(
+        "effect `inertial_parameters`: link {link:?} is not one of the robot's links ({known})"
+    )]
+    Link {
+        /// The link named (or `None`).
+        link: Option<String>,
+        /// The robot's links.
         known: String,
     },
     /// A parameter the kind needs is missing or not a finite number.
@@ -91,7 +104,8 @@ pub fn parameter_names(kind: EffectKind) -> &'static [&'static str] {
         EffectKind::EffortScale => &["scale"],
         EffectKind::EffortOffset => &["offset"],
         EffectKind::JointSpring => &["stiffness", "preload"],
-        EffectKind::None | EffectKind::InertialParameters => &[],
+        EffectKind::InertialParameters => &crate::inertial::PARAMETER_NAMES_DELTA,
+        EffectKind::None => &[],
     }
 }
 
@@ -106,8 +120,8 @@ pub fn parameter_names(kind: EffectKind) -> &'static [&'static str] {
 ///     joint j = revolute(base -> rod) { transfer = [rot_z(q)]; }
 /// }
 /// let entry = Entry {
-///     kind: "coulomb_friction".into(), joint: Some("j".into()), channel: None,
-///     parameters: vec![Parameter { name: "fc".into(), value: 0.3, std: 0.01 }],
+///     kind: "coulomb_friction".into(), joint: Some("j".into()), point: None, channel: None,
+///     parameters: vec![Parameter { name: "fc".into(), value: 0.3, std: 0.01, note: None }],
 /// };
 /// assert_eq!(effect::<Pendulum, 1>(&entry).unwrap(), Effect::coulomb(0, 0.3));
 /// let bad = Entry { joint: Some("elbow".into()), ..entry };
@@ -144,6 +158,21 @@ pub fn effect<R: Robot<N>, const N: usize>(entry: &Entry) -> Result<Effect, Base
                 expected: list(),
             })
     };
+    if kind == EffectKind::InertialParameters {
+        let link = entry
+            .point
+            .as_deref()
+            .and_then(|p| R::LINK_NAMES.iter().position(|l| *l == p))
+            .ok_or_else(|| BaselineError::Link {
+                link: entry.point.clone(),
+                known: R::LINK_NAMES.join(", "),
+            })?;
+        let mut delta = [0.0; 10];
+        for (d, name) in delta.iter_mut().zip(expected) {
+            *d = get(name)?;
+        }
+        return Ok(Effect::InertialParameters { link, delta });
+    }
     let joint = entry.joint.as_deref().and_then(R::joint_index);
     let value = |name: &str| get(name).ok();
     let candidate = Candidate::named(kind, joint, entry.channel, &value).map_err(|e| match e {
@@ -215,6 +244,7 @@ mod tests {
         Entry {
             kind: kind.into(),
             joint: Some("j2".into()),
+            point: None,
             channel,
             parameters: parameters
                 .iter()
@@ -222,6 +252,7 @@ mod tests {
                     name: name.into(),
                     value,
                     std: 0.0,
+                    note: None,
                 })
                 .collect(),
         }

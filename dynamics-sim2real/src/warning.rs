@@ -144,6 +144,16 @@ pub enum Warning {
         /// Its standard deviation, s.
         std: f64,
     },
+    /// The effort and the motion are offset by less than half a sample
+    /// interval: how the log samples its streams (an effort read at its
+    /// sample's instant, or held over the interval after it), not a delay
+    /// to name.
+    WithinSample {
+        /// The offset fitted, s (positive: the motion lags the effort).
+        delay: f64,
+        /// The sample interval, s.
+        interval: f64,
+    },
     /// The short-horizon simulation of a model could not be made (a
     /// plant it cannot build, an integrator that stops): its figures are
     /// left out (`null` in the JSON report).
@@ -214,6 +224,13 @@ impl fmt::Display for Warning {
                 "the effort lags the measured motion by {:.2} +- {:.2} ms (positions and velocities agree): the effort stream is late against position and velocity",
                 delay * 1e3,
                 std * 1e3
+            ),
+            Warning::WithinSample { delay, interval } => write!(
+                f,
+                "the effort and the motion are offset by {:.2} ms, within half a sample ({:.2} ms at {:.0} Hz): how the log samples its streams (an effort read at its sample's instant or held over the interval after it), not a delay",
+                delay * 1e3,
+                interval * 0.5e3,
+                1.0 / interval
             ),
             Warning::LateMotionUnresolved { delay, std } => write!(
                 f,

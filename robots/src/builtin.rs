@@ -189,6 +189,7 @@ impl dynamics_cli::RobotSet for Builtin {
             args.json.clone(),
             args.report.clone(),
             args.noise(),
+            &[],
         );
         let _ = std::fs::remove_dir_all(&dir);
         result?;

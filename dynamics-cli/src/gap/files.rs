@@ -6,6 +6,7 @@ use std::path::Path;
 use dynamics_runtime::Robot;
 use dynamics_sim2real::diagnose::traces::{traces, Traces};
 use dynamics_sim2real::diagnose::{diagnose, Options, Report};
+use dynamics_sim2real::effects::{undo_sensors, Effect};
 
 use super::{DataFile, GapError};
 
@@ -50,8 +51,25 @@ pub fn diagnose_data_described<R: Robot<N> + Clone + Sync, const N: usize>(
     options: &Options,
     progress: &(dyn Fn(usize, usize) + Sync),
 ) -> Result<(Report, Vec<String>, Vec<String>), GapError> {
+    diagnose_calibrated(robot, &[], train, holdout, options, progress)
+}
+
+/// [`diagnose_data_described`] against a calibrated baseline: `robot` with
+/// the baseline's model effects folded in
+/// ([`dynamics_sim2real::effects::Calibrated`]), and `sensors`, the
+/// baseline's effects on the sensors, undone on both records before the
+/// diagnosis ([`dynamics_sim2real::effects::undo_sensors`]).
+pub fn diagnose_calibrated<R: Robot<N> + Clone + Sync, const N: usize>(
+    robot: &R,
+    sensors: &[Effect],
+    train: &DataFile,
+    holdout: &DataFile,
+    options: &Options,
+    progress: &(dyn Fn(usize, usize) + Sync),
+) -> Result<(Report, Vec<String>, Vec<String>), GapError> {
     let (a, about_a) = train.read_described(&R::JOINT_NAMES)?;
     let (b, about_b) = holdout.read_described(&R::JOINT_NAMES)?;
+    let (a, b) = (undo_sensors(&a, sensors), undo_sensors(&b, sensors));
     let report = diagnose(robot, &a, &b, options, progress)?;
     let warnings = crate::warnings::lines(&report.warnings);
     let about = [

@@ -108,7 +108,8 @@ pub fn run_on<R: Robot<N> + Clone + Sync, const N: usize>(
                 return Err("give --train and --holdout (data files to diagnose)".into());
             };
             let (train, holdout) = a.data_files(train, holdout)?;
-            crate::diagnose::diagnose_cmd(&robot, train, holdout, a.json, a.report, noise)
+            let sensors = robot.sensor_effects().to_vec();
+            crate::diagnose::diagnose_cmd(&robot, train, holdout, a.json, a.report, noise, &sensors)
         }
         RobotCommand::Identify(a) => {
             let robot = nominal(robot, &a.model, None)?;

@@ -1,11 +1,14 @@
-//! The compound explanation in the readable report: a table of the
-//! effects in the order of their gains (parameters from the joint fit, share of
-//! the training gap, held-out contribution, ambiguous pairs) and a bar
-//! chart of the held-out gap left after each added effect.
+//! The compound explanation, which leads the readable report: the effects
+//! in words, the shrink they give, a table of the effects in the order of
+//! their gains (friction on every joint one row, with its own table;
+//! parameters from the joint fit, share of the training gap, held-out
+//! contribution, ambiguous pairs), what was suggested but not confirmed,
+//! and a bar chart of the held-out gap left after each added effect.
 
 use std::fmt::Write as _;
 
-use dynamics_sim2real::diagnose::{Channel, Report};
+use dynamics_sim2real::diagnose::{Channel, Parameter, Report, Status};
+use dynamics_sim2real::effects::EffectKind;
 
 use crate::plot::bars;
 
@@ -19,7 +22,27 @@ fn g(v: f64) -> String {
     }
 }
 
-/// The markdown section (empty when nothing was added).
+/// Friction kinds, grouped into one row of the table.
+fn is_friction(kind: EffectKind) -> bool {
+    matches!(
+        kind,
+        EffectKind::CoulombFriction | EffectKind::ViscousFriction | EffectKind::StribeckFriction
+    )
+}
+
+/// A parameter as the table shows it: its value and spread, or why the
+/// data give none.
+fn value(p: &Parameter) -> String {
+    match &p.note {
+        Some(note) => format!("{}: {note}", p.name),
+        None => format!("{} = {} +- {}", p.name, g(p.value), g(p.std)),
+    }
+}
+
+/// The report's lead section: what explains the gap (friction on many
+/// joints as one row, the other effects each in a row), how far the whole
+/// explanation shrinks the held-out gap, and what the training record
+/// suggested but the held-out record did not confirm.
 ///
 /// ```
 /// # use dynamics_sim2real::diagnose::Report;
@@ -28,30 +51,80 @@ fn g(v: f64) -> String {
 pub fn section(report: &Report) -> String {
     let mut s = String::new();
     let effects = &report.which.effects;
-    let _ = writeln!(s, "\n## The whole gap: effects that together explain it\n");
+    let _ = writeln!(s, "## What explains the gap\n");
     if effects.is_empty() {
         let _ = writeln!(
             s,
-            "No set of effects explains the gap better than the nominal model by the margins \
-             (the verdict above says why).\n"
+            "No effect both explains the training gap by the margins and holds on the held-out \
+             data: {}.\n",
+            match report.which.verdict.status {
+                Status::Unexplained =>
+                    "the gap is real, but none of the candidate effects explains it",
+                _ => "the nominal model explains the data within noise",
+            }
         );
+        suggestions(report, &mut s);
         return s;
+    }
+    let sh = &report.shrink;
+    let (friction, others): (Vec<_>, Vec<_>) = effects.iter().partition(|e| is_friction(e.kind));
+    let mut words = Vec::new();
+    if !friction.is_empty() {
+        let mut joints: Vec<&str> = friction.iter().filter_map(|e| e.joint.as_deref()).collect();
+        joints.dedup();
+        words.push(format!("friction on {} (table below)", joints.join(", ")));
+    }
+    for e in &others {
+        let place = e
+            .joint
+            .clone()
+            .or(e.point.clone())
+            .unwrap_or("all signals".into());
+        words.push(format!("{} at {place}", e.kind));
     }
     let _ = writeln!(
         s,
-        "Chosen over every candidate on every joint (forward selection, and where model error \
-         is left on most joints a search from the full linear model), each fitted jointly with \
-         the others; listed in the order of their gains (each in turn the one that lowers the \
-         criterion most when added to those before it); share = part of the training gap above \
-         noise it explained when added; held-out contribution = how much the held-out gap \
-         grows when it alone is left out (the others refitted).\n"
+        "**{}.** Together they shrink the held-out torque gap above noise by {:.1} % and the \
+         plain RMS of the effort residual over all joints (noise included) by {:.1} % \
+         (`explanation.svg`: the gap left after each added effect).\n",
+        words.join("; "),
+        100.0 * sh.torque_fraction,
+        100.0 * sh.rms_fraction
+    );
+    let _ = writeln!(
+        s,
+        "Each effect was chosen on the training data (forward selection by the information \
+         criterion, confirmed by block cross-validation over its time segments) and then held \
+         on the held-out data: leaving it out raises the held-out deviance by more than \
+         chance would (0.999). Share = part of the training gap above noise it explained when \
+         added; held-out contribution = how much the held-out gap grows when it alone is left \
+         out (the others refitted).\n"
     );
     let _ = writeln!(
         s,
         "| # | effect | place | parameters (value +- std) | share | held-out contribution |"
     );
     let _ = writeln!(s, "|---|---|---|---|---|---|");
-    for (i, e) in effects.iter().enumerate() {
+    if !friction.is_empty() {
+        let share: f64 = friction.iter().map(|e| e.share).sum();
+        let held: f64 = friction.iter().map(|e| e.holdout_contribution).sum();
+        let joints: Vec<&str> = report
+            .which
+            .friction
+            .iter()
+            .filter(|f| f.corrected)
+            .map(|f| f.joint.as_str())
+            .collect();
+        let _ = writeln!(
+            s,
+            "| 1 | friction | {} | see the friction table | {:.1} % | {:.1} % |",
+            joints.join(", "),
+            100.0 * share,
+            100.0 * held
+        );
+    }
+    let first = usize::from(!friction.is_empty());
+    for (i, e) in others.iter().enumerate() {
         let place = e
             .joint
             .clone()
@@ -74,7 +147,7 @@ pub fn section(report: &Report) -> String {
             None => e
                 .parameters
                 .iter()
-                .map(|p| format!("{} = {} +- {}", p.name, g(p.value), g(p.std)))
+                .map(value)
                 .collect::<Vec<_>>()
                 .join("; "),
         };
@@ -90,22 +163,51 @@ pub fn section(report: &Report) -> String {
         let _ = writeln!(
             s,
             "| {} | {kind} | {place} | {params} | {:.1} % | {:.1} % |",
-            i + 1,
+            first + i + 1,
             100.0 * e.share,
             100.0 * e.holdout_contribution
         );
     }
-    let sh = &report.shrink;
+    if !friction.is_empty() {
+        let _ = writeln!(
+            s,
+            "\nFriction in the calibrated model (nominal -> with the explanation):\n"
+        );
+        let _ = writeln!(s, "| joint | Coulomb | breakaway | viscous |");
+        let _ = writeln!(s, "|---|---|---|---|");
+        for f in report.which.friction.iter().filter(|f| f.corrected) {
+            let _ = writeln!(
+                s,
+                "| {} | {:.4} -> {:.4} | {:.4} | {:.4} -> {:.4} |",
+                f.joint, f.coulomb_nominal, f.coulomb, f.breakaway, f.viscous_nominal, f.viscous
+            );
+        }
+    }
+    let _ = writeln!(s);
+    suggestions(report, &mut s);
+    s
+}
+
+/// What the training data suggested and the held-out data did not
+/// confirm.
+fn suggestions(report: &Report, s: &mut String) {
+    let suggested = &report.which.suggested;
+    if suggested.is_empty() {
+        return;
+    }
     let _ = writeln!(
         s,
-        "\nWith all {} effects the held-out torque gap above noise shrinks by {:.1} % and the \
-         plain RMS of the effort residual over all joints (noise included) by {:.1} % \
-         (`explanation.svg`: the gap left after each added effect).",
-        effects.len(),
-        100.0 * sh.torque_fraction,
-        100.0 * sh.rms_fraction
+        "Suggested by the training data, not confirmed (not named):\n"
     );
-    s
+    for e in suggested {
+        let place = e
+            .joint
+            .clone()
+            .or(e.point.clone())
+            .unwrap_or("all signals".into());
+        let _ = writeln!(s, "- {} at {place}: {}", e.kind, e.reason);
+    }
+    let _ = writeln!(s);
 }
 
 /// The held-out torque gap above noise left by the nominal model and after

@@ -87,8 +87,11 @@ pub fn markdown(
         report.samples[0], report.samples[1]
     );
 
-    // Verdict.
-    let _ = writeln!(s, "## Verdict\n");
+    // What explains the gap, first.
+    s += &super::explanation::section(report);
+
+    // The best single effect, as supporting detail.
+    let _ = writeln!(s, "## The best single effect\n");
     match chosen {
         Some(r) => {
             let _ = writeln!(
@@ -119,7 +122,7 @@ pub fn markdown(
                 let _ = writeln!(
                     s,
                     "It is the best single effect. The whole gap takes {} effects together \
-                     (last section), {}.\n",
+                     (first section), {}.\n",
                     effects.len(),
                     if among {
                         "this one among them"

@@ -83,7 +83,7 @@ pub fn render(report: &Report, traces: &Traces, options: &Options) -> Vec<(Strin
     let corrected = report.which.verdict.names_effect();
     let mut out = vec![(
         "report.md".to_string(),
-        markdown::markdown(report, traces, options, &joint_files) + &explanation::section(report),
+        markdown::markdown(report, traces, options, &joint_files),
     )];
     for (j, gap) in report.where_.joints.iter().enumerate() {
         let (Some(train), Some(hold)) = (traces.train.joints.get(j), traces.holdout.joints.get(j))

@@ -5,7 +5,8 @@
 //! sensor faults applied to what is measured.
 //!
 //! [`Plant`] is a robot with effects attached; [`PlantSim`] integrates it.
-//! [`Calibrated`] folds known force effects into a robot's nominal model.
+//! [`Calibrated`] folds known force effects into a robot's nominal model;
+//! [`undo_sensors`] takes known sensor effects out of measured data.
 
 mod calibrated;
 mod effect;
@@ -13,6 +14,7 @@ mod inertial;
 mod kind;
 mod nominal_friction;
 mod plant;
+mod sensors;
 mod tip;
 mod window;
 
@@ -21,5 +23,6 @@ pub use effect::{smooth_sign, Effect, SIGN_SMOOTHING};
 pub use kind::{EffectKind, PlaceKind, UnknownEffect};
 pub use nominal_friction::nominal_friction;
 pub use plant::{Plant, PlantError, PlantSim, PlantState, Switch};
+pub use sensors::undo_sensors;
 pub use tip::Tip;
 pub use window::{Window, WindowError};

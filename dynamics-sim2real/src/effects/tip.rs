@@ -5,7 +5,12 @@ use nalgebra::{SMatrix, SVector, Vector3};
 use dynamics_runtime::Robot;
 
 /// The tip of a robot: its last named point, or, when it has none, the
-/// origin of its last frame (Jacobian by central differences then).
+/// origin of its tool frame: the last frame named as ROS names a flange or
+/// tool frame (REP 199: `tool0`, `flange`; also `..._flange`, `..._tcp`,
+/// `ee_link`), else its last frame (Jacobian by central differences
+/// then). A URDF's frames come in the file's order, where a fixed frame
+/// near the base (UR's `base`) can come last: the names keep the payload
+/// at the flange.
 ///
 /// ```
 /// use dynamics_sim2real::effects::Tip;
@@ -34,7 +39,17 @@ impl Tip {
     /// The tip of robot type `R`.
     pub fn of<R: Robot<N>, const N: usize>() -> Tip {
         if R::POINT_NAMES.is_empty() {
-            Tip::Frame(R::FRAME_NAMES.len().saturating_sub(1))
+            let tool = |name: &str| {
+                let n = name.to_ascii_lowercase();
+                n == "tool0"
+                    || n == "flange"
+                    || n == "ee_link"
+                    || n == "tcp"
+                    || n.ends_with("_flange")
+                    || n.ends_with("_tcp")
+            };
+            let last = R::FRAME_NAMES.len().saturating_sub(1);
+            Tip::Frame(R::FRAME_NAMES.iter().rposition(|n| tool(n)).unwrap_or(last))
         } else {
             Tip::Point(R::POINT_NAMES.len() - 1)
         }

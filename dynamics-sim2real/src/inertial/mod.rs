@@ -23,6 +23,13 @@ pub const PARAMETER_NAMES: [&str; 10] = [
     "m", "m c_x", "m c_y", "m c_z", "I_xx", "I_xy", "I_yy", "I_xz", "I_yz", "I_zz",
 ];
 
+/// The names of a change of the ten parameters, as a diagnosis report
+/// writes a link correction (`d_` and [`PARAMETER_NAMES`] without the
+/// products' signs: `d_m`, `d_mcx`, ...).
+pub const PARAMETER_NAMES_DELTA: [&str; 10] = [
+    "d_m", "d_mcx", "d_mcy", "d_mcz", "d_ixx", "d_ixy", "d_iyy", "d_ixz", "d_iyz", "d_izz",
+];
+
 /// Mass, centre of mass and inertia about it.
 #[derive(Debug, Clone, Copy, PartialEq)]
 pub struct MassProperties {

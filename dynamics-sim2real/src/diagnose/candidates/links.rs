@@ -30,6 +30,17 @@ pub struct LinkBasis {
     pub v: DMatrix<f64>,
 }
 
+impl LinkBasis {
+    /// An orthonormal basis of the combinations of the link's ten
+    /// parameters the data do not determine (the complement of `v`).
+    pub fn free_combinations(&self) -> DMatrix<f64> {
+        let p = DMatrix::<f64>::identity(10, 10) - &self.v * self.v.transpose();
+        let eig = p.symmetric_eigen();
+        let keep: Vec<usize> = (0..10).filter(|&i| eig.eigenvalues[i] > 0.5).collect();
+        eig.eigenvectors.select_columns(&keep)
+    }
+}
+
 /// Whitened regressor columns of every link on the rows of `p`, each
 /// `[link][parameter]` a column of `p.n()` entries (`None` when the robot
 /// does not give its regressor).

@@ -1,6 +1,10 @@
 //! Evaluation: how the model and the explanation do on data, mostly the
 //! held-out record.
 //!
+//! - `determinacy.rs`: values the data do not determine or that are not
+//!   physical;
+//! - `confirm.rs`: the explanation confirmed on data it was not fitted on;
+//!   what does not hold is not named;
 //! - `holdout.rs`: the explanation's columns on the held-out record and
 //!   the measures of a gap;
 //! - `horizon.rs`: the short-horizon simulation error;
@@ -11,12 +15,16 @@
 //! - `shrink.rs`: how far the gap shrinks on the held-out record once the
 //!   explanation's effects are added.
 
+mod confirm;
+mod determinacy;
 mod gap_windows;
 mod holdout;
 mod horizon;
 mod shrink;
 mod yardstick;
 
+pub use confirm::{Confidence, Confirmed, Suggestion, Unconfirmed};
+pub use determinacy::why_not;
 pub use gap_windows::GapWindow;
 pub use holdout::{fraction, limit_to_windows, Holdout};
 pub use shrink::ShrinkFigures;
@@ -39,6 +47,9 @@ pub struct Evaluation<'a, const N: usize> {
     pub gap_windows: Vec<Vec<GapWindow>>,
     /// Warnings of the training record's evaluation.
     pub training_warnings: Vec<Warning>,
+    /// The explanation once confirmed on the held-out record
+    /// (`confirm.rs`); everything below is of it.
+    pub confirmed: Confirmed,
     /// The explanation on the held-out record.
     pub hold: Holdout<'a, N>,
     /// The plain RMS of the held-out effort residual, as a fraction
@@ -72,12 +83,23 @@ pub fn evaluate<'a, R: Robot<N> + Clone + Sync, const N: usize>(
         .map(|j| gap_windows::gap_windows(p, &p.sig.residual, j, 3.0, 5))
         .collect();
 
-    let (pool, e) = (&selection.pool, &selection.explanation);
+    let pool = &selection.pool;
     let hlinks = if selection.with_links {
         regressor_columns(robot, h).unwrap_or_default()
     } else {
         vec![]
     };
+    let confirmed = confirm::confirm::<R, N>(
+        p,
+        h,
+        &hlinks,
+        pool,
+        &selection.explanation,
+        &selection.windows,
+        &records.excitation,
+        &selection.nominal,
+    );
+    let e = &confirmed.explanation;
     let mut hold = Holdout::new(h, &hlinks, pool, e);
     limit_to_windows(&mut hold, h, pool, e, &selection.windows);
     let all: Vec<usize> = (0..e.set.len()).collect();
@@ -98,6 +120,7 @@ pub fn evaluate<'a, R: Robot<N> + Clone + Sync, const N: usize>(
         prediction_noise,
         gap_windows,
         training_warnings,
+        confirmed,
         hold,
         rms_fraction,
         shrink,

@@ -4,13 +4,13 @@
 //! grows when it alone is left out of the set, the others refitted), and
 //! the held-out gap left after each added effect.
 
-use nalgebra::{DMatrix, DVector, SVector};
+use nalgebra::{DVector, SVector};
 
 use super::ranked::ranked_entry;
-use super::report::{EffectWindow, Explained, Parameter, Rival, ShrinkStep};
+use super::report::{self, EffectWindow, Explained, Parameter, Rival, ShrinkStep, Suggested};
 use super::words::{add_direction_words, link_words, nominal_words};
 use crate::diagnose::candidates::{delta, Candidate, Friction, LinkBasis};
-use crate::diagnose::evaluate::{fraction, Holdout};
+use crate::diagnose::evaluate::{fraction, Confidence, Holdout, Suggestion, Unconfirmed};
 use crate::diagnose::fit::{window_of, Windows};
 use crate::diagnose::select::{joint_fit, Explanation, Pool, Solution};
 use crate::inertial::{check, complete, describe};
@@ -39,6 +39,7 @@ pub fn entries<R: Robot<N>, const N: usize>(
     aicc0: f64,
     nominal: &[SVector<f64, 10>],
     friction: &Friction<N>,
+    confidence: &[Confidence],
 ) -> (Vec<Explained>, Vec<ShrinkStep>) {
     let n = pool.n();
     let sse0 = pool.yy();
@@ -152,12 +153,77 @@ pub fn entries<R: Robot<N>, const N: usize>(
                 },
                 window: None,
                 channel: f.candidate.channel(),
+                confidence: confidence_of(confidence.get(i)),
                 ambiguous_with: rival,
             }
         })
         .collect();
     add_direction_words(&mut explained, &R::JOINT_NAMES, &friction.0);
     (explained, steps)
+}
+
+/// The report's confidence of an effect.
+fn confidence_of(c: Option<&Confidence>) -> report::Confidence {
+    let finite = |x: f64| if x.is_finite() { x } else { 0.0 };
+    let c = c.copied().unwrap_or(Confidence {
+        held_out: 0.0,
+        threshold: 0.0,
+        effective_rows: 0.0,
+    });
+    report::Confidence {
+        status: "confirmed",
+        held_out_deviance: finite(c.held_out),
+        threshold: finite(c.threshold),
+        effective_rows: finite(c.effective_rows),
+    }
+}
+
+/// The effects the selection chose that did not hold, with the reason.
+pub fn suggested<R: Robot<N>, const N: usize>(
+    pool: &Pool,
+    suggestions: &[Suggestion],
+    tip: &str,
+) -> Vec<Suggested> {
+    suggestions
+        .iter()
+        .map(|s| {
+            let c = pool.terms[s.term].fit.candidate;
+            let (joint, point) = place_of::<R, N>(c, tip);
+            let reason = match &s.why {
+                Unconfirmed::Undetermined(why) => why.clone(),
+                Unconfirmed::NotPhysical => {
+                    "the correction the data ask for leaves no physical body (mass > 0, pseudo-inertia positive semi-definite)".into()
+                }
+                Unconfirmed::NotConfirmed(c) => format!(
+                    "helps only where it was fitted: on the held-out record it saves {:.1} of deviance, chance gives {:.1}",
+                    c.held_out.max(-1e9),
+                    c.threshold
+                ),
+            };
+            let parameters = if pool.terms[s.term].link.is_some() {
+                vec![]
+            } else {
+                joint_fit(pool, s.term, &s.theta, &s.std)
+                    .parameters()
+                    .into_iter()
+                    .map(|(name, value, std)| Parameter {
+                        name: name.into(),
+                        value,
+                        std,
+                        note: None,
+                    })
+                    .collect()
+            };
+            Suggested {
+                kind: c.kind(),
+                joint,
+                point,
+                parameters,
+                status: "suggested",
+                reason,
+            }
+        })
+        .collect()
 }
 
 /// A link correction's parameters and its words: the change along the
@@ -173,11 +239,9 @@ fn link_parameters(
     nominal: Option<&SVector<f64, 10>>,
 ) -> (Vec<Parameter>, Option<String>) {
     let fitted = delta(b, theta);
-    let made = nominal.and_then(|nom| complete(nom, &fitted, &free_combinations(b)));
+    let made = nominal.and_then(|nom| complete(nom, &fitted, &b.free_combinations()));
     let d = made.as_ref().map_or(fitted, |c| c.delta);
-    let names = [
-        "d_m", "d_mcx", "d_mcy", "d_mcz", "d_ixx", "d_ixy", "d_iyy", "d_ixz", "d_iyz", "d_izz",
-    ];
+    let names = crate::inertial::PARAMETER_NAMES_DELTA;
     let params = (0..10)
         .map(|c| {
             let var: f64 = (0..b.v.ncols())
@@ -187,6 +251,7 @@ fn link_parameters(
                 name: names[c].into(),
                 value: d[c],
                 std: var.sqrt(),
+                note: None,
             }
         })
         .collect();
@@ -227,15 +292,6 @@ fn link_parameters(
         (None, _) => link_words(link, &d),
     };
     (params, Some(text))
-}
-
-/// An orthonormal basis of the combinations of a link's ten parameters
-/// the data do not determine (the complement of `b.v`).
-fn free_combinations(b: &LinkBasis) -> DMatrix<f64> {
-    let p = DMatrix::<f64>::identity(10, 10) - &b.v * b.v.transpose();
-    let eig = p.symmetric_eigen();
-    let keep: Vec<usize> = (0..10).filter(|&i| eig.eigenvalues[i] > 0.5).collect();
-    eig.eigenvectors.select_columns(&keep)
 }
 
 /// The training windows on the report's entries of the explanation.

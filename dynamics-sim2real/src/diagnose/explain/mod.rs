@@ -6,11 +6,14 @@
 //! - `entries.rs`: the compound explanation's entries and the held-out
 //!   steps;
 //! - `ranked.rs`: the single-effect ranking's entries;
+//! - `determinacy.rs`: values the data do not determine, or that are not
+//!   physical, reported as the reason instead of a number;
 //! - `verdict.rs`: the verdict on the best single effect;
 //! - `words.rs`, `friction_table.rs`: joint effects and friction in words
 //!   and as a table;
 //! - `late.rs`, `reversal.rs`: warnings and ambiguities the data leave.
 
+mod determinacy;
 mod entries;
 mod friction_table;
 mod late;
@@ -20,7 +23,7 @@ mod reversal;
 mod verdict;
 mod words;
 
-pub use entries::{annotate, entries};
+pub use entries::{annotate, entries, suggested};
 pub use friction_table::friction_table;
 pub use late::warn_delays;
 pub use ranked::ranked_entry;
@@ -48,7 +51,7 @@ pub fn report<R: Robot<N>, const N: usize>(
     options: &Options,
 ) -> Report {
     let (p, h) = (&records.p, &records.h);
-    let (pool, e) = (&selection.pool, &selection.explanation);
+    let (pool, e) = (&selection.pool, &evaluation.confirmed.explanation);
     let tip_name = Tip::of::<R, N>().name::<R, N>().to_string();
     let n = p.n();
     let sse0 = p.sse(&p.sig.residual);
@@ -73,6 +76,14 @@ pub fn report<R: Robot<N>, const N: usize>(
             )
         })
         .collect();
+    let excitation = &records.excitation;
+    let joint_at = |name: &str| {
+        let j = R::JOINT_NAMES.iter().position(|n| *n == name)?;
+        let (lo, hi) = excitation.range[j];
+        Some((R::JOINT_KINDS[j], hi - lo))
+    };
+    let mut ranked = ranked;
+    determinacy::mark_ranked(&mut ranked, &joint_at);
     let mut verdict = verdict(&ranked, p.gap_ratio(), options);
 
     let joints = (0..N)
@@ -101,12 +112,19 @@ pub fn report<R: Robot<N>, const N: usize>(
         aicc0,
         &selection.nominal,
         &p.basis.friction,
+        &evaluation.confirmed.confidence,
     );
+    determinacy::mark_explained(&mut effects, &joint_at);
+    let mut suggested = suggested::<R, N>(pool, &evaluation.confirmed.suggested, &tip_name);
+    determinacy::mark_suggested(&mut suggested, &joint_at);
     add_spring_words(&mut effects, &R::JOINT_NAMES, &records.excitation.range);
     add_encoder_words(&mut effects, &R::JOINT_NAMES, &R::JOINT_KINDS);
     annotate(&mut effects, pool, e, &selection.windows);
     let mut warnings = records.warnings.clone();
     warnings.extend(evaluation.training_warnings.iter().cloned());
+    if let Some((delay, interval)) = evaluation.confirmed.within_sample {
+        warnings.push(crate::Warning::WithinSample { delay, interval });
+    }
     // A late effort stream, or a late motion whose channel is unresolved.
     warn_delays(
         records.train.qd_measured,
@@ -158,6 +176,7 @@ pub fn report<R: Robot<N>, const N: usize>(
                 &effects,
             ),
             effects,
+            suggested,
         },
         shrink,
         warnings,

@@ -67,6 +67,9 @@ pub struct Which {
     /// (empty when the model explains the data within noise or nothing
     /// explains the gap).
     pub effects: Vec<Explained>,
+    /// What the selection chose on the training record that did not hold
+    /// (not named, with the reason).
+    pub suggested: Vec<Suggested>,
     /// Each joint's friction in the calibrated model: the nominal model's
     /// own with the explanation's corrections.
     pub friction: Vec<JointFriction>,
@@ -125,10 +128,53 @@ pub struct Explained {
     /// For `time_delay`: the late channel (see [`Ranked::channel`]).
     #[serde(skip_serializing_if = "Option::is_none")]
     pub channel: Option<Channel>,
+    /// How it was confirmed on data it was not fitted on.
+    pub confidence: Confidence,
     /// An effect the data cannot tell from this one within the set (the
     /// two are one ambiguous pair).
     #[serde(skip_serializing_if = "Option::is_none")]
     pub ambiguous_with: Option<Rival>,
+}
+
+/// How an effect of the explanation was confirmed: chosen on the training
+/// record (information criterion and block cross-validation over its time
+/// segments), then held on the held-out record.
+#[derive(Debug, Clone, Serialize)]
+pub struct Confidence {
+    /// `confirmed`: it lowers the held-out deviance by more than chance
+    /// would.
+    pub status: &'static str,
+    /// Deviance the held-out record gains when the effect is left out
+    /// (the others refitted on the training record), counted in
+    /// independent rows.
+    pub held_out_deviance: f64,
+    /// What chance would give at 0.999 (chi-square at its parameter
+    /// count): `held_out_deviance` must exceed it.
+    pub threshold: f64,
+    /// Held-out rows counted as independent (rows over the residual's
+    /// integrated autocorrelation time).
+    pub effective_rows: f64,
+}
+
+/// An effect the selection chose that the data do not confirm: not named,
+/// shown with the reason.
+#[derive(Debug, Clone, Serialize)]
+pub struct Suggested {
+    /// Effect kind.
+    pub kind: EffectKind,
+    /// Joint, for joint effects.
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub joint: Option<String>,
+    /// Point or link, for effects at a point.
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub point: Option<String>,
+    /// Its parameters as fitted in the set it was chosen in (none for a
+    /// link correction).
+    pub parameters: Vec<Parameter>,
+    /// `suggested`: not confirmed.
+    pub status: &'static str,
+    /// Why it is not named.
+    pub reason: String,
 }
 
 /// The time span of a time-limited effect.
@@ -171,15 +217,35 @@ pub struct ShrinkStep {
 }
 
 /// A fitted parameter.
-#[derive(Debug, Clone, Serialize)]
+#[derive(Debug, Clone)]
 pub struct Parameter {
     /// Name.
     pub name: String,
-    /// Value (SI).
+    /// Value (SI); `null` in JSON where [`Parameter::note`] says why it
+    /// cannot be acted on.
     pub value: f64,
     /// Standard deviation (grid-searched parameters: half the grid step);
     /// infinite (`null` in JSON) where the data do not determine it.
     pub std: f64,
+    /// Why the value is not reported as a number: the data do not
+    /// determine it, or it lies outside what its kind can physically be
+    /// (`determinacy.rs`).
+    pub note: Option<String>,
+}
+
+impl Serialize for Parameter {
+    fn serialize<S: serde::Serializer>(&self, s: S) -> Result<S::Ok, S::Error> {
+        use serde::ser::SerializeStruct;
+        let shown = self.note.is_none();
+        let mut st = s.serialize_struct("Parameter", 3 + usize::from(!shown))?;
+        st.serialize_field("name", &self.name)?;
+        st.serialize_field("value", &shown.then_some(self.value))?;
+        st.serialize_field("std", &shown.then_some(self.std))?;
+        if let Some(note) = &self.note {
+            st.serialize_field("note", note)?;
+        }
+        st.end()
+    }
 }
 
 /// One ranked candidate.
@@ -389,6 +455,7 @@ pub(crate) fn test_entry(
             name: name.to_string(),
             value,
             std: 0.01,
+            note: None,
         }],
         share: 0.1,
         holdout_contribution: 0.1,

@@ -10,7 +10,11 @@ use crate::effects::EffectKind;
 /// residual RMS over noise of the training data.
 pub fn verdict(ranked: &[Ranked], gap: f64, options: &Options) -> Verdict {
     match ranked.first() {
-        Some(top) if top.delta_aicc >= options.none_margin && top.holdout_share > 0.0 => {
+        Some(top)
+            if top.delta_aicc >= options.none_margin
+                && top.holdout_share > 0.0
+                && top.parameters.iter().all(|p| p.note.is_none()) =>
+        {
             let rival = ranked
                 .iter()
                 .skip(1)

@@ -242,6 +242,7 @@ mod tests {
                 name: "preload".into(),
                 value: -0.1,
                 std: 0.01,
+                note: None,
             });
         }
         add_spring_words(&mut entries, &["j1", "j2"], &[(-0.5, 0.5), (-0.5, 0.5)]);
@@ -262,6 +263,7 @@ mod tests {
             name: "preload".into(),
             value: -0.1,
             std: 0.01,
+            note: None,
         });
         add_spring_words(&mut entries, &["j1"], &[(0.5, 1.0)]);
         let words = entries[0].description.as_deref().unwrap_or("");

@@ -28,6 +28,47 @@ pub struct Fit {
 }
 
 impl Fit {
+    /// Every parameter as the report names it, with its value and standard
+    /// deviation: the linear ones (an effort scale as the scale, fitted as
+    /// scale - 1), a grid value with half its step as the spread, and a
+    /// motor side's (infinite spreads where its search gave none).
+    pub fn parameters(&self) -> Vec<(&'static str, f64, f64)> {
+        let c = self.candidate;
+        let mut out: Vec<(&'static str, f64, f64)> = c
+            .linear_parameters()
+            .iter()
+            .zip(self.theta.iter().zip(&self.std))
+            .map(|((name, _), (&v, &s))| match *name {
+                "scale_minus_one" => ("scale", 1.0 + v, s),
+                _ => (*name, v, s),
+            })
+            .collect();
+        match c {
+            Candidate::Coulomb(_, vw) => out.push(("vw", vw, vw * 0.5)),
+            Candidate::Stribeck(_, vs) => out.push(("vs", vs, vs * 0.5)),
+            Candidate::Environment(alpha) => out.push(("alpha", alpha, 0.25)),
+            _ => {}
+        }
+        if let (Some(g), false) = (self.motor, matches!(c, Candidate::Armature(_))) {
+            let inf = f64::INFINITY;
+            let sd = self.motor_std.unwrap_or(MotorGuess {
+                jm: inf,
+                stiffness: inf,
+                damping: inf,
+                half_width: inf,
+            });
+            out.push(("motor_inertia", g.jm, sd.jm));
+            if matches!(c, Candidate::Backlash(_)) {
+                out.push(("half_width", g.half_width, sd.half_width));
+                out.push(("contact_stiffness", g.stiffness, sd.stiffness));
+            } else {
+                out.push(("stiffness", g.stiffness, sd.stiffness));
+                out.push(("damping", g.damping, sd.damping));
+            }
+        }
+        out
+    }
+
     /// The fitted effect.
     pub fn effect(&self) -> Option<Effect> {
         match (self.candidate, self.motor) {

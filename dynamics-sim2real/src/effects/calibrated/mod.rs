@@ -26,10 +26,20 @@ use dynamics_runtime::Robot;
 #[derive(Debug, Clone, PartialEq, thiserror::Error)]
 pub enum CalibratedError {
     /// An effect that is not a force or inertia.
-    #[error("effect `{kind}` cannot be part of a nominal model (kinds that can: coulomb_friction, viscous_friction, stribeck_friction, armature, payload_mass, environment_resistance)")]
+    #[error("effect `{kind}` cannot be part of a nominal model (kinds that can: coulomb_friction, viscous_friction, stribeck_friction, armature, payload_mass, environment_resistance, joint_spring, inertial_parameters; and the sensors' encoder_offset, time_delay, effort_scale, effort_offset, undone on the data)")]
     NotNominal {
         /// Its kind's name.
         kind: &'static str,
+    },
+    /// A link correction of a link the robot does not have.
+    #[error("effect `{kind}` at link index {link}: the robot has {n} links")]
+    Link {
+        /// Its kind's name.
+        kind: &'static str,
+        /// The link index.
+        link: usize,
+        /// The robot's link count.
+        n: usize,
     },
     /// An effect on a joint the robot does not have.
     #[error("effect `{kind}` at joint index {joint}: the robot has {n} joints")]
@@ -71,6 +81,7 @@ pub enum CalibratedError {
 pub struct Calibrated<R, const N: usize> {
     robot: R,
     effects: Vec<Effect>,
+    sensors: Vec<Effect>,
     tip: Tip,
 }
 
@@ -85,31 +96,65 @@ impl<R: Robot<N>, const N: usize> Calibrated<R, N> {
     /// Folds `effects` into `robot`'s nominal model. A friction correction
     /// may take away friction the nominal model has (a URDF's `<dynamics
     /// damping friction>`), no more ([`Effect::within_nominal_friction`]).
+    ///
+    /// Effects on the sensors (encoder offsets, a delay, effort scales and
+    /// offsets) are not part of the model: they are kept apart
+    /// ([`Calibrated::sensor_effects`]) for the data to be corrected by
+    /// ([`crate::effects::undo_sensors`]). A late effort stream is a
+    /// negative `time_delay` here.
     pub fn new(robot: R, effects: Vec<Effect>) -> Result<Self, CalibratedError> {
         let (coulomb, viscous) = super::nominal_friction(&robot, &SVector::zeros());
-        for e in &effects {
+        let (mut model, mut sensors) = (Vec::new(), Vec::new());
+        for e in effects {
             let kind = e.kind().name();
-            match e.kind() {
+            let sensor = match e.kind() {
                 EffectKind::CoulombFriction
                 | EffectKind::ViscousFriction
                 | EffectKind::StribeckFriction
                 | EffectKind::Armature
                 | EffectKind::PayloadMass
                 | EffectKind::EnvironmentResistance
-                | EffectKind::JointSpring => {}
+                | EffectKind::JointSpring
+                | EffectKind::InertialParameters => false,
+                EffectKind::EncoderOffset
+                | EffectKind::TimeDelay
+                | EffectKind::EffortScale
+                | EffectKind::EffortOffset => true,
                 _ => return Err(CalibratedError::NotNominal { kind }),
-            }
+            };
             if let Some(joint) = e.joint().filter(|&j| j >= N) {
                 return Err(CalibratedError::Joint { kind, joint, n: N });
             }
-            e.validate_beside_friction(coulomb.as_slice(), viscous.as_slice())
-                .map_err(|reason| CalibratedError::Invalid { kind, reason })?;
+            if let Effect::InertialParameters { link, .. } = e {
+                if link >= R::LINK_NAMES.len() {
+                    let n = R::LINK_NAMES.len();
+                    return Err(CalibratedError::Link { kind, link, n });
+                }
+            }
+            match e {
+                // Either way late.
+                Effect::TimeDelay { delay } if delay.is_finite() => {}
+                _ => e
+                    .validate_beside_friction(coulomb.as_slice(), viscous.as_slice())
+                    .map_err(|reason| CalibratedError::Invalid { kind, reason })?,
+            }
+            if sensor {
+                sensors.push(e);
+            } else {
+                model.push(e);
+            }
         }
         Ok(Calibrated {
             robot,
-            effects,
+            effects: model,
+            sensors,
             tip: Tip::of::<R, N>(),
         })
+    }
+
+    /// The effects on the sensors, to be undone on measured data.
+    pub fn sensor_effects(&self) -> &[Effect] {
+        &self.sensors
     }
 
     /// The wrapped nominal model.
@@ -117,7 +162,7 @@ impl<R: Robot<N>, const N: usize> Calibrated<R, N> {
         &self.robot
     }
 
-    /// The effects folded in.
+    /// The effects folded in (not those on the sensors).
     pub fn effects(&self) -> &[Effect] {
         &self.effects
     }
@@ -146,6 +191,19 @@ impl<R: Robot<N>, const N: usize> Calibrated<R, N> {
                     x.q0 += jac.transpose() * (Vector3::from(R::GRAVITY) * mass);
                     x.qqt -= jac.transpose() * (bias * mass);
                 }
+                Effect::InertialParameters { link, ref delta } => {
+                    let (da, df) = crate::effects::inertial::terms(&self.robot, link, delta, q, qd);
+                    let (_, f0) = crate::effects::inertial::terms(
+                        &self.robot,
+                        link,
+                        delta,
+                        q,
+                        &SVector::zeros(),
+                    );
+                    x.a += da;
+                    x.q0 += f0;
+                    x.qqt += df - f0;
+                }
                 Effect::EnvironmentResistance { .. } => {
                     let (_, jac) = self.tip.position_jacobian(&self.robot, q);
                     x.q0 += jac.transpose() * e.resistance(&(jac * qd));
@@ -165,6 +223,81 @@ impl<R: Robot<N>, const N: usize> Calibrated<R, N> {
     ) -> SVector<f64, N> {
         let x = self.extra(q, qd);
         x.a * qdd - x.q0 - x.qqt
+    }
+
+    /// What the link corrections add to the forces at rest (gravity
+    /// only): `-Y(q, 0, 0) delta` summed over them.
+    fn links_at_rest(&self, q: &SVector<f64, N>) -> SVector<f64, N> {
+        let zero = SVector::zeros();
+        self.effects
+            .iter()
+            .filter_map(|e| match e {
+                Effect::InertialParameters { link, delta } => {
+                    Some(crate::effects::inertial::terms(&self.robot, *link, delta, q, &zero).1)
+                }
+                _ => None,
+            })
+            .sum()
+    }
+
+    /// A Coriolis matrix of the link corrections' velocity efforts `c(qd)`
+    /// (quadratic in `qd`): half their Jacobian in `qd`, by central
+    /// differences (exact for a quadratic, to rounding), so that
+    /// `C qd = c`.
+    fn links_coriolis(&self, q: &SVector<f64, N>, qd: &SVector<f64, N>) -> SMatrix<f64, N, N> {
+        let mut c = SMatrix::<f64, N, N>::zeros();
+        if !self
+            .effects
+            .iter()
+            .any(|e| matches!(e, Effect::InertialParameters { .. }))
+        {
+            return c;
+        }
+        let velocity = |v: &SVector<f64, N>| -> SVector<f64, N> {
+            let x = self.extra(q, v);
+            // Only the links' share: a payload's is added by the caller.
+            -(x.qqt - self.payload_qqt(q, v))
+        };
+        for k in 0..N {
+            let h = 1e-3 * (1.0 + qd[k].abs());
+            let (mut p, mut m) = (*qd, *qd);
+            p[k] += h;
+            m[k] -= h;
+            c.set_column(k, &((velocity(&p) - velocity(&m)) / (4.0 * h)));
+        }
+        c
+    }
+
+    /// A payload's share of the velocity terms (`-m J^T Jd qd`).
+    fn payload_qqt(&self, q: &SVector<f64, N>, qd: &SVector<f64, N>) -> SVector<f64, N> {
+        let mass = self.payload();
+        if mass == 0.0 {
+            return SVector::zeros();
+        }
+        let (_, jac) = self.tip.position_jacobian(&self.robot, q);
+        -(jac.transpose() * (self.tip.bias_acceleration(&self.robot, q, qd) * mass))
+    }
+
+    /// The link corrections' potential energy, `-g . (dm p + R dmc)` of
+    /// each link at its frame (a link with no frame of its name adds
+    /// none).
+    fn links_potential(&self, q: &SVector<f64, N>) -> f64 {
+        let g = Vector3::from(R::GRAVITY);
+        self.effects
+            .iter()
+            .filter_map(|e| match e {
+                Effect::InertialParameters { link, delta } => {
+                    let name = R::LINK_NAMES.get(*link)?;
+                    let frame = R::FRAME_NAMES.iter().position(|f| f == name)?;
+                    let pose = self.robot.frame_pose(frame, q)?;
+                    let p = Vector3::new(pose[(0, 3)], pose[(1, 3)], pose[(2, 3)]);
+                    let rot = pose.fixed_view::<3, 3>(0, 0);
+                    let mc = Vector3::new(delta[1], delta[2], delta[3]);
+                    Some(-g.dot(&(p * delta[0] + rot * mc)))
+                }
+                _ => None,
+            })
+            .sum()
     }
 
     fn payload(&self) -> f64 {

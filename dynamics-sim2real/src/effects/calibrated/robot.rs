@@ -52,10 +52,10 @@ impl<R: Robot<N>, const N: usize> Robot<N> for Calibrated<R, N> {
             let (_, jm) = self.tip.position_jacobian(&self.robot, &(q - qd * h));
             c += jac.transpose() * ((jp - jm) / (2.0 * h)) * mass;
         }
-        c
+        c + self.links_coriolis(q, qd)
     }
     fn gravity(&self, q: &SVector<f64, N>) -> SVector<f64, N> {
-        let mut g = self.robot.gravity(q);
+        let mut g = self.robot.gravity(q) - self.links_at_rest(q);
         let mass = self.payload();
         if mass != 0.0 {
             let (_, jac) = self.tip.position_jacobian(&self.robot, q);
@@ -143,7 +143,7 @@ impl<R: Robot<N>, const N: usize> Robot<N> for Calibrated<R, N> {
     }
     fn potential_energy(&self, q: &SVector<f64, N>) -> f64 {
         let mass = self.payload();
-        let mut v = self.robot.potential_energy(q);
+        let mut v = self.robot.potential_energy(q) + self.links_potential(q);
         if mass != 0.0 {
             v -= mass * Vector3::from(R::GRAVITY).dot(&self.tip.position(&self.robot, q));
         }

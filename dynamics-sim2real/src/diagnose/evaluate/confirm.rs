@@ -1,0 +1,289 @@
+//! Confirmed, or not said. The selection chose its set on the training
+//! record (the information criterion, with block cross-validation over
+//! time segments of that record); here every effect of the set must also
+//! hold on data it was not fitted on, or it is not named:
+//!
+//! 1. a delay within half a sample interval (within two standard
+//!    deviations) is how the log samples its streams (an effort read at its
+//!    sample's instant, or held over the interval after it), not an
+//!    effect: left out, with a warning;
+//! 2. an effect whose parameters the data do not determine, or that are
+//!    not physical (`determinacy.rs`), or a link correction that leaves no
+//!    physical body, is not named: a suggestion, with the reason;
+//! 3. every other effect must lower the held-out record's deviance, the
+//!    others refitted on the training record without it, by more than
+//!    chance would: `n_eff ln(sse_without / sse_with)` above the upper
+//!    quantile of a chi-square with as many degrees of freedom as the
+//!    effect has parameters, at `FAMILY_LEVEL / m` for `m` effects tested
+//!    (so that the chance of any effect passing by chance is
+//!    [`FAMILY_LEVEL`]), `n_eff` the held-out rows over the integrated
+//!    autocorrelation time of the sensor noise through the smoothing (the
+//!    filter makes neighbouring rows anything but independent: chance is
+//!    the noise, so its rows count as the filter leaves them). The weakest
+//!    failing effect is dropped first and the rest tested again.
+
+use nalgebra::SVector;
+
+use super::determinacy::undetermined;
+use super::holdout::{limit_to_windows, Holdout};
+use crate::diagnose::candidates::{delta, Candidate, Excitation, LinkBasis, Prepared};
+use crate::diagnose::fit::Windows;
+use crate::diagnose::select::{joint_fit, Explanation, Pool};
+use crate::effects::Effect;
+use crate::inertial::complete;
+use dynamics_runtime::{JointKind, Robot};
+
+/// The chance, over all the effects of a set tested together, that any
+/// effect without substance passes the held-out test (Bonferroni: each of
+/// `m` tests at `FAMILY_LEVEL / m`).
+pub const FAMILY_LEVEL: f64 = 1e-3;
+
+/// How an effect of the explanation was confirmed.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct Confidence {
+    /// Deviance the held-out record gains without the effect (the others
+    /// refitted on the training record), in effective rows.
+    pub held_out: f64,
+    /// What chance would give (the chi-square quantile at the effect's
+    /// parameter count, at the family level shared by the effects tested).
+    pub threshold: f64,
+    /// Held-out rows counted as independent: rows over the integrated
+    /// autocorrelation time of noise through the smoothing.
+    pub effective_rows: f64,
+}
+
+/// Why an effect the selection chose is not named.
+#[derive(Debug, Clone, PartialEq)]
+pub enum Unconfirmed {
+    /// A value the data do not determine, or one that is not physical.
+    Undetermined(String),
+    /// A link correction that leaves no physical body.
+    NotPhysical,
+    /// It does not lower the held-out deviance by more than chance would.
+    NotConfirmed(Confidence),
+}
+
+/// An effect left out of the explanation: its pool term, its fit in the
+/// set it was chosen in, and why.
+#[derive(Debug, Clone)]
+pub struct Suggestion {
+    /// Term index into the pool.
+    pub term: usize,
+    /// Its parameters and their spreads in the set's joint fit.
+    pub theta: Vec<f64>,
+    /// Their standard deviations.
+    pub std: Vec<f64>,
+    /// Why it is not named.
+    pub why: Unconfirmed,
+}
+
+/// The explanation once confirmed.
+pub struct Confirmed {
+    /// The effects that held, refitted together on the training record.
+    pub explanation: Explanation,
+    /// Per effect of `explanation`, how it held.
+    pub confidence: Vec<Confidence>,
+    /// What the selection chose that did not hold.
+    pub suggested: Vec<Suggestion>,
+    /// A delay within half a sample (delay, sample interval), s.
+    pub within_sample: Option<(f64, f64)>,
+}
+
+/// The upper `p` quantile of the standard normal distribution
+/// (Abramowitz and Stegun 26.2.23, error below 4.5e-4), for `0 < p <= 0.5`.
+pub fn normal_upper(p: f64) -> f64 {
+    let t = (-2.0 * p.clamp(1e-300, 0.5).ln()).sqrt();
+    t - (2.515_517 + 0.802_853 * t + 0.010_328 * t * t)
+        / (1.0 + 1.432_788 * t + 0.189_269 * t * t + 0.001_308 * t * t * t)
+}
+
+/// The upper `p` quantile of a chi-square with `k` degrees of freedom
+/// (Wilson-Hilferty; within 2 % of the tables from `k = 1` on at the
+/// levels used here).
+pub fn chi2_upper(k: usize, p: f64) -> f64 {
+    let k = k.max(1) as f64;
+    let a = 2.0 / (9.0 * k);
+    k * (1.0 - a + normal_upper(p) * a.sqrt()).powi(3)
+}
+
+/// Integrated autocorrelation time, in rows `spacing` samples apart, of
+/// white noise through the smoothing filter of weights `w`: `1 + 2 sum
+/// rho(l spacing)` over the lags where the filtered noise is correlated,
+/// `rho(m) = sum w_i w_(i+m) / sum w^2` (for rows one sample apart,
+/// `(sum w)^2 / sum w^2`; 1 for rows a filter width apart).
+pub fn correlation_time(w: &[f64], spacing: usize) -> f64 {
+    let s2: f64 = w.iter().map(|x| x * x).sum();
+    if s2 <= 0.0 || !s2.is_finite() {
+        return 1.0;
+    }
+    let step = spacing.max(1);
+    let mut tau = 1.0;
+    let mut lag = step;
+    while lag < w.len() {
+        let c: f64 = w.iter().zip(&w[lag..]).map(|(a, b)| a * b).sum();
+        tau += 2.0 * c / s2;
+        lag += step;
+    }
+    tau.max(1.0)
+}
+
+/// Whether link correction `theta` (combinations `b`) leaves the link with
+/// nominal parameters `nominal` a physical body once the combinations the
+/// data do not determine are moved (unknown nominal parameters: assumed).
+fn physical(b: &LinkBasis, theta: &[f64], nominal: Option<&SVector<f64, 10>>) -> bool {
+    let Some(nom) = nominal else {
+        return true;
+    };
+    match complete(nom, &delta(b, theta), &b.free_combinations()) {
+        Some(c) => !c.projected && c.scale >= 1.0 - 1e-9,
+        None => false,
+    }
+}
+
+/// The explanation `e` over `pool` confirmed on the held-out record `h`
+/// (`hlinks`: its link regressor columns; `windows`: the training windows
+/// of the windowed effects); `p` the training record, `excitation` what it
+/// shows of each joint, `nominal` the links' nominal inertial parameters.
+#[allow(clippy::too_many_arguments)]
+pub fn confirm<R: Robot<N>, const N: usize>(
+    p: &Prepared<N>,
+    h: &Prepared<N>,
+    hlinks: &[Vec<Vec<f64>>],
+    pool: &Pool,
+    e: &Explanation,
+    windows: &Windows,
+    excitation: &Excitation,
+    nominal: &[SVector<f64, 10>],
+) -> Confirmed {
+    let mut suggested = Vec::new();
+    let mut within_sample = None;
+    let joint_of = |c: Candidate| -> Option<(JointKind, f64)> {
+        let j = c.joint()?;
+        let (lo, hi) = excitation.range.get(j)?;
+        Some((R::JOINT_KINDS[j], hi - lo))
+    };
+    let suggest = |i: usize, why: Unconfirmed| Suggestion {
+        term: e.set[i],
+        theta: e.sol.theta[i].clone(),
+        std: e.sol.std[i].clone(),
+        why,
+    };
+    // Positions into `e.set` still in the explanation.
+    let mut keep: Vec<usize> = Vec::new();
+    for (i, &t) in e.set.iter().enumerate() {
+        let term = &pool.terms[t];
+        let f = joint_fit(pool, t, &e.sol.theta[i], &e.sol.std[i]);
+        if let Some(Effect::TimeDelay { delay }) = f.effect() {
+            let std = f.parameters().first().map_or(0.0, |p| p.2);
+            if delay.abs() - 2.0 * std.min(delay.abs()) <= 0.5 * p.sig.dt {
+                within_sample = Some((delay, p.sig.dt));
+                continue;
+            }
+        }
+        if let Some(b) = &term.link {
+            if !physical(b, &e.sol.theta[i], nominal.get(b.link)) {
+                suggested.push(suggest(i, Unconfirmed::NotPhysical));
+                continue;
+            }
+        } else if let Some(why) = undetermined(&f, joint_of(f.candidate)) {
+            suggested.push(suggest(i, Unconfirmed::Undetermined(why)));
+            continue;
+        }
+        keep.push(i);
+    }
+    // The held-out test, weakest first.
+    let mut hold = Holdout::new(h, hlinks, pool, e);
+    limit_to_windows(&mut hold, h, pool, e, windows);
+    let terms = |pos: &[usize]| -> Vec<usize> { pos.iter().map(|&i| e.set[i]).collect() };
+    let sse = |pos: &[usize]| -> f64 {
+        let sol = pool.solve(&terms(pos));
+        hold.residual(pos, &sol.theta).norm_squared()
+    };
+    let spacing = h.rows.windows(2).map(|w| w[1] - w[0]).min().unwrap_or(1);
+    let effective_rows =
+        hold.observed().len() as f64 / correlation_time(h.sig.sg.weights(0), spacing);
+    let level = FAMILY_LEVEL / keep.len().max(1) as f64;
+    let mut confidence;
+    loop {
+        let full = sse(&keep);
+        confidence = keep
+            .iter()
+            .map(|&i| {
+                let rest: Vec<usize> = keep.iter().copied().filter(|&m| m != i).collect();
+                let without = sse(&rest);
+                Confidence {
+                    held_out: effective_rows * (without.max(1e-300) / full.max(1e-300)).ln(),
+                    threshold: chi2_upper(pool.terms[e.set[i]].k, level),
+                    effective_rows,
+                }
+            })
+            .collect::<Vec<_>>();
+        let worst = confidence
+            .iter()
+            .enumerate()
+            .filter(|(_, c)| !(c.held_out > c.threshold))
+            .min_by(|a, b| {
+                (a.1.held_out - a.1.threshold).total_cmp(&(b.1.held_out - b.1.threshold))
+            })
+            .map(|(m, c)| (m, *c));
+        match worst {
+            Some((m, c)) => {
+                let i = keep.remove(m);
+                suggested.push(suggest(i, Unconfirmed::NotConfirmed(c)));
+            }
+            None => break,
+        }
+    }
+    let set = terms(&keep);
+    let sol = pool.solve(&set);
+    let rivals = keep
+        .iter()
+        .map(|&i| e.rivals[i].filter(|r| !set.contains(r)))
+        .collect();
+    Confirmed {
+        explanation: Explanation { set, sol, rivals },
+        confidence,
+        suggested,
+        within_sample,
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn the_quantiles_are_the_tables() {
+        assert!((normal_upper(0.001) - 3.0902).abs() < 1e-3);
+        assert!((normal_upper(0.025) - 1.9600).abs() < 1e-3);
+        // Tables at 0.001: 10.83, 13.82, 16.27, 29.59; at 1e-4: 15.14, 18.42.
+        for (k, p, exact) in [
+            (1, 1e-3, 10.828),
+            (2, 1e-3, 13.816),
+            (3, 1e-3, 16.266),
+            (10, 1e-3, 29.588),
+            (1, 1e-4, 15.137),
+            (2, 1e-4, 18.421),
+        ] {
+            let q = chi2_upper(k, p);
+            assert!(
+                (q / exact - 1.0).abs() < 0.03,
+                "k = {k}, p = {p}: {q} vs {exact}"
+            );
+        }
+    }
+
+    #[test]
+    fn a_moving_average_correlates_noise_over_its_length() {
+        assert!((correlation_time(&[1.0 / 9.0; 9], 1) - 9.0).abs() < 1e-12);
+        assert_eq!(correlation_time(&[1.0], 1), 1.0);
+        // Rows 3 apart: rho(3) = 6/9, rho(6) = 3/9; 1 + 2 (6 + 3) / 9 = 3.
+        assert!((correlation_time(&[1.0 / 9.0; 9], 3) - 3.0).abs() < 1e-12);
+        // Rows a filter width apart are independent.
+        assert_eq!(correlation_time(&[1.0 / 9.0; 9], 9), 1.0);
+        // Savitzky-Golay smoothing keeps fewer samples apart than its width.
+        let sg = crate::smoothing::SavitzkyGolay::new(40, 1e-3);
+        let t = correlation_time(sg.weights(0), 1);
+        assert!(t > 10.0 && t < 81.0, "{t}");
+    }
+}

@@ -1,0 +1,103 @@
+//! Values a user can act on: a parameter the data do not determine, or one
+//! outside what its kind can physically be (an encoder offset beyond half
+//! a turn, an effort scale held at its bound), cannot be acted on; the
+//! report gives the reason instead of the number, and the explanation does
+//! not name the effect (`confirm.rs`).
+
+use crate::diagnose::candidates::EFFORT_SCALE_LIMIT;
+use crate::diagnose::fit::Fit;
+use crate::effects::EffectKind;
+use dynamics_runtime::JointKind;
+
+/// Why the value `value` +- `std` of parameter `name` of an effect of
+/// `kind` at a joint of `joint` (its kind and the range its position covers
+/// on the data) cannot be acted on; `None` when it can.
+pub fn why_not(
+    kind: EffectKind,
+    name: &str,
+    value: f64,
+    std: f64,
+    joint: Option<(JointKind, f64)>,
+) -> Option<String> {
+    let moves = joint.map(|(k, range)| match k {
+        JointKind::Revolute => format!("the joint moves {range:.3} rad"),
+        JointKind::Prismatic => format!("the joint moves {range:.4} m"),
+    });
+    let on_data = |what: &str| match &moves {
+        Some(m) => format!("{what} on these data: {m}"),
+        None => format!("{what} on these data"),
+    };
+    // A link's ten parameters are judged together (`confirm.rs`: the
+    // corrected body must be physical); alone, most are not determined.
+    if kind == EffectKind::InertialParameters {
+        return None;
+    }
+    if !value.is_finite() {
+        return Some("the fit could not make it".into());
+    }
+    // Grid-searched values carry half a step as their spread by design.
+    let grid = matches!(name, "vw" | "vs" | "alpha");
+    if !grid && !(std.is_finite() && std <= value.abs()) {
+        return Some(on_data("not identifiable"));
+    }
+    match kind {
+        EffectKind::EncoderOffset => match joint.map(|j| j.0) {
+            Some(JointKind::Prismatic) => None,
+            _ if value.abs() > std::f64::consts::PI => Some(on_data(&format!(
+                "more than half a turn ({:.1} rad): not identifiable",
+                value
+            ))),
+            _ => None,
+        },
+        EffectKind::EffortScale
+            if name == "scale" && (value - 1.0).abs() >= EFFORT_SCALE_LIMIT * (1.0 - 1e-9) =>
+        {
+            Some(format!(
+                "held at its bound ({value:.2}): an effort off by more than {:.0} % is a wrong unit, channel or sign, not a scale",
+                EFFORT_SCALE_LIMIT * 100.0
+            ))
+        }
+        _ => None,
+    }
+}
+
+/// The first parameter of fit `f` (at a joint of `joint`, as for
+/// [`why_not`]) that cannot be acted on, with the reason.
+pub fn undetermined(f: &Fit, joint: Option<(JointKind, f64)>) -> Option<String> {
+    let kind = f.candidate.kind();
+    f.parameters()
+        .into_iter()
+        .find_map(|(name, v, s)| why_not(kind, name, v, s, joint).map(|w| format!("`{name}`: {w}")))
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn an_offset_beyond_a_turn_is_not_a_number_a_user_can_use() {
+        let j = Some((JointKind::Revolute, 0.01));
+        let why = why_not(EffectKind::EncoderOffset, "offset", -67.0, 2.0, j).unwrap();
+        assert!(
+            why.contains("half a turn") && why.contains("0.010 rad"),
+            "{why}"
+        );
+        assert!(why_not(EffectKind::EncoderOffset, "offset", 0.02, 0.001, j).is_none());
+    }
+
+    #[test]
+    fn a_spread_larger_than_the_value_means_the_data_do_not_determine_it() {
+        let why = why_not(EffectKind::Armature, "inertia", 0.1, 0.3, None).unwrap();
+        assert!(why.starts_with("not identifiable"), "{why}");
+        assert!(why_not(EffectKind::Armature, "inertia", 0.1, f64::INFINITY, None).is_some());
+        // A grid value's spread is half its step, by design.
+        assert!(why_not(EffectKind::CoulombFriction, "vw", 0.01, 0.005, None).is_none());
+    }
+
+    #[test]
+    fn an_effort_scale_at_its_bound_is_not_a_scale() {
+        let held = why_not(EffectKind::EffortScale, "scale", 1.5, 0.0, None);
+        assert!(held.unwrap().contains("held at its bound"));
+        assert!(why_not(EffectKind::EffortScale, "scale", 1.1, 0.01, None).is_none());
+    }
+}
