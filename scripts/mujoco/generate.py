@@ -180,6 +180,8 @@ def build(spec: RobotSpec, eff: Effects | None = None) -> mujoco.MjModel:
         parent = s.body(spec.payload_body)
         body = parent.add_body(name="mujoco_payload", pos=list(spec.payload_pos))
         body.mass = eff.payload
+        body.ipos = [0.0, 0.0, 0.0]  # the centre of mass at the body's origin
+        body.iquat = [1.0, 0.0, 0.0, 0.0]
         # A compact mass: a 2 cm sphere's inertia.
         i = 0.4 * eff.payload * 0.01**2
         body.inertia = [i, i, i]
