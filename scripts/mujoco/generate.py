@@ -42,6 +42,7 @@ Only Python, NumPy and MuJoCo (scripts/mujoco/requirements.txt).
 from __future__ import annotations
 
 import argparse
+import gzip
 import json
 import os
 import re
@@ -359,11 +360,13 @@ def write_log(path: str, names: list, prismatic: list, run: Run, start: int, dur
             q[r], qd[r], tau[r] = q[r - 1], qd[r - 1], tau[r - 1]
         repeated = np.sort(rows).tolist()
     header = ["t"] + [f"q_{j}" for j in names] + [f"qd_{j}" for j in names] + [f"tau_{j}" for j in names]
-    with open(path, "w") as f:
+    opener = gzip.open if path.endswith(".gz") else open
+    with opener(path, "wt") as f:
         f.write(",".join(header) + "\n")
         for k in range(len(ts)):
-            vals = [f"{ts[k]:.6f}"] + [f"{x:.9g}" for x in q[k]] + [f"{x:.7g}" for x in qd[k]] \
-                + [f"{x:.7g}" for x in tau[k]]
+            # Digits well below each channel's noise (q to 1e-7 of its value).
+            vals = [f"{ts[k]:.6f}"] + [f"{x:.8g}" for x in q[k]] + [f"{x:.6g}" for x in qd[k]] \
+                + [f"{x:.6g}" for x in tau[k]]
             f.write(",".join(vals) + "\n")
     return {"rows": len(ts), "repeated_rows": len(repeated), "noise_tau": sigma_tau.tolist()}
 
@@ -505,7 +508,7 @@ def plan(count: int, controls: int, seed_base: int):
 
 
 def make_case(out_dir: str, index: int, seed: int, robot: str, control: bool, log: Logging,
-              duration: float) -> dict:
+              duration: float, gz: bool = False) -> dict:
     spec, names, eff, truth, train_ref = draw_case(index, seed, robot, control, log)
     name = f"{index:03d}-{robot}-{'control' if control else 'mix'}"
     case_dir = os.path.join(out_dir, name)
@@ -516,7 +519,7 @@ def make_case(out_dir: str, index: int, seed: int, robot: str, control: bool, lo
     for part, ref in (("train", train_ref),
                       ("holdout", Reference.draw(spec, np.random.default_rng([seed, 2])))):
         run, start = simulate(spec, eff, ref, duration)
-        logs[part] = write_log(os.path.join(case_dir, f"{part}.csv"), names, prismatic, run, start,
+        logs[part] = write_log(os.path.join(case_dir, f"{part}.csv" + (".gz" if gz else "")), names, prismatic, run, start,
                                duration, eff, log, np.random.default_rng([seed, 3, len(logs)]))
     info = {
         "case": name,
@@ -546,6 +549,7 @@ def main(argv=None):
     ap.add_argument("--cases", type=int, default=44, help="number of cases")
     ap.add_argument("--controls", type=int, default=12, help="how many of them are controls")
     ap.add_argument("--duration", type=float, default=8.0, help="seconds of each of train and holdout")
+    ap.add_argument("--gzip", action="store_true", help="write train.csv.gz and holdout.csv.gz")
     ap.add_argument("--only", default="", help="comma-separated case indices to make (default: all)")
     ap.add_argument("--idcheck", action="store_true",
                     help="compare MuJoCo's inverse dynamics with `dynamics eval` and exit")
@@ -565,7 +569,7 @@ def main(argv=None):
         if only and index not in only:
             continue
         t0 = time.time()
-        info = make_case(a.out, index, seed, robot, control, log, a.duration)
+        info = make_case(a.out, index, seed, robot, control, log, a.duration, a.gzip)
         kinds = ", ".join(sorted({e["kind"] for e in info["effects"]})) or "none"
         print(f"{info['case']:22s} {log.rate:6.0f} Hz jitter {log.jitter:.1f} repeats {log.repeats:.2f} "
               f"{kinds}  ({time.time() - t0:.1f} s)", flush=True)

@@ -1,11 +1,12 @@
 #!/usr/bin/env python3
 """Score `dynamics diagnose` on the MuJoCo cases of generate.py against their truth.
 
-For every case folder (train.csv, holdout.csv, truth.json) it runs
+For every case folder (train.csv, holdout.csv, truth.json; or train.csv.gz and
+holdout.csv.gz) it runs
 
     dynamics diagnose --robot R --train train.csv --holdout holdout.csv --json report.json
 
-(the program's printed report goes to diagnose.txt beside it) and compares the
+(the program's printed report goes to diagnose.txt beside it, or under --reports) and compares the
 report's compound explanation, `which.effects[]`, with truth.json's `effects`.
 
 Matching rules (both sides are reduced to *units*, and a unit counts once):
@@ -63,20 +64,24 @@ def unit(effect: dict) -> str:
     return f"{kind}@{place}" if place else kind
 
 
-def diagnose(binary: str, case_dir: str, robot: str, reuse: bool) -> tuple:
-    """Run the diagnosis of one case; returns (report or None, seconds, error)."""
-    report = os.path.join(case_dir, "report.json")
+def diagnose(binary: str, case_dir: str, robot: str, reuse: bool, out_dir: str) -> tuple:
+    """Run the diagnosis of one case, writing report.json and diagnose.txt to
+    `out_dir`; returns (report or None, seconds, error)."""
+    os.makedirs(out_dir, exist_ok=True)
+    report = os.path.join(out_dir, "report.json")
     if reuse and os.path.exists(report):
         with open(report) as f:
             return json.load(f), float("nan"), ""
-    cmd = [binary, "diagnose", "--robot", robot,
-           "--train", os.path.join(case_dir, "train.csv"),
-           "--holdout", os.path.join(case_dir, "holdout.csv"),
-           "--json", report]
+    def data(part):
+        plain = os.path.join(case_dir, f"{part}.csv")
+        return plain if os.path.exists(plain) else plain + ".gz"
+
+    cmd = [binary, "diagnose", "--robot", robot, "--train", data("train"),
+           "--holdout", data("holdout"), "--json", report]
     t0 = time.time()
     p = subprocess.run(cmd, capture_output=True, text=True)
     seconds = time.time() - t0
-    with open(os.path.join(case_dir, "diagnose.txt"), "w") as f:
+    with open(os.path.join(out_dir, "diagnose.txt"), "w") as f:
         f.write(p.stdout)
         f.write(p.stderr)
     if p.returncode != 0:
@@ -185,6 +190,8 @@ def main(argv=None):
     ap.add_argument("--jobs", type=int, default=1, help="diagnoses run at once")
     ap.add_argument("--summary", default="", help="JSON summary (default: CASES/summary.json)")
     ap.add_argument("--reuse", action="store_true", help="score existing report.json files")
+    ap.add_argument("--reports", default="",
+                    help="folder for each case's report.json and diagnose.txt (default: the case folders)")
     a = ap.parse_args(argv)
     dirs = sorted(d for d in os.listdir(a.cases)
                   if os.path.exists(os.path.join(a.cases, d, "truth.json")))
@@ -195,7 +202,8 @@ def main(argv=None):
 
     def one(item):
         case_dir, truth = item
-        report, seconds, error = diagnose(a.dynamics, case_dir, truth["robot"], a.reuse)
+        out_dir = os.path.join(a.reports, os.path.basename(case_dir)) if a.reports else case_dir
+        report, seconds, error = diagnose(a.dynamics, case_dir, truth["robot"], a.reuse, out_dir)
         row = score_case(truth, report)
         row["seconds"] = seconds
         row["error"] = error
