@@ -490,14 +490,15 @@ def draw_case(index: int, seed: int, robot: str, control: bool, log: Logging):
 def plan(count: int, controls: int, seed_base: int):
     """The cases: `controls` effect-free controls (every other one at 100 Hz
     with jittered timestamps, every third with repeated rows), then effect
-    mixes (every fourth at 100 Hz jittered, every fifth with repeated rows);
-    robots in turn."""
+    mixes (every fourth at 100 Hz jittered, every fifth with repeated rows)."""
     robots = list(ROBOTS)
     out = []
     for i in range(count):
         control = i < controls
         k = i if control else i - controls
-        robot = robots[i % len(robots)]
+        # Robots in turn, shifted by one every round so that each rate and
+        # logging condition meets every robot.
+        robot = robots[(i + i // len(robots)) % len(robots)]
         if control:
             slow, repeats = k % 2 == 0, 0.04 if k % 3 == 0 else 0.0
         else:
