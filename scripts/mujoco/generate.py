@@ -43,6 +43,7 @@ from __future__ import annotations
 
 import argparse
 import gzip
+import io
 import json
 import os
 import re
@@ -50,7 +51,7 @@ import subprocess
 import sys
 import tempfile
 import time
-from dataclasses import dataclass, field
+from dataclasses import dataclass
 
 import mujoco
 import numpy as np
@@ -144,7 +145,7 @@ class Effects:
     springref: np.ndarray
     payload: float = 0.0
     delay: float = 0.0
-    scale: np.ndarray = None
+    scale: np.ndarray | None = None  # per joint; none() sets ones
 
     @staticmethod
     def none(n: int) -> "Effects":
@@ -360,8 +361,12 @@ def write_log(path: str, names: list, prismatic: list, run: Run, start: int, dur
             q[r], qd[r], tau[r] = q[r - 1], qd[r - 1], tau[r - 1]
         repeated = np.sort(rows).tolist()
     header = ["t"] + [f"q_{j}" for j in names] + [f"qd_{j}" for j in names] + [f"tau_{j}" for j in names]
-    opener = gzip.open if path.endswith(".gz") else open
-    with opener(path, "wt") as f:
+    if path.endswith(".gz"):
+        # No time stamp in the gzip header: the same case gives the same bytes.
+        f = io.TextIOWrapper(gzip.GzipFile(path, "wb", mtime=0), encoding="ascii")
+    else:
+        f = open(path, "w")
+    with f:
         f.write(",".join(header) + "\n")
         for k in range(len(ts)):
             # Digits well below each channel's noise (q to 1e-7 of its value).
@@ -438,7 +443,7 @@ def param(name, value):
     return {"name": name, "value": float(value)}
 
 
-def draw_case(index: int, seed: int, robot: str, control: bool, log: Logging):
+def draw_case(seed: int, robot: str, control: bool, log: Logging):
     """The effects of one case (MuJoCo's parameters and the truth entries)."""
     rng = np.random.default_rng(seed)
     spec = ROBOTS[robot]
@@ -510,7 +515,7 @@ def plan(count: int, controls: int, seed_base: int):
 
 def make_case(out_dir: str, index: int, seed: int, robot: str, control: bool, log: Logging,
               duration: float, gz: bool = False) -> dict:
-    spec, names, eff, truth, train_ref = draw_case(index, seed, robot, control, log)
+    spec, names, eff, truth, train_ref = draw_case(seed, robot, control, log)
     name = f"{index:03d}-{robot}-{'control' if control else 'mix'}"
     case_dir = os.path.join(out_dir, name)
     os.makedirs(case_dir, exist_ok=True)
