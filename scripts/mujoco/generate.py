@@ -259,6 +259,7 @@ class Run:
     q: np.ndarray  # (S, n)
     qd: np.ndarray
     tau: np.ndarray  # applied actuator torque at each instant (S, n)
+    held: np.ndarray  # the torque the controller holds over the step after each instant
 
 
 def simulate(spec: RobotSpec, eff: Effects, ref: Reference, duration: float,
@@ -302,7 +303,7 @@ def simulate(spec: RobotSpec, eff: Effects, ref: Reference, duration: float,
     tau[1:] = 0.5 * (u[:-1] + u[1:])
     start = int(round(PRE_ROLL / TIMESTEP))
     # Keep the pre-roll for the delayed effort (negative times).
-    return Run(t, q, qd, tau), start
+    return Run(t, q, qd, tau, u), start
 
 
 # ---------------------------------------------------------------- the log
@@ -515,8 +516,17 @@ def plan(count: int, controls: int, seed_base: int):
 
 def make_case(out_dir: str, index: int, seed: int, robot: str, control: bool, log: Logging,
               duration: float, gz: bool = False) -> dict:
-    spec, names, eff, truth, train_ref = draw_case(seed, robot, control, log)
+    """Draw case `index` and write its folder."""
+    drawn = draw_case(seed, robot, control, log)
     name = f"{index:03d}-{robot}-{'control' if control else 'mix'}"
+    return write_case(out_dir, name, drawn, seed, control, log, duration, gz)
+
+
+def write_case(out_dir: str, name: str, drawn: tuple, seed: int, control: bool, log: Logging,
+               duration: float, gz: bool) -> dict:
+    """Simulate the training and held-out runs of a drawn case and write
+    train.csv, holdout.csv and truth.json under out_dir/name."""
+    spec, names, eff, truth, train_ref = drawn
     case_dir = os.path.join(out_dir, name)
     os.makedirs(case_dir, exist_ok=True)
     m = build(spec)
@@ -525,11 +535,12 @@ def make_case(out_dir: str, index: int, seed: int, robot: str, control: bool, lo
     for part, ref in (("train", train_ref),
                       ("holdout", Reference.draw(spec, np.random.default_rng([seed, 2])))):
         run, start = simulate(spec, eff, ref, duration)
-        logs[part] = write_log(os.path.join(case_dir, f"{part}.csv" + (".gz" if gz else "")), names, prismatic, run, start,
-                               duration, eff, log, np.random.default_rng([seed, 3, len(logs)]))
+        path = os.path.join(case_dir, f"{part}.csv" + (".gz" if gz else ""))
+        logs[part] = write_log(path, names, prismatic, run, start, duration, eff, log,
+                               np.random.default_rng([seed, 3, len(logs)]))
     info = {
         "case": name,
-        "robot": robot,
+        "robot": spec.name,
         "control": control,
         "effects": truth,
         "rate": log.rate,
@@ -548,6 +559,32 @@ def make_case(out_dir: str, index: int, seed: int, robot: str, control: bool, lo
     return info
 
 
+def make_payload_pair(out_dir: str, robot: str, seed: int, log: Logging, duration: float,
+                      gz: bool = False) -> tuple:
+    """The same robot, friction, references and noise seeds twice: unloaded
+    (friction on every joint only) and loaded (the same plus a payload), for
+    a calibration on the first and `diagnose --baseline` on the second."""
+    spec, names, eff, truth, train_ref = draw_case(seed, robot, False, log)
+    n = len(names)
+    eff.armature[:] = 0.0
+    eff.stiffness[:] = 0.0
+    eff.springref[:] = 0.0
+    eff.delay = 0.0
+    eff.scale = np.ones(n)
+    eff.payload = 0.0
+    friction = [e for e in truth if e["kind"] in ("coulomb_friction", "viscous_friction")]
+    unloaded = write_case(out_dir, f"{robot}-unloaded", (spec, names, eff, friction, train_ref),
+                          seed, False, log, duration, gz)
+    mass = np.random.default_rng([seed, 4]).uniform(*PAYLOAD_RANGE[robot])
+    loaded_eff = Effects(eff.damping, eff.frictionloss, eff.armature, eff.stiffness, eff.springref,
+                         mass, 0.0, eff.scale)
+    payload = {"kind": "payload_mass", "point": spec.tip, "parameters": [param("mass", mass)],
+               "mujoco_body": spec.payload_body, "mujoco_pos": list(spec.payload_pos)}
+    loaded = write_case(out_dir, f"{robot}-loaded", (spec, names, loaded_eff, friction + [payload],
+                                                     train_ref), seed, False, log, duration, gz)
+    return unloaded, loaded
+
+
 def main(argv=None):
     ap = argparse.ArgumentParser(description=__doc__.split("\n\n")[0])
     ap.add_argument("--out", default="out/mujoco", help="output folder, one sub-folder a case")
@@ -557,6 +594,9 @@ def main(argv=None):
     ap.add_argument("--duration", type=float, default=8.0, help="seconds of each of train and holdout")
     ap.add_argument("--gzip", action="store_true", help="write train.csv.gz and holdout.csv.gz")
     ap.add_argument("--only", default="", help="comma-separated case indices to make (default: all)")
+    ap.add_argument("--payload-pair", default="", metavar="ROBOT",
+                    help="write ROBOT-unloaded and ROBOT-loaded (friction; friction and a payload, "
+                         "same references) instead of the cases")
     ap.add_argument("--idcheck", action="store_true",
                     help="compare MuJoCo's inverse dynamics with `dynamics eval` and exit")
     ap.add_argument("--dynamics", default=os.path.join(ROOT, "target", "release", "dynamics"),
@@ -571,6 +611,14 @@ def main(argv=None):
         return 0 if worst < 1e-6 else 1
     only = {int(x) for x in a.only.split(",") if x}
     os.makedirs(a.out, exist_ok=True)
+    if a.payload_pair:
+        pair = make_payload_pair(a.out, a.payload_pair, a.seed_base * 100_000 + 99_999,
+                                 Logging(rate=1000.0, jitter=0.0, repeats=0.0), a.duration, a.gzip)
+        for info in pair:
+            extra = [f"{e['kind']} {e['parameters'][0]['value']:.3f} kg at {e['point']}"
+                     for e in info["effects"] if e["kind"] == "payload_mass"]
+            print(f"{info['case']:22s} friction on every joint" + "".join(", " + x for x in extra))
+        return 0
     for index, seed, robot, control, log in plan(a.cases, a.controls, a.seed_base):
         if only and index not in only:
             continue
