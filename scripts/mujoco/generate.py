@@ -90,14 +90,15 @@ ROBOTS = {
     "panda": RobotSpec(
         "panda", "panda.urdf", (0.0, 0.0, -9.81),
         (0.0, -0.4, 0.0, -2.0, 0.0, 1.7, 0.8), (0.35,) * 7,
-        "panda_rightfinger", (0.0, 0.0, 0.0), "panda_rightfinger",
+        # At the tool centre point, 0.1034 m beyond the hand's origin (the
+        # built-in panda's tool frame, `panda_hand_tcp`).
+        "panda_hand", (0.0, 0.0, 0.1034), "panda_hand_tcp",
     ),
     "ur5": RobotSpec(
         "ur5", "ur5.urdf", (0.0, 0.0, -9.81),
         (0.0, -1.2, 1.2, -1.5, -1.5, 0.0), (0.4,) * 6,
-        # The flange. The built-in ur5's tip frame (where the diagnosis puts
-        # a payload) is its last frame, `base`.
-        "tool0", (0.0, 0.0, 0.0), "base",
+        # The flange, `tool0` (the built-in ur5's tool frame).
+        "tool0", (0.0, 0.0, 0.0), "tool0",
     ),
     "arm3r": RobotSpec(
         "arm3r", "arm3r.urdf", (0.0, -9.8, 0.0),

@@ -14,6 +14,7 @@ mod mar_eq10;
 mod mar_vibration;
 mod mimic;
 mod module_graph;
+mod mujoco;
 mod oracle;
 mod properties;
 mod regressor;
