@@ -144,6 +144,18 @@ impl<R: Robot<N>, const N: usize> Calibrated<R, N> {
                 model.push(e);
             }
         }
+        // A diagnosis fits the other effects in the measured effort's units:
+        // at a joint whose effort reads `scale` times the applied one, its
+        // joint's own forces are `scale` times too large for the model.
+        for s in &sensors {
+            if let Effect::EffortScale { joint, scale } = *s {
+                for e in model.iter_mut().filter(|e| e.joint() == Some(joint)) {
+                    e.scale_forces(1.0 / scale);
+                }
+            }
+        }
+        // Undone in the reverse of how they act: the offset, then the scale.
+        sensors.sort_by_key(|e| !matches!(e, Effect::EffortOffset { .. }));
         Ok(Calibrated {
             robot,
             effects: model,

@@ -150,6 +150,38 @@ pub enum Effect {
 }
 
 impl Effect {
+    /// Multiplies the efforts a joint effect exerts by `k` (its force
+    /// levels, rotor inertia, stiffness; not its velocities or widths):
+    /// the same effect seen through an effort sensor of gain `k`. Effects
+    /// at a point or on the sensors are left as they are.
+    ///
+    /// ```
+    /// use dynamics_sim2real::effects::Effect;
+    /// let mut e = Effect::ViscousFriction { joint: 0, fv: 0.6 };
+    /// e.scale_forces(0.5);
+    /// assert_eq!(e, Effect::ViscousFriction { joint: 0, fv: 0.3 });
+    /// ```
+    pub fn scale_forces(&mut self, k: f64) {
+        match self {
+            Effect::CoulombFriction { fc, .. } => *fc *= k,
+            Effect::ViscousFriction { fv, .. } => *fv *= k,
+            Effect::StribeckFriction { fc, fs, .. } => {
+                *fc *= k;
+                *fs *= k;
+            }
+            Effect::Armature { inertia, .. } => *inertia *= k,
+            Effect::JointSpring {
+                stiffness, preload, ..
+            } => {
+                *stiffness *= k;
+                *preload *= k;
+            }
+            _ => {}
+        }
+    }
+}
+
+impl Effect {
     /// Whether the effect sits in the sensors (encoder offset, delay,
     /// effort scale and offset) rather than in the plant.
     pub fn is_sensor(&self) -> bool {
