@@ -60,9 +60,59 @@ pub struct ExciteArgs {
     /// N), one value or one per joint; default: 0.002 of each joint's peak effort.
     #[arg(long, value_delimiter = ',', value_name = "SIGMA[,..]")]
     pub noise_tau: Option<Vec<f64>>,
+    /// A diagnosis report (JSON): design a motion that tells its ambiguous pairs apart (the
+    /// verdict and its rival, every effect and what it is ambiguous with) instead of one that
+    /// conditions the whole identification.
+    #[arg(long, value_name = "REPORT.json")]
+    pub separate: Option<PathBuf>,
     /// The nominal model.
     #[command(flatten)]
     pub model: crate::tune::ModelArgs,
+}
+
+/// The ambiguous pairs of a diagnosis report (`which.verdict` with its
+/// `rival` when ambiguous; every `which.effects[]` with its
+/// `ambiguous_with`), as `((kind, place), (kind, place))`.
+///
+/// ```
+/// let report: serde_json::Value = serde_json::from_str(r#"{"which": {"verdict":
+///   {"kind": "coulomb_friction", "joint": "j2", "status": "ambiguous",
+///    "rival": {"kind": "effort_offset", "joint": "j2"}}, "effects": []}}"#).unwrap();
+/// let pairs = dynamics_cli::excite::ambiguous_pairs(&report);
+/// assert_eq!(pairs[0].1 .0, "effort_offset");
+/// ```
+#[allow(clippy::type_complexity)]
+pub fn ambiguous_pairs(
+    report: &serde_json::Value,
+) -> Vec<((String, Option<String>), (String, Option<String>))> {
+    let entry = |v: &serde_json::Value| -> Option<(String, Option<String>)> {
+        let kind = v.get("kind")?.as_str()?.to_string();
+        let place = v
+            .get("joint")
+            .or_else(|| v.get("point"))
+            .and_then(|p| p.as_str())
+            .map(String::from);
+        Some((kind, place))
+    };
+    let mut out = Vec::new();
+    let which = &report["which"];
+    let verdict = &which["verdict"];
+    if verdict["status"] == "ambiguous" {
+        if let (Some(a), Some(b)) = (entry(verdict), entry(&verdict["rival"])) {
+            out.push((a, b));
+        }
+    }
+    for e in which["effects"].as_array().into_iter().flatten() {
+        if let (Some(a), Some(b)) = (entry(e), entry(&e["ambiguous_with"])) {
+            let seen = out
+                .iter()
+                .any(|(x, y)| (x == &a && y == &b) || (x == &b && y == &a));
+            if !seen {
+                out.push((a, b));
+            }
+        }
+    }
+    out
 }
 
 /// One value per joint from a list of one or `N` values.
@@ -196,7 +246,55 @@ pub fn excite_cmd<R: Robot<N> + Sync, const N: usize>(
         o.period(),
         o.evaluations
     );
-    let d = excite::design(robot, &lim, &o)?;
+    let (d, separation) = match &args.separate {
+        None => (excite::design(robot, &lim, &o)?, None),
+        Some(path) => {
+            let file = path.display().to_string();
+            let text = std::fs::read_to_string(path).map_err(|e| format!("{file}: {e}"))?;
+            let json: serde_json::Value =
+                serde_json::from_str(&text).map_err(|e| format!("{file}: {e}"))?;
+            let named = ambiguous_pairs(&json);
+            if named.is_empty() {
+                return Err(format!("{file}: the report names no ambiguous pair").into());
+            }
+            let mut pairs = Vec::new();
+            let mut labels = Vec::new();
+            for ((ka, pa), (kb, pb)) in &named {
+                let rival = |k: &str, p: &Option<String>| {
+                    excite::Rival::named(k, p.as_deref(), &R::JOINT_NAMES, R::LINK_NAMES)
+                        .map_err(|e| format!("{file}: {e}"))
+                };
+                pairs.push((rival(ka, pa)?, rival(kb, pb)?));
+                labels.push(format!(
+                    "{ka} {} vs {kb} {}",
+                    pa.clone().unwrap_or_default(),
+                    pb.clone().unwrap_or_default()
+                ));
+            }
+            let (d, angles) = excite::design_separating(robot, &lim, &o, &pairs)?;
+            let rate = 200.0 / d.motion.period;
+            let before = excite::separation_angles(
+                robot,
+                &d.columns,
+                &pairs,
+                &default_states::<N>(&info.motion, args.duration, rate, args.seed),
+            )?;
+            let mut rows = Vec::new();
+            for (i, label) in labels.iter().enumerate() {
+                println!(
+                    "{label}: smallest principal angle, the others projected out: designed {:.2} deg, default sines {:.2} deg",
+                    angles[i].to_degrees(),
+                    before[i].to_degrees()
+                );
+                rows.push(serde_json::json!({
+                    "pair": label,
+                    "angle_deg": angles[i].to_degrees(),
+                    "default_angle_deg": before[i].to_degrees(),
+                }));
+            }
+            (d, Some(rows))
+        }
+    };
     let samples = d.samples(args.rate);
     std::fs::write(&args.out, csv(&R::JOINT_NAMES, &samples))
         .map_err(|e| format!("{}: {e}", args.out.display()))?;
@@ -237,14 +335,18 @@ pub fn excite_cmd<R: Robot<N> + Sync, const N: usize>(
         });
     if let Some((r, name)) = worst {
         println!(
-            "predicted: the least certain inertial base parameter is {name} ({:.1} % relative standard deviation); {} columns stay unidentifiable alone",
+            "predicted: the least certain base parameter with a nominal value is {name} ({:.1} % relative standard deviation); {} columns stay unidentifiable alone",
             100.0 * r,
             report.identifiability.unidentifiable.len()
         );
     }
     println!("motion: {}", args.out.display());
     if let Some(path) = &args.json {
-        let text = serde_json::to_string_pretty(&report)?;
+        let mut value = serde_json::to_value(&report)?;
+        if let (Some(rows), Some(map)) = (separation, value.as_object_mut()) {
+            map.insert("separation".into(), serde_json::Value::Array(rows));
+        }
+        let text = serde_json::to_string_pretty(&value)?;
         std::fs::write(path, text).map_err(|e| format!("{}: {e}", path.display()))?;
         println!("design: {}", path.display());
     }
@@ -257,4 +359,140 @@ fn ok(b: bool) -> &'static str {
     } else {
         "EXCEEDED"
     }
+}
+
+/// `check-data`.
+#[derive(Args, Debug, Clone)]
+pub struct CheckDataArgs {
+    /// The recorded (or designed) motion: CSV with `t`, `q_<joint>` and optionally
+    /// `qd_<joint>` (else differentiated from the positions); other columns are skipped.
+    #[arg(long)]
+    pub data: PathBuf,
+    /// Write the findings as JSON here.
+    #[arg(long)]
+    pub json: Option<PathBuf>,
+    /// The nominal model.
+    #[command(flatten)]
+    pub model: crate::tune::ModelArgs,
+}
+
+/// Times, positions and velocities of the CSV `text` (file name `file`):
+/// `t`, `q_<joint>` and `qd_<joint>` when present, else central
+/// differences of the positions.
+///
+/// ```
+/// let (t, q, qd) = dynamics_cli::excite::read_motion::<1>("t,q_j\n0,0\n1,1\n2,4\n", &["j"], "m.csv").unwrap();
+/// assert_eq!((t.len(), q[2][0], qd[1][0]), (3, 4.0, 2.0));
+/// ```
+#[allow(clippy::type_complexity)]
+pub fn read_motion<const N: usize>(
+    text: &str,
+    joints: &[&str; N],
+    file: &str,
+) -> Result<(Vec<f64>, Vec<SVector<f64, N>>, Vec<SVector<f64, N>>), String> {
+    let mut lines = text
+        .lines()
+        .enumerate()
+        .filter(|(_, l)| !l.trim().is_empty());
+    let header: Vec<&str> = lines
+        .next()
+        .map(|(_, l)| l.split(',').map(str::trim).collect())
+        .ok_or(format!("{file}: empty"))?;
+    let find = |name: &str| header.iter().position(|h| *h == name);
+    let t_col = find("t").ok_or(format!("{file}: line 1: no column `t`"))?;
+    let q_cols = joints
+        .iter()
+        .map(|j| find(&format!("q_{j}")).ok_or(format!("{file}: line 1: no column `q_{j}`")))
+        .collect::<Result<Vec<_>, _>>()?;
+    let qd_cols: Option<Vec<usize>> = joints.iter().map(|j| find(&format!("qd_{j}"))).collect();
+    let (mut t, mut q, mut qd) = (Vec::new(), Vec::new(), Vec::new());
+    for (i, line) in lines {
+        let cells: Vec<&str> = line.split(',').map(str::trim).collect();
+        let num = |c: usize| -> Result<f64, String> {
+            cells
+                .get(c)
+                .and_then(|v| v.parse::<f64>().ok())
+                .filter(|v| v.is_finite())
+                .ok_or(format!(
+                    "{file}: line {}: column {} is not a finite number",
+                    i + 1,
+                    c + 1
+                ))
+        };
+        t.push(num(t_col)?);
+        let mut row = SVector::<f64, N>::zeros();
+        for (j, &c) in q_cols.iter().enumerate() {
+            row[j] = num(c)?;
+        }
+        q.push(row);
+        if let Some(cols) = &qd_cols {
+            let mut v = SVector::<f64, N>::zeros();
+            for (j, &c) in cols.iter().enumerate() {
+                v[j] = num(c)?;
+            }
+            qd.push(v);
+        }
+    }
+    if t.len() < 3 {
+        return Err(format!("{file}: {} rows, need at least 3", t.len()));
+    }
+    if qd_cols.is_none() {
+        let n = t.len();
+        qd = (0..n)
+            .map(|k| {
+                let (a, b) = (k.saturating_sub(1), (k + 1).min(n - 1));
+                let dt = t[b] - t[a];
+                if dt > 0.0 {
+                    (q[b] - q[a]) / dt
+                } else {
+                    SVector::zeros()
+                }
+            })
+            .collect();
+    }
+    Ok((t, q, qd))
+}
+
+/// `check-data` on `robot` (the nominal model): what the motion in
+/// `args.data` can and cannot identify, in words.
+pub fn check_data_cmd<R: Robot<N>, const N: usize>(
+    robot: &R,
+    info: &crate::RobotInfo,
+    args: &CheckDataArgs,
+) -> Res {
+    let file = args.data.display().to_string();
+    let text = std::fs::read_to_string(&args.data).map_err(|e| format!("{file}: {e}"))?;
+    let (t, q, qd) = read_motion::<N>(&text, &R::JOINT_NAMES, &file)?;
+    let lim = limits::<N>(info.limits.as_ref(), &info.motion);
+    let columns = dynamics_sim2real::excite::BaseColumns::of(robot, &lim, 1)?;
+    let c = excite::check_data(robot, &columns, &t, &q, &qd)?;
+    println!(
+        "{file}: {} samples over {:.2} s; condition number of the base regressor ({} base parameters, friction, rotor inertia and offsets included): {:.1}",
+        t.len(),
+        t[t.len() - 1] - t[0],
+        columns.kept.len(),
+        c.condition
+    );
+    for j in &c.joints {
+        println!(
+            "  {:16} {:3} reversals, peak velocity {:.3}, {:.1} % of the time slow, range [{:.3}, {:.3}]",
+            j.joint,
+            j.reversals,
+            j.peak_velocity,
+            100.0 * j.slow_fraction,
+            j.range[0],
+            j.range[1]
+        );
+    }
+    if c.words.is_empty() {
+        println!("nothing stands out: every joint reverses often and moves fast enough, and no direction of the parameters is 100 times weaker than the strongest");
+    }
+    for w in &c.words {
+        println!("- {w}");
+    }
+    if let Some(path) = &args.json {
+        std::fs::write(path, serde_json::to_string_pretty(&c)?)
+            .map_err(|e| format!("{}: {e}", path.display()))?;
+    }
+    Ok(())
 }

@@ -60,6 +60,8 @@ pub enum RobotCommand {
     Identify(IdentifyArgs),
     /// Design an exciting motion within the robot's limits: CSV of t, q, qd, qdd and its design as JSON.
     Excite(crate::excite::ExciteArgs),
+    /// Say what a recorded motion can and cannot identify: reversals, velocity range, weak directions.
+    CheckData(crate::excite::CheckDataArgs),
 }
 
 /// `identify`.
@@ -303,6 +305,7 @@ impl RobotCommand {
             RobotCommand::Diagnose(_) => "diagnose",
             RobotCommand::Identify(_) => "identify",
             RobotCommand::Excite(_) => "excite",
+            RobotCommand::CheckData(_) => "check-data",
         }
     }
 }

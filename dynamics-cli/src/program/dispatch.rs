@@ -122,6 +122,10 @@ pub fn run_on<R: Robot<N> + Clone + Sync, const N: usize>(
             let robot = nominal(robot, &a.model, None)?;
             crate::excite::excite_cmd(&robot, info, &a)
         }
+        RobotCommand::CheckData(a) => {
+            let robot = nominal(robot, &a.model, None)?;
+            crate::excite::check_data_cmd(&robot, info, &a)
+        }
     }
 }
 

@@ -6,7 +6,7 @@ use nalgebra::SVector;
 use super::search::{search, Problem};
 use super::{
     check, identifiability, BaseColumns, Check, Criterion, ExciteError, Figures, Fourier,
-    Identifiability, Limits,
+    Identifiability, Limits, Rival,
 };
 use dynamics_runtime::control::Reference;
 use dynamics_runtime::Robot;
@@ -212,6 +212,52 @@ pub fn design<R: Robot<N> + Sync, const N: usize>(
     limits: &Limits<N>,
     options: &Options<N>,
 ) -> Result<Design<N>, ExciteError> {
+    Ok(run(robot, limits, options, &[])?.0)
+}
+
+/// Designs a motion of `robot` within `limits` that tells each pair of
+/// rival effects apart: it maximises the smallest over the pairs of the
+/// separation angle (see [`crate::excite::separation_angles`]); returns
+/// the design and the angles (rad) over one period.
+///
+/// ```
+/// use dynamics_sim2real::excite::{design_separating, Limits, Options, Rival};
+/// dynamics_macros::robot! {
+///     pub robot Pendulum;
+///     gravity = [0.0, -9.81, 0.0];
+///     link base;
+///     link rod { mass = 1.0; com = [0.5, 0.0, 0.0]; inertia = [1e-3, 0.1, 0.1]; }
+///     joint j = revolute(base -> rod) { transfer = [rot_z(q)]; }
+/// }
+/// let p = Pendulum::default();
+/// let mut o = Options::new(4.0);
+/// o.evaluations = 60;
+/// let limits = Limits::new([-1.0], [1.0], [3.0], [50.0]);
+/// let pairs = [(Rival::Coulomb(0), Rival::Stribeck(0))];
+/// let (d, angles) = design_separating(&p, &limits, &o, &pairs).unwrap();
+/// assert!(d.check(&p, 200.0).all() && angles[0] > 0.0);
+/// ```
+pub fn design_separating<R: Robot<N> + Sync, const N: usize>(
+    robot: &R,
+    limits: &Limits<N>,
+    options: &Options<N>,
+    pairs: &[(Rival, Rival)],
+) -> Result<(Design<N>, Vec<f64>), ExciteError> {
+    if pairs.is_empty() {
+        return Err(ExciteError::Options {
+            option: "pairs",
+            cause: "no pair of rival effects to separate".into(),
+        });
+    }
+    run(robot, limits, options, pairs)
+}
+
+fn run<R: Robot<N> + Sync, const N: usize>(
+    robot: &R,
+    limits: &Limits<N>,
+    options: &Options<N>,
+    pairs: &[(Rival, Rival)],
+) -> Result<(Design<N>, Vec<f64>), ExciteError> {
     options.validate()?;
     limits.require_finite(&R::JOINT_NAMES)?;
     let tight = limits.with_margin(options.margin);
@@ -250,6 +296,7 @@ pub fn design<R: Robot<N> + Sync, const N: usize>(
         harmonics: options.harmonics,
         grid,
         criterion: options.criterion,
+        pairs,
     };
     let found = search(&problem, options.evaluations, options.seed);
     let mut motion = problem.realise(&found.x).ok_or(ExciteError::Numeric {
@@ -278,5 +325,10 @@ pub fn design<R: Robot<N> + Sync, const N: usize>(
         design.motion = motion.clone();
     }
     design.figures = problem.figures(&design.motion)?;
-    Ok(design)
+    let angles = if pairs.is_empty() {
+        Vec::new()
+    } else {
+        problem.angles(&design.motion)?
+    };
+    Ok((design, angles))
 }

@@ -17,7 +17,10 @@
 use nalgebra::SVector;
 use rayon::prelude::*;
 
-use super::{check, room, BaseColumns, Criterion, ExciteError, Figures, Fourier, Limits};
+use super::{
+    check, room, separation_angles, BaseColumns, Criterion, ExciteError, Figures, Fourier, Limits,
+    Rival,
+};
 use crate::synth::Rng;
 use dynamics_runtime::control::Reference;
 use dynamics_runtime::Robot;
@@ -35,6 +38,9 @@ pub(crate) struct Problem<'a, R, const N: usize> {
     /// Times over one period where limits and the criterion are evaluated.
     pub grid: Vec<f64>,
     pub criterion: Criterion,
+    /// Rival pairs to separate: when given, the cost is minus the
+    /// smallest of their separation angles instead of the criterion.
+    pub pairs: &'a [(Rival, Rival)],
 }
 
 /// Fraction of the room used, for peaks between grid points.
@@ -83,13 +89,24 @@ impl<R: Robot<N> + Sync, const N: usize> Problem<'_, R, N> {
         Figures::of(&self.columns.stack(self.robot, &states)?)
     }
 
+    /// The separation angles of the pairs over the grid.
+    pub fn angles(&self, f: &Fourier<N>) -> Result<Vec<f64>, ExciteError> {
+        let states: Vec<Reference<N>> = self.grid.iter().map(|&t| f.at(t)).collect();
+        separation_angles(self.robot, self.columns, self.pairs, &states)
+    }
+
     /// The cost of coefficients `x` (infinite when nothing moves).
     fn cost(&self, x: &[f64]) -> f64 {
-        self.realise(x)
-            .and_then(|f| self.figures(&f).ok())
-            .map(|fig| fig.cost(self.criterion))
-            .filter(|c| c.is_finite())
-            .unwrap_or(f64::INFINITY)
+        let Some(f) = self.realise(x) else {
+            return f64::INFINITY;
+        };
+        let c = if self.pairs.is_empty() {
+            self.figures(&f).map(|fig| fig.cost(self.criterion))
+        } else {
+            self.angles(&f)
+                .map(|a| -a.iter().fold(f64::INFINITY, |m, &v| m.min(v)))
+        };
+        c.ok().filter(|c| c.is_finite()).unwrap_or(f64::INFINITY)
     }
 }
 

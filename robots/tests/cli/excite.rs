@@ -1,0 +1,147 @@
+//! `dynamics excite`: the motion file keeps the URDF's limits (read here
+//! from the URDF itself, not through the program), starts and ends at
+//! rest, carries the columns `simulate --motion` plays, and the program
+//! prints the designed and the default condition numbers.
+
+use std::path::Path;
+
+use crate::{dynamics, fails_with, read_json, succeeds, tmp, workspace};
+
+/// `(name, lower, upper, velocity)` of every joint of a URDF with a
+/// `<limit>` (a plain reading of the file, independent of the program).
+fn urdf_limits(urdf: &Path) -> Vec<(String, f64, f64, f64)> {
+    let text = std::fs::read_to_string(urdf).expect("urdf");
+    let attr = |s: &str, name: &str| -> Option<String> {
+        let at = s.find(&format!(" {name}=\""))? + name.len() + 3;
+        Some(s[at..at + s[at..].find('"')?].to_string())
+    };
+    let mut out = Vec::new();
+    for part in text.split("<joint ").skip(1) {
+        let body = &part[..part.find("</joint>").unwrap_or(part.len())];
+        let Some(limit) = body.find("<limit").map(|i| &body[i..]) else {
+            continue;
+        };
+        let name = attr(&format!(" {body}"), "name").expect("joint name");
+        let num = |a: &str| attr(limit, a).expect(a).parse::<f64>().expect("number");
+        out.push((name, num("lower"), num("upper"), num("velocity")));
+    }
+    out
+}
+
+/// The columns of a CSV file by header name.
+fn columns(csv: &Path) -> (Vec<String>, Vec<Vec<f64>>) {
+    let text = std::fs::read_to_string(csv).expect("csv");
+    let mut lines = text.lines();
+    let header: Vec<String> = lines
+        .next()
+        .expect("header")
+        .split(',')
+        .map(String::from)
+        .collect();
+    let mut cols = vec![Vec::new(); header.len()];
+    for l in lines {
+        for (c, v) in l.split(',').enumerate() {
+            cols[c].push(v.parse::<f64>().expect("number"));
+        }
+    }
+    (header, cols)
+}
+
+/// Asserts that every `q_<joint>` and `qd_<joint>` of the motion `csv`
+/// keeps the URDF's limits tightened by `margin`, and that the motion
+/// starts and ends at rest at the same pose.
+pub(crate) fn assert_within_urdf_limits(csv: &Path, urdf: &Path, margin: f64) {
+    let (header, cols) = columns(csv);
+    let col = |name: &str| {
+        let i = header.iter().position(|h| h == name);
+        &cols[i.unwrap_or_else(|| panic!("no column {name} in {header:?}"))]
+    };
+    let limits = urdf_limits(urdf);
+    assert!(!limits.is_empty());
+    for (j, lo, hi, v) in limits {
+        let half = 0.5 * margin * (hi - lo);
+        let (q, qd, qdd) = (
+            col(&format!("q_{j}")),
+            col(&format!("qd_{j}")),
+            col(&format!("qdd_{j}")),
+        );
+        for &x in q {
+            assert!(x >= lo + half - 1e-9 && x <= hi - half + 1e-9, "{j}: {x}");
+        }
+        for &x in qd {
+            assert!(x.abs() <= (1.0 - margin) * v + 1e-9, "{j}: {x}");
+        }
+        let n = q.len() - 1;
+        assert!((q[0] - q[n]).abs() < 1e-9, "{j}");
+        assert!(qd[0].abs() < 1e-9 && qd[n].abs() < 1e-9, "{j}");
+        assert!(qdd[0].abs() < 1e-8 && qdd[n].abs() < 1e-8, "{j}");
+    }
+}
+
+#[test]
+fn excite_writes_a_motion_within_the_urdf_limits_that_simulate_plays() {
+    let (csv, json) = (tmp("excite-panda.csv"), tmp("excite-panda.json"));
+    let said = succeeds(
+        dynamics()
+            .args([
+                "excite",
+                "--robot",
+                "panda",
+                "--duration",
+                "10",
+                "--rate",
+                "200",
+            ])
+            .args(["--evaluations", "200", "--out"])
+            .arg(&csv)
+            .arg("--json")
+            .arg(&json),
+    );
+    assert!(
+        said.contains("designed") && said.contains("default sines"),
+        "{said}"
+    );
+    assert_within_urdf_limits(&csv, &workspace().join("robots/data/urdf/panda.urdf"), 0.1);
+    let (header, cols) = columns(&csv);
+    assert_eq!(header[0], "t");
+    assert_eq!(header.len(), 1 + 3 * 7);
+    assert_eq!(cols[0].len(), 2001);
+    let d = read_json(&json);
+    assert_eq!(d["check"]["position"], true);
+    assert_eq!(d["check"]["effort"], true);
+    assert_eq!(d["sin"].as_array().expect("sin").len(), 5);
+    assert!(d["figures"]["condition"].as_f64().expect("condition") > 1.0);
+    let params = d["identifiability"]["parameters"]
+        .as_array()
+        .expect("params");
+    assert_eq!(
+        params.len() as u64,
+        d["base_parameters"].as_u64().expect("k")
+    );
+    assert!(!d["identifiability"]["unidentifiable"]
+        .as_array()
+        .expect("unidentifiable")
+        .is_empty());
+    // `simulate --motion` follows it.
+    let out = tmp("excite-sim");
+    let sim = succeeds(
+        dynamics()
+            .args(["simulate", "--robot", "panda", "--rate", "200", "--motion"])
+            .arg(&csv)
+            .arg("--out")
+            .arg(&out),
+    );
+    assert!(!sim.is_empty());
+}
+
+#[test]
+fn excite_refuses_a_start_outside_the_limits() {
+    fails_with(
+        dynamics()
+            .args(["excite", "--robot", "panda", "--duration", "5", "--from"])
+            .arg("3,0,0,-2,0,1.7,0.8")
+            .arg("--out")
+            .arg(tmp("never.csv")),
+        "start pose of joint `panda_joint1` (3)",
+    );
+}
