@@ -274,7 +274,8 @@ fn run<R: Robot<N> + Sync, const N: usize>(
     }
     let rest = robot.inverse_dynamics(&q0, &SVector::zeros(), &SVector::zeros());
     for j in 0..N {
-        if !(rest[j].abs() < tight.effort[j]) {
+        // NaN efforts fail too.
+        if rest[j].abs().partial_cmp(&tight.effort[j]) != Some(std::cmp::Ordering::Less) {
             return Err(ExciteError::StartEffort {
                 joint: R::JOINT_NAMES[j].to_string(),
                 need: rest[j].abs(),

@@ -145,3 +145,93 @@ fn excite_refuses_a_start_outside_the_limits() {
         "start pose of joint `panda_joint1` (3)",
     );
 }
+
+#[test]
+fn excite_separate_widens_the_smallest_angle_of_the_reports_pairs() {
+    let report = tmp("excite-report.json");
+    std::fs::write(
+        &report,
+        r#"{"which": {"verdict": {"kind": "coulomb_friction", "joint": "j2", "status": "ambiguous",
+            "rival": {"kind": "stribeck_friction", "joint": "j2"}},
+          "effects": [{"kind": "armature", "joint": "j3",
+            "ambiguous_with": {"kind": "inertial_parameters", "point": "link3"}}]}}"#,
+    )
+    .expect("writes");
+    let (csv, json) = (tmp("excite-sep.csv"), tmp("excite-sep.json"));
+    let said = succeeds(
+        dynamics()
+            .args([
+                "excite",
+                "--robot",
+                "arm3r",
+                "--duration",
+                "8",
+                "--rate",
+                "200",
+            ])
+            .args(["--evaluations", "300", "--separate"])
+            .arg(&report)
+            .arg("--out")
+            .arg(&csv)
+            .arg("--json")
+            .arg(&json),
+    );
+    assert!(
+        said.contains("coulomb_friction j2 vs stribeck_friction j2"),
+        "{said}"
+    );
+    let rows = read_json(&json)["separation"]
+        .as_array()
+        .expect("rows")
+        .clone();
+    assert_eq!(rows.len(), 2);
+    let min = |key: &str| {
+        rows.iter()
+            .map(|r| r[key].as_f64().expect("angle"))
+            .fold(f64::INFINITY, f64::min)
+    };
+    assert!(min("angle_deg") > min("default_angle_deg"), "{rows:?}");
+    // A payload against the distal link: no motion separates them.
+    std::fs::write(
+        &report,
+        r#"{"which": {"verdict": {"kind": "payload_mass", "status": "ambiguous",
+            "rival": {"kind": "inertial_parameters", "point": "link3"}}, "effects": []}}"#,
+    )
+    .expect("writes");
+    fails_with(
+        dynamics()
+            .args([
+                "excite",
+                "--robot",
+                "arm3r",
+                "--duration",
+                "4",
+                "--separate",
+            ])
+            .arg(&report)
+            .arg("--out")
+            .arg(&csv),
+        "no motion separates the two",
+    );
+}
+
+#[test]
+fn check_data_says_what_a_motion_cannot_identify() {
+    // Joint j1 still, j2 one slow ramp, j3 swinging: written here.
+    let data = tmp("check-data.csv");
+    let mut text = String::from("t,q_j1,q_j2,q_j3\n");
+    for k in 0..2000 {
+        let t = k as f64 * 0.005;
+        text.push_str(&format!("{t},0,{},{}\n", 0.01 * t, 0.5 * (2.0 * t).sin()));
+    }
+    std::fs::write(&data, text).expect("writes");
+    let said = succeeds(
+        dynamics()
+            .args(["check-data", "--robot", "arm3r", "--data"])
+            .arg(&data),
+    );
+    assert!(said.contains("joint j2 never reverses direction"), "{said}");
+    assert!(said.contains("joint j2 never exceeds 0.20 rad/s"), "{said}");
+    assert!(!said.contains("joint j3 never"), "{said}");
+    assert!(said.contains("weak direction"), "{said}");
+}
