@@ -37,9 +37,10 @@ const KEEP_TOLERANCE: f64 = 1e-5;
 /// let limits = Limits::<2>::new([-1.0; 2], [1.0; 2], [2.0; 2], [50.0; 2]);
 /// let cols = BaseColumns::of(&TwoLink::default(), &limits, 1).unwrap();
 /// // A planar 2R arm with friction, rotor inertia and offsets: 8 joint
-/// // columns, of which j1's rotor inertia merges with l1's I_zz, and
-/// // 4 base inertial parameters of the links (plus that merged one).
-/// assert_eq!(cols.kept.len(), 8 + 4);
+/// // columns (j1's rotor inertia absorbs l1's I_zz, the classical ZZ1R)
+/// // and 5 of the links: l1's two first moments (with l2's mass folded
+/// // in), l2's two first moments and its I_zz.
+/// assert_eq!(cols.kept.len(), 8 + 5);
 /// assert!(cols.names::<TwoLink>().iter().any(|n| n == "coulomb j2"));
 /// ```
 #[derive(Debug, Clone, PartialEq)]

@@ -15,9 +15,9 @@ use dynamics_runtime::Robot;
 ///
 /// ```
 /// use dynamics_sim2real::excite::Options;
-/// let o = Options::new(20.0);
+/// let o = Options::<2>::new(20.0);
 /// assert_eq!((o.harmonics, o.margin, o.period()), (5, 0.1, 5.0));
-/// assert_eq!(Options::new(8.0).period(), 4.0);
+/// assert_eq!(Options::<2>::new(8.0).period(), 4.0);
 /// ```
 #[derive(Debug, Clone, PartialEq)]
 pub struct Options<const N: usize> {
