@@ -235,3 +235,33 @@ fn check_data_says_what_a_motion_cannot_identify() {
     assert!(!said.contains("joint j3 never"), "{said}");
     assert!(said.contains("weak direction"), "{said}");
 }
+
+#[test]
+fn excite_keeps_an_acceleration_limit_when_given() {
+    let (csv, json) = (tmp("excite-acc.csv"), tmp("excite-acc.json"));
+    succeeds(
+        dynamics()
+            .args([
+                "excite",
+                "--robot",
+                "ur5",
+                "--duration",
+                "5",
+                "--rate",
+                "500",
+            ])
+            .args(["--evaluations", "100", "--acc-limit", "0.5", "--out"])
+            .arg(&csv)
+            .arg("--json")
+            .arg(&json),
+    );
+    let d = read_json(&json);
+    assert_eq!(d["check"]["acceleration"], true, "{d}");
+    // Read back from the CSV: every qdd within (1 - margin) 0.5.
+    let (header, cols) = columns(&csv);
+    for (h, c) in header.iter().zip(&cols) {
+        if h.starts_with("qdd_") {
+            assert!(c.iter().all(|v| v.abs() <= 0.45 + 1e-9), "{h}");
+        }
+    }
+}
