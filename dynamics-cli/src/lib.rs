@@ -2,7 +2,7 @@
 //! `robot!`: [`run`] is the whole program over one robot (a user's crate
 //! needs nothing else), [`run_set`] over robots chosen by name
 //! (`program`: the command line and its dispatch); its subcommands
-//! (`commands`, `diagnose`, `identify`, `simulate`, `scaffold` for `new`), the nominal
+//! (`commands`, `diagnose`, `identify`, `simulate`, `excite`, `scaffold` for `new`), the nominal
 //! model (`tune`: `--set`, `--baseline`), what the program knows of a robot
 //! besides its model (`info`), evaluation at given
 //! states and comparison with reference values (`eval`, `states`,
@@ -17,6 +17,7 @@ pub mod commands;
 pub mod compare;
 pub mod diagnose;
 pub mod eval;
+pub mod excite;
 pub mod gap;
 pub mod identify;
 pub mod info;
@@ -29,7 +30,7 @@ pub mod states;
 pub mod tune;
 pub mod warnings;
 
-pub use info::RobotInfo;
+pub use info::{JointLimits, RobotInfo};
 pub use program::{run, run_set, run_with, RobotSet, RobotVisitor};
 
 /// What every subcommand returns; `main` prints the error.

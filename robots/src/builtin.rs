@@ -119,6 +119,7 @@ impl dynamics_cli::RobotSet for Builtin {
             states: Some((file.to_string(), text.to_string())),
             reference_values: REFERENCE_VALUES.contains(&name),
             motion: motion(name),
+            limits: robot.limits(),
         };
         Some(crate::each_robot!(robot, r => visitor.visit(r, &info)))
     }

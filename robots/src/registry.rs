@@ -142,6 +142,37 @@ impl AnyRobot {
         })
     }
 
+    /// The joint limits of a URDF robot (`None` for the robots written by
+    /// hand, whose descriptions have none).
+    ///
+    /// ```
+    /// use robots::registry::AnyRobot;
+    /// let l = AnyRobot::by_name("panda").unwrap().limits().unwrap();
+    /// assert_eq!(l.effort[0], 87.0);
+    /// assert!(AnyRobot::by_name("arm3r").unwrap().limits().is_none());
+    /// ```
+    pub fn limits(&self) -> Option<dynamics_cli::JointLimits> {
+        macro_rules! of {
+            ($t:ty) => {
+                Some(dynamics_cli::JointLimits::of(
+                    <$t>::LOWER,
+                    <$t>::UPPER,
+                    <$t>::VELOCITY,
+                    <$t>::EFFORT,
+                ))
+            };
+        }
+        match self {
+            AnyRobot::Ur5(_) => of!(Ur5),
+            AnyRobot::Panda(_) => of!(Panda),
+            AnyRobot::PandaArm(_) => of!(PandaArm),
+            AnyRobot::Arm3rUrdf(_) => of!(Arm3rUrdf),
+            AnyRobot::RrpUrdf(_) => of!(RrpUrdf),
+            AnyRobot::MarUrdf(_) => of!(MarUrdf),
+            AnyRobot::Arm3r(_) | AnyRobot::Rrp(_) | AnyRobot::Mar(_) => None,
+        }
+    }
+
     /// Joint names in coordinate order.
     pub fn joint_names(&self) -> Vec<&'static str> {
         fn names<R: Robot<N>, const N: usize>(_: &R) -> Vec<&'static str> {

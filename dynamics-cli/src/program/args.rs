@@ -58,6 +58,10 @@ pub enum RobotCommand {
     Diagnose(DiagnoseArgs),
     /// Identify friction, offsets, rotor inertias and link inertial parameters by least squares.
     Identify(IdentifyArgs),
+    /// Design an exciting motion within the robot's limits: CSV of t, q, qd, qdd and its design as JSON.
+    Excite(crate::excite::ExciteArgs),
+    /// Say what a recorded motion can and cannot identify: reversals, velocity range, weak directions.
+    CheckData(crate::excite::CheckDataArgs),
 }
 
 /// `identify`.
@@ -300,6 +304,8 @@ impl RobotCommand {
             RobotCommand::Synth(_) => "synth",
             RobotCommand::Diagnose(_) => "diagnose",
             RobotCommand::Identify(_) => "identify",
+            RobotCommand::Excite(_) => "excite",
+            RobotCommand::CheckData(_) => "check-data",
         }
     }
 }

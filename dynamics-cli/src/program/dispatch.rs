@@ -119,6 +119,14 @@ pub fn run_on<R: Robot<N> + Clone + Sync, const N: usize>(
             };
             crate::identify::identify_cmd(&robot, file(a.train), file(a.holdout), a.json)
         }
+        RobotCommand::Excite(a) => {
+            let robot = nominal(robot, &a.model, None)?;
+            crate::excite::excite_cmd(&robot, info, &a)
+        }
+        RobotCommand::CheckData(a) => {
+            let robot = nominal(robot, &a.model, None)?;
+            crate::excite::check_data_cmd(&robot, info, &a)
+        }
     }
 }
 

@@ -123,7 +123,16 @@ fn run_set_on<S: RobotSet>(name: &str, set: &S, argv: Vec<std::ffi::OsString>) -
         .collect::<Vec<_>>()
         .join(", ");
     let mut cli = SetCli::command().name(leak(name));
-    for sub in ["check", "eval", "simulate", "synth", "diagnose", "identify"] {
+    for sub in [
+        "check",
+        "eval",
+        "simulate",
+        "synth",
+        "diagnose",
+        "identify",
+        "excite",
+        "check-data",
+    ] {
         let help = if sub == "check" {
             "Robot name (see `list`); default: every robot with reference values".to_string()
         } else {

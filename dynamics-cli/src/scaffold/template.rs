@@ -86,7 +86,10 @@ dynamics_macros::robot! {{
 }}
 
 fn main() -> std::process::ExitCode {{
-    dynamics_cli::run({name}::default())
+    // The URDF's joint limits: what `excite` designs within.
+    let limits = dynamics_cli::JointLimits::of({name}::LOWER, {name}::UPPER, {name}::VELOCITY, {name}::EFFORT);
+    let info = dynamics_cli::RobotInfo {{ limits: Some(limits), ..Default::default() }};
+    dynamics_cli::run_with({name}::default(), info)
 }}
 "#
     );

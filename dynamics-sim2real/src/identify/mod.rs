@@ -19,6 +19,7 @@
 mod columns;
 mod solve;
 
+pub(crate) use columns::all as columns_of;
 pub use columns::Column;
 
 use nalgebra::{DVector, SVector};

@@ -10,6 +10,7 @@ mod bags;
 mod baseline;
 mod diagnose;
 mod eval;
+mod excite;
 mod new;
 mod report;
 mod scenario;

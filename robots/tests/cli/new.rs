@@ -51,7 +51,8 @@ fn a_scaffolded_crate_builds_and_runs_the_whole_program() {
     );
     let main = std::fs::read_to_string(krate.join("src/main.rs")).expect("main.rs");
     assert!(
-        main.contains("pub robot MyArm;") && main.contains("dynamics_cli::run(MyArm::default())")
+        main.contains("pub robot MyArm;")
+            && main.contains("dynamics_cli::run_with(MyArm::default(), info)")
     );
     // The workspace's target directory and flags: its compiled crates are reused.
     let target = std::env::var_os("CARGO_TARGET_DIR")
@@ -137,6 +138,32 @@ fn a_scaffolded_crate_builds_and_runs_the_whole_program() {
     let v = &read_json(&report)["which"]["verdict"];
     assert_eq!(v["kind"], "viscous_friction", "{v}");
     assert_eq!(v["joint"], "wrist_1_joint", "{v}");
+    // An exciting motion within the URDF's limits (margin 0.1), checked
+    // here against the URDF's numbers read independently of the program.
+    let (motion, design) = (dir.join("excite.csv"), dir.join("excite.json"));
+    succeeds(
+        program()
+            .args([
+                "excite",
+                "--duration",
+                "10",
+                "--rate",
+                "200",
+                "--evaluations",
+                "100",
+            ])
+            .arg("--out")
+            .arg(&motion)
+            .arg("--json")
+            .arg(&design),
+    );
+    crate::excite::assert_within_urdf_limits(
+        &motion,
+        &workspace().join("robots/data/urdf/ur5.urdf"),
+        0.1,
+    );
+    let d = read_json(&design);
+    assert_eq!(d["check"]["effort"], true, "{d}");
     let _ = std::fs::remove_dir_all(&dir);
 }
 

@@ -7,6 +7,7 @@ mod diagnosis;
 mod effects;
 mod elastic_grip;
 mod environment;
+mod excite;
 mod identify;
 mod linearize;
 mod logs;
