@@ -267,6 +267,12 @@ fn entry(v: &Value) -> Result<Entry, String> {
             })
         })
         .collect::<Result<Vec<_>, String>>()?;
+    if v.get("window").is_some_and(|w| !w.is_null()) {
+        return Err(
+            "an effect limited in time (`window`) cannot be folded into a nominal model: remove the entry, or its window"
+                .into(),
+        );
+    }
     let point = match v.get("point") {
         None | Some(Value::Null) => None,
         Some(Value::String(s)) => Some(s.clone()),
