@@ -435,7 +435,13 @@ mod tests {
         let parsed = Cli::parse_from(["simulate"]).args;
         let own = SimulateArgs::default();
         assert_eq!(
-            (&parsed.motion, parsed.duration, parsed.rate, parsed.seed, parsed.bandwidth),
+            (
+                &parsed.motion,
+                parsed.duration,
+                parsed.rate,
+                parsed.seed,
+                parsed.bandwidth
+            ),
             (&own.motion, own.duration, own.rate, own.seed, own.bandwidth)
         );
         assert!(parsed.home.is_none() && parsed.amplitude.is_none() && parsed.effects.is_none());

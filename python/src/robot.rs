@@ -1,6 +1,8 @@
 //! The Python class `dynamics.Robot`: one robot's dynamics with NumPy in
 //! and out, its parameters and limits, and the gap diagnosis.
 
+use std::borrow::Cow;
+
 use dynamics_cli::gap::{Motion, Recording, SynthRequest};
 use dynamics_runtime::DynamicsError;
 use numpy::{PyArrayDyn, PyArrayMethods};
@@ -62,11 +64,16 @@ impl PyRobot {
                 shape
             })
             .collect();
-        let outs: Vec<(String, Bound<'py, PyArrayDyn<f64>>)> = match out {
-            Some(out) => arrays::out_buffers(out, &full)?,
+        // Names for messages; borrowed for new arrays (no allocation on the
+        // call path of a single state).
+        let outs: Vec<(Cow<'static, str>, Bound<'py, PyArrayDyn<f64>>)> = match out {
+            Some(out) => arrays::out_buffers(out, &full)?
+                .into_iter()
+                .map(|(name, a)| (Cow::Owned(name), a))
+                .collect(),
             None => full
                 .iter()
-                .map(|shape| ("result".to_string(), arrays::output(py, shape)))
+                .map(|shape| (Cow::Borrowed("result"), arrays::output(py, shape)))
                 .collect(),
         };
         {
