@@ -158,7 +158,9 @@ pub fn output<'py>(py: Python<'py>, shape: &[usize]) -> Bound<'py, PyArrayDyn<f6
 /// The caller's `out=` buffers for outputs of full shapes `shapes` (batch
 /// dimension included): one array for one output, a tuple or list of as
 /// many arrays as outputs otherwise; each float64, of exactly its shape,
-/// C-contiguous and writeable. Returns each with its name in messages.
+/// C-contiguous (whether it is writeable and has memory of its own is
+/// seen when it is borrowed for writing: [`write_error`]). Returns each
+/// with its name in messages.
 pub fn out_buffers<'py>(
     out: &Bound<'py, PyAny>,
     shapes: &[Vec<usize>],
@@ -191,27 +193,10 @@ pub fn out_buffers<'py>(
         .into_iter()
         .zip(shapes)
         .map(|((name, item), shape)| {
-            let untyped = item.cast::<PyUntypedArray>().map_err(|_| {
-                PyValueError::new_err(format!(
-                    "{name} is a {}, not a NumPy array: give a C-contiguous float64 array \
-                     of shape {}",
-                    item.get_type()
-                        .name()
-                        .map(|n| n.to_string())
-                        .unwrap_or_default(),
-                    shape_text(shape)
-                ))
-            })?;
-            let array = item.cast::<PyArrayDyn<f64>>().map_err(|_| {
-                PyValueError::new_err(format!(
-                    "{name} has dtype {}, expected float64",
-                    untyped
-                        .dtype()
-                        .str()
-                        .map(|s| s.to_string())
-                        .unwrap_or_default()
-                ))
-            })?;
+            let array = match item.cast::<PyArrayDyn<f64>>() {
+                Ok(array) => array.clone(),
+                Err(_) => return Err(not_float64(&name, &item, shape)),
+            };
             if array.shape() != shape.as_slice() {
                 return Err(PyValueError::new_err(format!(
                     "{name} has shape {}, expected {}",
@@ -226,11 +211,41 @@ pub fn out_buffers<'py>(
                     shape_text(shape)
                 )));
             }
-            let writeable: bool = item.getattr("flags")?.getattr("writeable")?.extract()?;
-            if !writeable {
-                return Err(PyValueError::new_err(format!("{name} is read-only")));
-            }
-            Ok((name, array.clone()))
+            // Whether it is writeable and has memory of its own is seen when
+            // it is borrowed for writing (`write_error`).
+            Ok((name, array))
         })
         .collect()
+}
+
+/// Why `item`, given as `name`, is not a float64 array.
+fn not_float64(name: &str, item: &Bound<'_, PyAny>, shape: &[usize]) -> PyErr {
+    match item.cast::<PyUntypedArray>() {
+        Ok(untyped) => PyValueError::new_err(format!(
+            "{name} has dtype {}, expected float64",
+            untyped
+                .dtype()
+                .str()
+                .map(|s| s.to_string())
+                .unwrap_or_default()
+        )),
+        Err(_) => PyValueError::new_err(format!(
+            "{name} is a {}, not a NumPy array: give a C-contiguous float64 array of shape {}",
+            item.get_type()
+                .name()
+                .map(|n| n.to_string())
+                .unwrap_or_default(),
+            shape_text(shape)
+        )),
+    }
+}
+
+/// The error for an output `name` that cannot be borrowed for writing.
+pub fn write_error(name: &str, e: numpy::BorrowError) -> PyErr {
+    match e {
+        numpy::BorrowError::NotWriteable => PyValueError::new_err(format!("{name} is read-only")),
+        _ => PyValueError::new_err(format!(
+            "{name} shares memory with an input or another output: give a buffer of its own"
+        )),
+    }
 }

@@ -79,14 +79,7 @@ impl PyRobot {
         {
             let mut guards = outs
                 .iter()
-                .map(|(name, o)| {
-                    o.try_readwrite().map_err(|_| {
-                        PyValueError::new_err(format!(
-                            "{name} shares memory with an input or another output: \
-                             give a buffer of its own"
-                        ))
-                    })
-                })
+                .map(|(name, o)| o.try_readwrite().map_err(|e| arrays::write_error(name, e)))
                 .collect::<PyResult<Vec<_>>>()?;
             let mut slices: Vec<&mut [f64]> = guards
                 .iter_mut()
