@@ -512,8 +512,16 @@ impl PyRobot {
         Ok(d)
     }
 
-    /// The robot under a computed-torque controller following a reference, as
-    /// `dynamics simulate` (see `dynamics.Robot.simulate` in the stubs).
+    /// The robot under a computed-torque controller on its own model following
+    /// a reference, as `dynamics simulate` (the same function and options):
+    /// `{"t": (T,), "q", "qd", "qdd", "tau", "reference": (T, N)}`.
+    ///
+    /// `motion`: "sines" (default), "chirp", "pick-place" or the path of a CSV
+    /// with columns `t, q_<joint>`. `duration` (s), `rate` (Hz), `seed`,
+    /// `bandwidth` (rad/s), `home` and `amplitude` (one value or one per
+    /// joint) as the flags. `effects` act on the simulated robot only,
+    /// `baseline` on it and on the controller's model: each a JSON file's path
+    /// or the document as a mapping (a diagnosis report dict works).
     #[pyo3(signature = (motion=None, *, duration=8.0, rate=1000.0, seed=1, bandwidth=12.0,
         home=None, amplitude=None, effects=None, baseline=None))]
     #[allow(clippy::too_many_arguments)]
@@ -547,8 +555,11 @@ impl PyRobot {
         )
     }
 
-    /// Least-squares identification, as `dynamics identify --json` (see
-    /// `dynamics.Robot.identify` in the stubs).
+    /// Least-squares identification of friction, offsets, rotor inertias and
+    /// link parameters on `train`, judged on `holdout`: the JSON of
+    /// `dynamics identify --json` as a dict. Data as for `diagnose` (paths,
+    /// DataFrames, mappings of arrays); `topic`: a ROS 2 bag's JointState
+    /// topic (default /joint_states). Data warnings go to the `dynamics` logger.
     #[pyo3(signature = (train, holdout, *, topic=None))]
     fn identify<'py>(
         &self,
