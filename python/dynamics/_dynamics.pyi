@@ -160,7 +160,7 @@ class Robot:
         writes them: ``{"train": csv_text, "holdout": csv_text, "truth": dict}``."""
     def simulate(
         self,
-        motion: Union[str, PathLike] = "sines",
+        motion: Union[str, PathLike, None] = None,
         *,
         duration: float = 8.0,
         rate: float = 1000.0,
@@ -177,7 +177,7 @@ class Robot:
         tau`` are the columns of the CSV the command line writes, ``reference`` the
         positions followed.
 
-        ``motion``: ``"sines"``, ``"chirp"``, ``"pick-place"`` (the data generator's
+        ``motion``: ``"sines"`` (``None``), ``"chirp"``, ``"pick-place"`` (the data generator's
         excitations, ``seed`` and ``duration`` as ``--seed``, ``--duration``), or the
         path of a CSV with columns ``t, q_<joint>`` (interpolated linearly; at most
         its own span). ``rate``: output samples per second. ``bandwidth``: the
