@@ -9,7 +9,7 @@
 //! report as the command line on a file holding the same numbers.
 
 use std::fmt::Write;
-use std::sync::atomic::{AtomicUsize, Ordering};
+use std::sync::Mutex;
 
 use dynamics_cli::gap::{parse_window, DataFile};
 use dynamics_sim2real::diagnose::{Options, SensorNoise};
@@ -36,15 +36,18 @@ pub struct Request<'a, 'py> {
 }
 
 /// Where the diagnosis reports its progress (`progress=`): nowhere
-/// (`None`, `False`), a callable `progress(done, total)`, a tqdm bar
+/// (`None`, `False`), a callable `progress(done, total)` (`done` never
+/// decreasing), a tqdm bar
 /// (`True`, when tqdm is installed: `tqdm.auto`, so a notebook gets its
 /// widget) or, `True` without tqdm, the logger `dynamics` at INFO every
 /// tenth of the candidates. Never raw writes to the terminal.
 enum Progress {
     Silent,
-    Callable(Py<PyAny>),
+    /// The callable and what it was last told.
+    Callable(Py<PyAny>, Told),
     Bar(Py<PyAny>),
-    Log(Py<PyAny>, AtomicUsize),
+    /// The logger and the last tenth logged.
+    Log(Py<PyAny>, Told),
 }
 
 impl Progress {
@@ -68,7 +71,7 @@ impl Progress {
                     let logger = py
                         .import("logging")?
                         .call_method1("getLogger", ("dynamics",))?;
-                    Progress::Log(logger.unbind(), AtomicUsize::new(0))
+                    Progress::Log(logger.unbind(), Told::default())
                 }
             });
         }
@@ -78,7 +81,7 @@ impl Progress {
                  or a callable progress(done, total)",
             ));
         }
-        Ok(Progress::Callable(obj.unbind()))
+        Ok(Progress::Callable(obj.unbind(), Told::default()))
     }
 
     /// `done` of `total` candidates fitted (called from worker threads).
@@ -89,19 +92,30 @@ impl Progress {
         Python::attach(|py| {
             let result = match self {
                 Progress::Silent => Ok(()),
-                Progress::Callable(cb) => cb.call1(py, (done, total)).map(drop),
+                Progress::Callable(cb, told) => {
+                    if told.advance(done, total) {
+                        cb.call1(py, (done, total)).map(drop)
+                    } else {
+                        Ok(())
+                    }
+                }
                 Progress::Bar(bar) => (|| -> PyResult<()> {
                     let bar = bar.bind(py);
-                    if bar.getattr("total")?.extract::<Option<usize>>()? != Some(total) {
-                        bar.setattr("total", total)?;
+                    match bar.getattr("total")?.extract::<Option<usize>>()? {
+                        Some(t) if t == total => {}
+                        // Another stage: the bar starts over.
+                        Some(_) => {
+                            bar.call_method1("reset", (total,))?;
+                        }
+                        None => bar.setattr("total", total)?,
                     }
                     let n: usize = bar.getattr("n")?.extract()?;
                     bar.call_method1("update", (done.saturating_sub(n),))?;
                     Ok(())
                 })(),
-                Progress::Log(logger, last) => {
+                Progress::Log(logger, told) => {
                     let tenth = (10 * done).checked_div(total).unwrap_or(10);
-                    if tenth > last.fetch_max(tenth, Ordering::SeqCst) {
+                    if tenth > 0 && told.advance(tenth, total) {
                         logger
                             .call_method1(
                                 py,
@@ -127,6 +141,29 @@ impl Progress {
                 e.write_unraisable(py, None);
             }
         }
+    }
+}
+
+/// What a progress sink was last told, `(total, count)`: worker threads
+/// report as they finish, not in order; under the GIL (so one at a time) a
+/// count not above the last one of the same total is dropped, so the sink
+/// sees counts that never decrease and ends on `(total, total)`. A new total
+/// (another stage) starts over.
+#[derive(Default)]
+struct Told(Mutex<(usize, usize)>);
+
+impl Told {
+    /// Whether `count` of `total` is news (and remembers it).
+    fn advance(&self, count: usize, total: usize) -> bool {
+        let mut last = self.0.lock().unwrap_or_else(|e| e.into_inner());
+        if last.0 != total {
+            *last = (total, 0);
+        }
+        if count > 0 && count <= last.1 {
+            return false;
+        }
+        last.1 = count;
+        true
     }
 }
 

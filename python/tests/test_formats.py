@@ -143,6 +143,9 @@ def test_progress_callable(small):
     calls = []
     dynamics.Robot("arm3r").diagnose(*small, progress=lambda k, n: calls.append((k, n)))
     assert calls and calls[-1][0] == calls[-1][1]
+    # Reported from worker threads, delivered in order: never decreasing.
+    done = [k for k, _ in calls]
+    assert done == sorted(done) and len(set(n for _, n in calls)) == 1
 
 
 def test_progress_true_without_tqdm_logs(small, monkeypatch, caplog):
