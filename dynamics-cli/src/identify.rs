@@ -7,7 +7,7 @@
 use std::path::PathBuf;
 
 use dynamics_runtime::Robot;
-use dynamics_sim2real::identify::{identify, Estimate, Options};
+use dynamics_sim2real::identify::{identify, Estimate, Identification, Options};
 use dynamics_sim2real::inertial::describe;
 use serde_json::{json, Value};
 
@@ -80,34 +80,54 @@ pub fn identify_cmd<R: Robot<N>, const N: usize>(
         100.0 * id.shrink
     );
     if let Some(path) = json_out {
-        let doc = json!({
-            "robot": R::NAME,
-            "rank": id.rank,
-            "columns": id.columns,
-            "train_rows": id.train_rows,
-            "shrink": id.shrink,
-            "joints": id.joints.iter().map(|t| json!({
-                "joint": t.joint,
-                "coulomb": estimate(t.coulomb),
-                "viscous": estimate(t.viscous),
-                "offset": estimate(t.offset),
-                "armature": estimate(t.armature),
-                "holdout_before": t.holdout_before,
-                "holdout_after": t.holdout_after,
-            })).collect::<Vec<_>>(),
-            "links": id.links.iter().map(|l| json!({
-                "link": l.link,
-                "nominal": l.nominal.as_slice(),
-                "delta": l.delta.iter().map(|e| estimate(*e)).collect::<Vec<_>>(),
-            })).collect::<Vec<_>>(),
-            "dropped": id.dropped.iter().map(|d| json!({
-                "column": d.column,
-                "combination": d.combination.iter().map(|(c, v)| json!({ "column": c, "coefficient": v })).collect::<Vec<_>>(),
-            })).collect::<Vec<_>>(),
-        });
+        let doc = to_json(R::NAME, &id);
         std::fs::write(&path, serde_json::to_string_pretty(&doc)?)
             .map_err(|e| format!("{}: {e}", path.display()))?;
         eprintln!("wrote {}", path.display());
     }
     Ok(())
+}
+
+/// The identification as the JSON `identify --json` writes: robot, rank,
+/// columns, training rows, shrink, per joint the friction, offset and
+/// rotor inertia estimates (`{value, std}`, `std` null where only a
+/// combination is determined) with the held-out RMS before and after, per
+/// link the nominal parameters and their corrections, and what was dropped.
+///
+/// ```
+/// use dynamics_sim2real::identify::Identification;
+/// let id = Identification {
+///     joints: vec![], links: vec![], columns: 12, rank: 9, dropped: vec![],
+///     train_rows: 3000, shrink: 0.25,
+/// };
+/// let doc = dynamics_cli::identify::to_json("arm", &id);
+/// assert_eq!(doc["robot"], "arm");
+/// assert_eq!((doc["rank"].as_u64(), doc["shrink"].as_f64()), (Some(9), Some(0.25)));
+/// ```
+pub fn to_json(robot: &str, id: &Identification) -> Value {
+    json!({
+        "robot": robot,
+        "rank": id.rank,
+        "columns": id.columns,
+        "train_rows": id.train_rows,
+        "shrink": id.shrink,
+        "joints": id.joints.iter().map(|t| json!({
+            "joint": t.joint,
+            "coulomb": estimate(t.coulomb),
+            "viscous": estimate(t.viscous),
+            "offset": estimate(t.offset),
+            "armature": estimate(t.armature),
+            "holdout_before": t.holdout_before,
+            "holdout_after": t.holdout_after,
+        })).collect::<Vec<_>>(),
+        "links": id.links.iter().map(|l| json!({
+            "link": l.link,
+            "nominal": l.nominal.as_slice(),
+            "delta": l.delta.iter().map(|e| estimate(*e)).collect::<Vec<_>>(),
+        })).collect::<Vec<_>>(),
+        "dropped": id.dropped.iter().map(|d| json!({
+            "column": d.column,
+            "combination": d.combination.iter().map(|(c, v)| json!({ "column": c, "coefficient": v })).collect::<Vec<_>>(),
+        })).collect::<Vec<_>>(),
+    })
 }

@@ -60,6 +60,31 @@ pub struct SimulateArgs {
     pub baseline: BaselineArgs,
 }
 
+impl Default for SimulateArgs {
+    /// The command line's defaults: sines for 8 s at 1 kHz, seed 1,
+    /// bandwidth 12 rad/s, the robot's home and amplitudes, no effects.
+    ///
+    /// ```
+    /// let args = dynamics_cli::simulate::SimulateArgs::default();
+    /// assert_eq!((args.motion.as_str(), args.duration, args.rate), ("sines", 8.0, 1000.0));
+    /// ```
+    fn default() -> Self {
+        SimulateArgs {
+            motion: "sines".into(),
+            duration: 8.0,
+            rate: 1000.0,
+            seed: 1,
+            bandwidth: 12.0,
+            home: None,
+            amplitude: None,
+            effects: None,
+            out: None,
+            model: ModelArgs::default(),
+            baseline: BaselineArgs::default(),
+        }
+    }
+}
+
 /// A reference the controller follows.
 enum Motion<const N: usize> {
     Excitation(Excitation<N>),
@@ -149,12 +174,44 @@ fn read_positions<const N: usize>(
     Ok((ts, qs))
 }
 
-/// Runs `simulate` on `robot` (the nominal model, baseline included).
-pub fn simulate<R: Robot<N> + Clone, const N: usize>(
+/// A simulated run: the robot's trajectory (sampled at the output rate) and
+/// the reference positions it followed, one per sample.
+#[derive(Debug, Clone)]
+pub struct Simulation<const N: usize> {
+    /// `t, q, qd, qdd, tau` per sample (what `simulate` writes as CSV).
+    pub trajectory: Trajectory<N>,
+    /// The reference positions at each sample.
+    pub reference: Vec<SVector<f64, N>>,
+    /// The simulated span, s (`--duration`, or a CSV reference's own span if shorter).
+    pub duration: f64,
+}
+
+/// What `simulate` computes, without writing anything: `robot` (the
+/// nominal model, baseline included) as the controller's model, and the
+/// plant `robot` plus `effects` (what `--effects` reads), under the
+/// computed-torque controller following `args.motion` (`args.effects`,
+/// `args.out` and the model flags are not read here).
+///
+/// ```
+/// use dynamics_cli::simulate::{simulation, SimulateArgs};
+/// use dynamics_cli::RobotInfo;
+/// dynamics_macros::robot! {
+///     pub robot Pendulum; gravity = [0.0, -9.81, 0.0];
+///     link base; link rod { mass = 1.0; com = [0.5, 0.0, 0.0]; inertia = [1e-3, 1e-2, 1e-2]; }
+///     joint j = revolute(base -> rod) { transfer = [rot_z(q)]; }
+/// }
+/// let args = SimulateArgs { duration: 0.5, rate: 100.0, ..SimulateArgs::default() };
+/// let run = simulation(&Pendulum::default(), &RobotInfo::default(), &args, Vec::new()).unwrap();
+/// assert_eq!((run.trajectory.t.len(), run.reference.len()), (51, 51));
+/// // Computed torque on the exact model tracks the reference closely.
+/// assert!((run.trajectory.q[50][0] - run.reference[50][0]).abs() < 1e-3);
+/// ```
+pub fn simulation<R: Robot<N> + Clone, const N: usize>(
     robot: &R,
     info: &RobotInfo,
     args: &SimulateArgs,
-) -> Res {
+    effects: Vec<dynamics_sim2real::effects::Effect>,
+) -> Result<Simulation<N>, Box<dyn std::error::Error>> {
     if !(args.rate.is_finite()
         && args.rate > 0.0
         && args.bandwidth.is_finite()
@@ -204,10 +261,6 @@ pub fn simulate<R: Robot<N> + Clone, const N: usize>(
             .into())
         }
     };
-    let effects = match &args.effects {
-        Some(path) => crate::tune::read_baseline::<R, N>(path)?,
-        None => Vec::new(),
-    };
     let plant = Plant::new(robot.clone(), effects)?;
     let w = args.bandwidth;
     let mut controller = ComputedTorque {
@@ -242,6 +295,29 @@ pub fn simulate<R: Robot<N> + Clone, const N: usize>(
                 .map_err(|e| format!("at t = {t:.3} s: {e}"))?;
         }
     }
+    Ok(Simulation {
+        trajectory: tr,
+        reference: refs,
+        duration,
+    })
+}
+
+/// Runs `simulate` on `robot` (the nominal model, baseline included):
+/// [`simulation`] with the effects of `--effects`, written to `--out`.
+pub fn simulate<R: Robot<N> + Clone, const N: usize>(
+    robot: &R,
+    info: &RobotInfo,
+    args: &SimulateArgs,
+) -> Res {
+    let effects = match &args.effects {
+        Some(path) => crate::tune::read_baseline::<R, N>(path)?,
+        None => Vec::new(),
+    };
+    let Simulation {
+        trajectory: tr,
+        reference: refs,
+        duration,
+    } = simulation(robot, info, args, effects)?;
     let dir = args
         .out
         .clone()
@@ -340,4 +416,34 @@ fn write_outputs<const N: usize>(
         std::fs::write(&path, text).map_err(|e| io(&path, e))?;
     }
     Ok(())
+}
+
+#[cfg(test)]
+mod tests {
+    use clap::Parser;
+
+    use super::SimulateArgs;
+
+    #[derive(Parser)]
+    struct Cli {
+        #[command(flatten)]
+        args: SimulateArgs,
+    }
+
+    #[test]
+    fn default_is_the_command_lines() {
+        let parsed = Cli::parse_from(["simulate"]).args;
+        let own = SimulateArgs::default();
+        assert_eq!(
+            (
+                &parsed.motion,
+                parsed.duration,
+                parsed.rate,
+                parsed.seed,
+                parsed.bandwidth
+            ),
+            (&own.motion, own.duration, own.rate, own.seed, own.bandwidth)
+        );
+        assert!(parsed.home.is_none() && parsed.amplitude.is_none() && parsed.effects.is_none());
+    }
 }

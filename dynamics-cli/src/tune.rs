@@ -150,7 +150,32 @@ pub fn read_baseline<R: Robot<N>, const N: usize>(path: &Path) -> Result<Vec<Eff
         file: file.clone(),
         source,
     })?;
-    let doc: Value = serde_json::from_str(&text).map_err(|source| TuneError::Json {
+    baseline_from_str::<R, N>(&text, &file)
+}
+
+/// [`read_baseline`] on the JSON text `text` of a baseline document;
+/// `file` names it in errors.
+///
+/// ```
+/// use dynamics_cli::tune::baseline_from_str;
+/// dynamics_macros::robot! {
+///     pub robot Pendulum; gravity = [0.0, -9.81, 0.0];
+///     link base; link rod { mass = 1.0; com = [1.0, 0.0, 0.0]; }
+///     joint j = revolute(base -> rod) { transfer = [rot_z(q)]; }
+/// }
+/// let text = r#"{"effects": [{"kind": "viscous_friction", "joint": "j",
+///     "parameters": [{"name": "fv", "value": 0.3}]}]}"#;
+/// let effects = baseline_from_str::<Pendulum, 1>(text, "mine.json").unwrap();
+/// assert_eq!(effects.len(), 1);
+/// let err = baseline_from_str::<Pendulum, 1>("{}", "mine.json").unwrap_err();
+/// assert!(err.to_string().starts_with("--baseline mine.json: top level:"));
+/// ```
+pub fn baseline_from_str<R: Robot<N>, const N: usize>(
+    text: &str,
+    file: &str,
+) -> Result<Vec<Effect>, TuneError> {
+    let file = file.to_string();
+    let doc: Value = serde_json::from_str(text).map_err(|source| TuneError::Json {
         file: file.clone(),
         source,
     })?;

@@ -57,10 +57,23 @@ def ours(big):
     rows["ours mass_matrix B=1"] = best(lambda: [arm.mass_matrix(q1) for _ in range(loop)], loop)
     rows["ours rnea_derivatives B=1"] = best(
         lambda: [arm.rnea_derivatives(q1, v1, a1) for _ in range(loop)], loop)
+    t1, m1 = np.empty(7), np.empty((7, 7))
+    rows["ours rnea out= B=1"] = best(
+        lambda: [arm.rnea(q1, v1, a1, out=t1) for _ in range(loop)], loop)
+    rows["ours mass_matrix out= B=1"] = best(
+        lambda: [arm.mass_matrix(q1, out=m1) for _ in range(loop)], loop)
+    rows["ours state_space B=1"] = best(
+        lambda: [arm.state_space(q1, v1, a1) for _ in range(loop)], loop)
+    rows["ours state_space dt=1e-3 B=1"] = best(
+        lambda: [arm.state_space(q1, v1, a1, 1e-3) for _ in range(loop)], loop)
     Q, V, A = data(big)
     rows[f"ours rnea B={big}"] = best(lambda: arm.rnea(Q, V, A), big)
     rows[f"ours mass_matrix B={big}"] = best(lambda: arm.mass_matrix(Q), big)
     rows[f"ours rnea_derivatives B={big}"] = best(lambda: arm.rnea_derivatives(Q, V, A), big)
+    T, M = np.empty((big, 7)), np.empty((big, 7, 7))
+    rows[f"ours rnea out= B={big}"] = best(lambda: arm.rnea(Q, V, A, out=T), big)
+    rows[f"ours mass_matrix out= B={big}"] = best(lambda: arm.mass_matrix(Q, out=M), big)
+    rows[f"ours state_space B={big}"] = best(lambda: arm.state_space(Q, V, A), big)
     return rows
 
 

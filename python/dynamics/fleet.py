@@ -7,7 +7,8 @@ by its scheduler's address: the same code) and returns a pandas DataFrame
 with one row per pair, in the order given. A pair that cannot be diagnosed
 (a missing or corrupt file, too few samples, ...) is a row whose ``error``
 says why: nothing is lost, nothing stops the others. Write the table with
-``df.to_parquet(path)`` (needs pyarrow) or ``df.to_csv(path)``.
+``to_parquet(table, path)`` (needs pyarrow; the column types fixed, so
+``values`` is a Parquet map whatever the rows hold) or ``table.to_csv(path)``.
 
 >>> from distributed import Client, LocalCluster
 >>> from dynamics.fleet import diagnose_many
@@ -96,3 +97,40 @@ def diagnose_many(client: Any, robot: Union[str, Sequence[str]], pairs: Iterable
         except Exception as e:  # the worker died or the task could not run
             rows.append(row(r, log, error=f"{type(e).__name__}: {e}"))
     return pd.DataFrame(rows, columns=COLUMNS)
+
+
+def parquet_schema():
+    """The table's Arrow schema: ``effects`` a list of strings, ``values`` a map
+    string -> float64 (a dict per row; a struct inferred from dicts would have
+    a field per name and none at all when every row's dict is empty, which
+    Parquet cannot hold), ``warnings`` int64."""
+    import pyarrow as pa
+
+    text = pa.string()
+    return pa.schema([
+        ("robot", text), ("log", text), ("verdict", text), ("place", text), ("status", text),
+        ("effects", pa.list_(text)), ("values", pa.map_(text, pa.float64())),
+        ("torque_shrink", pa.float64()), ("rms_shrink", pa.float64()),
+        ("simulation_shrink", pa.float64()), ("warnings", pa.int64()), ("error", text),
+    ])
+
+
+def to_parquet(table: Any, path: Any) -> None:
+    """Writes a ``diagnose_many`` table to the Parquet file ``path`` (needs pyarrow).
+
+    Read back with ``pandas.read_parquet(path)``: the same rows; ``values``
+    comes back as a list of ``(name, value)`` pairs per row (``dict(...)`` of
+    it is the row's dict), ``effects`` as an array of strings.
+    """
+    import pyarrow as pa
+    import pyarrow.parquet as pq
+
+    frame = table.copy()
+    frame["warnings"] = [None if missing(w) else int(w) for w in frame["warnings"]]
+    pq.write_table(pa.Table.from_pandas(frame, schema=parquet_schema(), preserve_index=False),
+                   path)
+
+
+def missing(x: Any) -> bool:
+    """Whether a cell is empty (None, or NaN as pandas fills a missing number)."""
+    return x is None or (isinstance(x, float) and x != x)

@@ -5,7 +5,9 @@
 
 use std::borrow::Cow;
 
-use numpy::{PyArrayDyn, PyArrayMethods, PyReadonlyArrayDyn, PyUntypedArrayMethods};
+use numpy::{
+    PyArrayDyn, PyArrayMethods, PyReadonlyArrayDyn, PyUntypedArray, PyUntypedArrayMethods,
+};
 use pyo3::exceptions::PyValueError;
 use pyo3::prelude::*;
 
@@ -77,7 +79,7 @@ impl Batch<'_> {
     }
 }
 
-fn shape_text(shape: &[usize]) -> String {
+pub fn shape_text(shape: &[usize]) -> String {
     match shape {
         [n] => format!("({n},)"),
         _ => format!(
@@ -151,4 +153,99 @@ pub fn check<'a>(args: &'a [Arg<'_>], n: usize) -> PyResult<Batch<'a>> {
 /// A new float64 array of `shape` with its entries as a mutable slice.
 pub fn output<'py>(py: Python<'py>, shape: &[usize]) -> Bound<'py, PyArrayDyn<f64>> {
     PyArrayDyn::<f64>::zeros(py, shape, false)
+}
+
+/// The caller's `out=` buffers for outputs of full shapes `shapes` (batch
+/// dimension included): one array for one output, a tuple or list of as
+/// many arrays as outputs otherwise; each float64, of exactly its shape,
+/// C-contiguous (whether it is writeable and has memory of its own is
+/// seen when it is borrowed for writing: [`write_error`]). Returns each
+/// with its name in messages.
+pub fn out_buffers<'py>(
+    out: &Bound<'py, PyAny>,
+    shapes: &[Vec<usize>],
+) -> PyResult<Vec<(String, Bound<'py, PyArrayDyn<f64>>)>> {
+    let wanted = || {
+        shapes
+            .iter()
+            .map(|s| shape_text(s))
+            .collect::<Vec<_>>()
+            .join(", ")
+    };
+    let items: Vec<(String, Bound<'py, PyAny>)> = if shapes.len() == 1 {
+        vec![("out".to_string(), out.clone())]
+    } else {
+        let is_sequence = out.is_instance_of::<pyo3::types::PyTuple>()
+            || out.is_instance_of::<pyo3::types::PyList>();
+        let n = if is_sequence { out.len()? } else { 0 };
+        if !is_sequence || n != shapes.len() {
+            return Err(PyValueError::new_err(format!(
+                "out: give a tuple of {} float64 arrays of shapes {}",
+                shapes.len(),
+                wanted()
+            )));
+        }
+        (0..n)
+            .map(|i| Ok((format!("out[{i}]"), out.get_item(i)?)))
+            .collect::<PyResult<_>>()?
+    };
+    items
+        .into_iter()
+        .zip(shapes)
+        .map(|((name, item), shape)| {
+            let array = match item.cast::<PyArrayDyn<f64>>() {
+                Ok(array) => array.clone(),
+                Err(_) => return Err(not_float64(&name, &item, shape)),
+            };
+            if array.shape() != shape.as_slice() {
+                return Err(PyValueError::new_err(format!(
+                    "{name} has shape {}, expected {}",
+                    shape_text(array.shape()),
+                    shape_text(shape)
+                )));
+            }
+            if !array.is_c_contiguous() {
+                return Err(PyValueError::new_err(format!(
+                    "{name} is not C-contiguous: give a C-contiguous float64 array \
+                     (numpy.empty({}))",
+                    shape_text(shape)
+                )));
+            }
+            // Whether it is writeable and has memory of its own is seen when
+            // it is borrowed for writing (`write_error`).
+            Ok((name, array))
+        })
+        .collect()
+}
+
+/// Why `item`, given as `name`, is not a float64 array.
+fn not_float64(name: &str, item: &Bound<'_, PyAny>, shape: &[usize]) -> PyErr {
+    match item.cast::<PyUntypedArray>() {
+        Ok(untyped) => PyValueError::new_err(format!(
+            "{name} has dtype {}, expected float64",
+            untyped
+                .dtype()
+                .str()
+                .map(|s| s.to_string())
+                .unwrap_or_default()
+        )),
+        Err(_) => PyValueError::new_err(format!(
+            "{name} is a {}, not a NumPy array: give a C-contiguous float64 array of shape {}",
+            item.get_type()
+                .name()
+                .map(|n| n.to_string())
+                .unwrap_or_default(),
+            shape_text(shape)
+        )),
+    }
+}
+
+/// The error for an output `name` that cannot be borrowed for writing.
+pub fn write_error(name: &str, e: numpy::BorrowError) -> PyErr {
+    match e {
+        numpy::BorrowError::NotWriteable => PyValueError::new_err(format!("{name} is read-only")),
+        _ => PyValueError::new_err(format!(
+            "{name} shares memory with an input or another output: give a buffer of its own"
+        )),
+    }
 }

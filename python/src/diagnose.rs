@@ -9,6 +9,7 @@
 //! report as the command line on a file holding the same numbers.
 
 use std::fmt::Write;
+use std::sync::Mutex;
 
 use dynamics_cli::gap::{parse_window, DataFile};
 use dynamics_sim2real::diagnose::{Options, SensorNoise};
@@ -25,6 +26,8 @@ pub struct Request<'a, 'py> {
     pub train: &'a Bound<'py, PyAny>,
     pub holdout: &'a Bound<'py, PyAny>,
     pub columns: Option<&'a str>,
+    /// The topic of a ROS 2 bag (`--topic`).
+    pub topic: Option<String>,
     pub train_window: Option<&'a Bound<'py, PyAny>>,
     pub holdout_window: Option<&'a Bound<'py, PyAny>>,
     /// `noise_tau`, `noise_q`, `noise_qd`.
@@ -32,8 +35,140 @@ pub struct Request<'a, 'py> {
     pub progress: Option<Bound<'py, PyAny>>,
 }
 
+/// Where the diagnosis reports its progress (`progress=`): nowhere
+/// (`None`, `False`), a callable `progress(done, total)` (`done` never
+/// decreasing), a tqdm bar
+/// (`True`, when tqdm is installed: `tqdm.auto`, so a notebook gets its
+/// widget) or, `True` without tqdm, the logger `dynamics` at INFO every
+/// tenth of the candidates. Never raw writes to the terminal.
+enum Progress {
+    Silent,
+    /// The callable and what it was last told.
+    Callable(Py<PyAny>, Told),
+    Bar(Py<PyAny>),
+    /// The logger and the last tenth logged.
+    Log(Py<PyAny>, Told),
+}
+
+impl Progress {
+    fn new(py: Python<'_>, obj: Option<Bound<'_, PyAny>>) -> PyResult<Self> {
+        let Some(obj) = obj else {
+            return Ok(Progress::Silent);
+        };
+        if obj.is_instance_of::<pyo3::types::PyBool>() {
+            if !obj.extract::<bool>()? {
+                return Ok(Progress::Silent);
+            }
+            return Ok(match py.import("tqdm.auto") {
+                Ok(tqdm) => {
+                    let kwargs = pyo3::types::PyDict::new(py);
+                    kwargs.set_item("desc", "diagnose: fitting candidates")?;
+                    kwargs.set_item("unit", "fit")?;
+                    kwargs.set_item("leave", false)?;
+                    Progress::Bar(tqdm.getattr("tqdm")?.call((), Some(&kwargs))?.unbind())
+                }
+                Err(_) => {
+                    let logger = py
+                        .import("logging")?
+                        .call_method1("getLogger", ("dynamics",))?;
+                    Progress::Log(logger.unbind(), Told::default())
+                }
+            });
+        }
+        if !obj.is_callable() {
+            return Err(PyTypeError::new_err(
+                "progress: give True (a tqdm bar, or log lines without tqdm), \
+                 or a callable progress(done, total)",
+            ));
+        }
+        Ok(Progress::Callable(obj.unbind(), Told::default()))
+    }
+
+    /// `done` of `total` candidates fitted (called from worker threads).
+    fn update(&self, done: usize, total: usize) {
+        if let Progress::Silent = self {
+            return;
+        }
+        Python::attach(|py| {
+            let result = match self {
+                Progress::Silent => Ok(()),
+                Progress::Callable(cb, told) => {
+                    if told.advance(done, total) {
+                        cb.call1(py, (done, total)).map(drop)
+                    } else {
+                        Ok(())
+                    }
+                }
+                Progress::Bar(bar) => (|| -> PyResult<()> {
+                    let bar = bar.bind(py);
+                    match bar.getattr("total")?.extract::<Option<usize>>()? {
+                        Some(t) if t == total => {}
+                        // Another stage: the bar starts over.
+                        Some(_) => {
+                            bar.call_method1("reset", (total,))?;
+                        }
+                        None => bar.setattr("total", total)?,
+                    }
+                    let n: usize = bar.getattr("n")?.extract()?;
+                    bar.call_method1("update", (done.saturating_sub(n),))?;
+                    Ok(())
+                })(),
+                Progress::Log(logger, told) => {
+                    let tenth = (10 * done).checked_div(total).unwrap_or(10);
+                    if tenth > 0 && told.advance(tenth, total) {
+                        logger
+                            .call_method1(
+                                py,
+                                "info",
+                                (format!("diagnose: {done} of {total} candidates fitted"),),
+                            )
+                            .map(drop)
+                    } else {
+                        Ok(())
+                    }
+                }
+            };
+            if let Err(e) = result {
+                e.write_unraisable(py, None);
+            }
+        });
+    }
+
+    /// Closes a bar.
+    fn close(&self, py: Python<'_>) {
+        if let Progress::Bar(bar) = self {
+            if let Err(e) = bar.call_method0(py, "close") {
+                e.write_unraisable(py, None);
+            }
+        }
+    }
+}
+
+/// What a progress sink was last told, `(total, count)`: worker threads
+/// report as they finish, not in order; under the GIL (so one at a time) a
+/// count not above the last one of the same total is dropped, so the sink
+/// sees counts that never decrease and ends on `(total, total)`. A new total
+/// (another stage) starts over.
+#[derive(Default)]
+struct Told(Mutex<(usize, usize)>);
+
+impl Told {
+    /// Whether `count` of `total` is news (and remembers it).
+    fn advance(&self, count: usize, total: usize) -> bool {
+        let mut last = self.0.lock().unwrap_or_else(|e| e.into_inner());
+        if last.0 != total {
+            *last = (total, 0);
+        }
+        if count > 0 && count <= last.1 {
+            return false;
+        }
+        last.1 = count;
+        true
+    }
+}
+
 /// A window as `"A:B"` or `(A, B)`, checked as the command line checks it.
-fn window(obj: Option<&Bound<'_, PyAny>>, what: &str) -> PyResult<Option<(f64, f64)>> {
+pub(crate) fn window(obj: Option<&Bound<'_, PyAny>>, what: &str) -> PyResult<Option<(f64, f64)>> {
     let Some(obj) = obj else { return Ok(None) };
     let text = match obj.extract::<String>() {
         Ok(s) => s,
@@ -52,7 +187,7 @@ fn window(obj: Option<&Bound<'_, PyAny>>, what: &str) -> PyResult<Option<(f64, f
 }
 
 /// One value or one per joint.
-fn levels(obj: Option<&Bound<'_, PyAny>>, what: &str) -> PyResult<Option<Vec<f64>>> {
+pub(crate) fn levels(obj: Option<&Bound<'_, PyAny>>, what: &str) -> PyResult<Option<Vec<f64>>> {
     let Some(obj) = obj else { return Ok(None) };
     if let Ok(x) = obj.extract::<f64>() {
         return Ok(Some(vec![x]));
@@ -127,10 +262,11 @@ fn csv_of_mapping(obj: &Bound<'_, PyAny>, joints: &[&str], what: &str) -> PyResu
 }
 
 /// Where `obj` (a path, a DataFrame or a mapping of arrays) has its data.
-fn source(
+pub(crate) fn source(
     obj: &Bound<'_, PyAny>,
     what: &str,
     columns: Option<&str>,
+    topic: Option<&str>,
     window: Option<(f64, f64)>,
     joints: &[&str],
 ) -> PyResult<Source> {
@@ -148,8 +284,13 @@ fn source(
             path: path.into(),
             columns,
             window,
-            topic: None,
+            topic: topic.map(str::to_string),
         })));
+    }
+    if let Some(topic) = topic {
+        return Err(PyValueError::new_err(format!(
+            "{what}: topic {topic} reads a ROS 2 bag; data in memory have no topics"
+        )));
     }
     if columns.is_some() {
         return Err(PyValueError::new_err(format!(
@@ -188,6 +329,7 @@ pub fn run<'py>(
         req.train,
         "train",
         req.columns,
+        req.topic.as_deref(),
         window(req.train_window, "train_window")?,
         &joints,
     )?;
@@ -195,6 +337,7 @@ pub fn run<'py>(
         req.holdout,
         "holdout",
         req.columns,
+        req.topic.as_deref(),
         window(req.holdout_window, "holdout_window")?,
         &joints,
     )?;
@@ -216,20 +359,12 @@ pub fn run<'py>(
         }),
         ..Options::default()
     };
-    let callback: Option<Py<PyAny>> = req.progress.map(Bound::unbind);
-    let progress = |done: usize, total: usize| {
-        if let Some(cb) = &callback {
-            Python::attach(|py| {
-                if let Err(e) = cb.call1(py, (done, total)) {
-                    e.write_unraisable(py, None);
-                }
-            });
-        }
-    };
+    let reporter = Progress::new(py, req.progress)?;
+    let progress = |done: usize, total: usize| reporter.update(done, total);
     let kernel = &robot.kernel;
-    let (report, warnings) = py
-        .detach(|| kernel.diagnose(&train, &holdout, &options, &progress))
-        .map_err(|e| PyValueError::new_err(e.to_string()))?;
+    let result = py.detach(|| kernel.diagnose(&train, &holdout, &options, &progress));
+    reporter.close(py);
+    let (report, warnings) = result.map_err(|e| PyValueError::new_err(e.to_string()))?;
     let logger = py
         .import("logging")?
         .call_method1("getLogger", ("dynamics",))?;

@@ -7,9 +7,16 @@
 use std::path::PathBuf;
 
 use dynamics_cli::gap::{self, DataFile, GapError, Motion, SynthOutput, SynthRequest};
-use dynamics_runtime::{linearize, DynamicsError, Parameters, Robot};
+use dynamics_cli::identify::to_json as identify_json;
+use dynamics_cli::simulate::{simulation, SimulateArgs};
+use dynamics_cli::tune::baseline_from_str;
+use dynamics_cli::RobotInfo;
+use dynamics_runtime::linearize::{self, BlockMatrix, DiscretizeError};
+use dynamics_runtime::{DynamicsError, Parameters, Robot};
 use dynamics_sim2real::data::{read_csv_str, Measured};
 use dynamics_sim2real::diagnose::{diagnose, Options, Report};
+use dynamics_sim2real::effects::Calibrated;
+use dynamics_sim2real::identify::{identify, Options as IdentifyOptions};
 use nalgebra::{SMatrix, SVector};
 use rayon::prelude::*;
 
@@ -23,7 +30,7 @@ pub const PARALLEL_FROM: usize = 64;
 const CHUNK: usize = 32;
 
 /// What a batch call computes.
-#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+#[derive(Debug, Clone, Copy, PartialEq)]
 pub enum Quantity {
     /// Inverse dynamics `tau(q, v, a)`.
     Rnea,
@@ -49,6 +56,10 @@ pub enum Quantity {
     PotentialEnergy,
     /// World pose of a frame (its index), 4 x 4.
     FramePose(usize),
+    /// The continuous state-space model `(A_c, B_c)` at `(q, v, tau)`.
+    StateSpace,
+    /// Its zero-order-hold discretisation `(A_d, B_d)` for a step (s).
+    StateSpaceDiscrete(f64),
 }
 
 impl Quantity {
@@ -61,9 +72,23 @@ impl Quantity {
             | Quantity::PotentialEnergy
             | Quantity::FramePose(_) => &["q"],
             Quantity::Nle | Quantity::CoriolisMatrix | Quantity::KineticEnergy => &["q", "v"],
-            Quantity::Aba | Quantity::AbaDerivatives => &["q", "v", "tau"],
+            Quantity::Aba
+            | Quantity::AbaDerivatives
+            | Quantity::StateSpace
+            | Quantity::StateSpaceDiscrete(_) => &["q", "v", "tau"],
         }
     }
+}
+
+/// Why one state of a call failed.
+#[derive(Debug, thiserror::Error)]
+pub enum StateError {
+    /// The dynamics failed (a mass matrix not positive definite, ...).
+    #[error(transparent)]
+    Dynamics(#[from] DynamicsError),
+    /// The state-space model could not be discretised.
+    #[error(transparent)]
+    Discretize(#[from] DiscretizeError),
 }
 
 /// A batch call that failed at one state.
@@ -73,7 +98,7 @@ pub struct BatchError {
     /// Index of the state in the batch.
     pub state: usize,
     /// The cause.
-    pub source: DynamicsError,
+    pub source: StateError,
 }
 
 /// Where data for the diagnosis come from.
@@ -95,14 +120,25 @@ pub enum Source {
 
 impl Source {
     fn read<const N: usize>(&self, joints: &[&str; N]) -> Result<Measured<N>, GapError> {
+        Ok(self.read_described(joints)?.0)
+    }
+
+    /// The data, and for a bag what was read (file, topic, messages, time range).
+    fn read_described<const N: usize>(
+        &self,
+        joints: &[&str; N],
+    ) -> Result<(Measured<N>, Option<String>), GapError> {
         match self {
-            Source::File(f) => f.read(joints),
+            Source::File(f) => f.read_described(joints),
             Source::Csv { text, name, window } => {
                 let m = read_csv_str(text, joints, name)?;
-                Ok(match window {
-                    Some((a, b)) => m.window(*a, *b),
-                    None => m,
-                })
+                Ok((
+                    match window {
+                        Some((a, b)) => m.window(*a, *b),
+                        None => m,
+                    },
+                    None,
+                ))
             }
         }
     }
@@ -119,6 +155,45 @@ impl Source {
     pub fn path(path: impl Into<PathBuf>) -> Self {
         Source::File(Box::new(DataFile::csv(path)))
     }
+}
+
+/// A baseline document (`--baseline`, `--effects`): its JSON text and its
+/// name in errors (the file, or what the Python argument was).
+#[derive(Debug, Clone)]
+pub struct EffectsDoc {
+    /// The JSON text.
+    pub text: String,
+    /// Its name in messages.
+    pub name: String,
+}
+
+/// What `simulate` gives, as flat row-major arrays of `T` samples.
+#[derive(Debug, Clone, Default)]
+pub struct SimulationArrays {
+    /// Times, `T`.
+    pub t: Vec<f64>,
+    /// Positions, `T x N`.
+    pub q: Vec<f64>,
+    /// Velocities, `T x N`.
+    pub qd: Vec<f64>,
+    /// Accelerations, `T x N`.
+    pub qdd: Vec<f64>,
+    /// Efforts, `T x N`.
+    pub tau: Vec<f64>,
+    /// Reference positions, `T x N`.
+    pub reference: Vec<f64>,
+}
+
+/// What `identify` gives: the JSON of `identify --json`, the data's
+/// warnings as the command line prints them, and what was read of bags.
+#[derive(Debug, Clone)]
+pub struct IdentifyOutput {
+    /// The result (`dynamics_cli::identify::to_json`).
+    pub json: serde_json::Value,
+    /// Warnings about the data, one line each.
+    pub warnings: Vec<String>,
+    /// For each bag read: file, topic, messages, time range.
+    pub about: Vec<String>,
 }
 
 /// Joint limits (URDF `<limit>`; infinite where none).
@@ -205,6 +280,17 @@ pub trait Kernel: Send + Sync {
         req: &SynthRequest,
         rec: &gap::Recording,
     ) -> Result<SynthOutput, GapError>;
+    /// `dynamics simulate`: the robot plus `baseline` as the controller's
+    /// model, and plus `effects` as the plant, following `args.motion`.
+    fn simulate(
+        &self,
+        info: &RobotInfo,
+        args: &SimulateArgs,
+        baseline: Option<&EffectsDoc>,
+        effects: Option<&EffectsDoc>,
+    ) -> Result<SimulationArrays, String>;
+    /// `dynamics identify` on `train` against `holdout`.
+    fn identify(&self, train: &Source, holdout: &Source) -> Result<IdentifyOutput, String>;
     /// A copy.
     fn boxed_clone(&self) -> Box<dyn Kernel>;
 }
@@ -249,6 +335,21 @@ impl Out<'_, '_> {
         }
     }
 
+    /// Writes a block matrix row-major into output `o`.
+    fn blocks<const N: usize, const R: usize, const C: usize>(
+        &mut self,
+        o: usize,
+        m: &BlockMatrix<N, R, C>,
+    ) {
+        let out = self.get(o);
+        let cols = C * N;
+        for i in 0..R * N {
+            for j in 0..cols {
+                out[i * cols + j] = m[(i, j)];
+            }
+        }
+    }
+
     /// Writes a vector into output `o`.
     fn vector<const R: usize>(&mut self, o: usize, v: &SVector<f64, R>) {
         self.get(o).copy_from_slice(v.as_slice());
@@ -266,7 +367,7 @@ fn run<const N: usize, S, F>(
     f: F,
 ) -> Result<(), BatchError>
 where
-    F: Fn(&mut S, [SVector<f64, N>; 3], &mut Out) -> Result<(), DynamicsError> + Sync,
+    F: Fn(&mut S, [SVector<f64, N>; 3], &mut Out) -> Result<(), StateError> + Sync,
 {
     let sizes: Vec<usize> = outs.iter().map(|o| o.len() / batch.max(1)).collect();
     let load = |k: usize| -> [SVector<f64, N>; 3] {
@@ -354,6 +455,9 @@ where
             Quantity::Regressor => vec![vec![N, 10 * l]],
             Quantity::KineticEnergy | Quantity::PotentialEnergy => vec![vec![]],
             Quantity::FramePose(_) => vec![vec![4, 4]],
+            Quantity::StateSpace | Quantity::StateSpaceDiscrete(_) => {
+                vec![vec![2 * N, 2 * N], vec![2 * N, N]]
+            }
         }
     }
 
@@ -447,6 +551,22 @@ where
                     Ok(())
                 })
             }
+            Quantity::StateSpace => {
+                run::<N, _, _>(batch, inputs, outs, none, |_, [q, v, tau], o| {
+                    let ss = linearize::state_space(r, &q, &v, &tau)?;
+                    o.blocks(0, &ss.a);
+                    o.blocks(1, &ss.b);
+                    Ok(())
+                })
+            }
+            Quantity::StateSpaceDiscrete(h) => {
+                run::<N, _, _>(batch, inputs, outs, none, |_, [q, v, tau], o| {
+                    let d = linearize::state_space(r, &q, &v, &tau)?.discretize(h)?;
+                    o.blocks(0, &d.a);
+                    o.blocks(1, &d.b);
+                    Ok(())
+                })
+            }
         }
     }
 
@@ -473,6 +593,60 @@ where
         rec: &gap::Recording,
     ) -> Result<SynthOutput, GapError> {
         gap::synth_recorded(&self.0, motion, req, rec)
+    }
+
+    fn simulate(
+        &self,
+        info: &RobotInfo,
+        args: &SimulateArgs,
+        baseline: Option<&EffectsDoc>,
+        effects: Option<&EffectsDoc>,
+    ) -> Result<SimulationArrays, String> {
+        // As `dynamics simulate`: the nominal model with the baseline folded
+        // in, and the effects read for that model.
+        let base = match baseline {
+            Some(d) => baseline_from_str::<R, N>(&d.text, &d.name).map_err(|e| e.to_string())?,
+            None => Vec::new(),
+        };
+        let model = Calibrated::new(self.0.clone(), base).map_err(|e| format!("baseline: {e}"))?;
+        let effects = match effects {
+            Some(d) => baseline_from_str::<Calibrated<R, N>, N>(&d.text, &d.name)
+                .map_err(|e| e.to_string())?,
+            None => Vec::new(),
+        };
+        let run = simulation(&model, info, args, effects).map_err(|e| e.to_string())?;
+        let flat = |v: &[SVector<f64, N>]| -> Vec<f64> {
+            v.iter().flat_map(|x| x.iter().copied()).collect()
+        };
+        let tr = &run.trajectory;
+        Ok(SimulationArrays {
+            t: tr.t.clone(),
+            q: flat(&tr.q),
+            qd: flat(&tr.qd),
+            qdd: flat(&tr.qdd),
+            tau: flat(&tr.tau),
+            reference: flat(&run.reference),
+        })
+    }
+
+    fn identify(&self, train: &Source, holdout: &Source) -> Result<IdentifyOutput, String> {
+        // What `dynamics_cli::identify::identify_cmd` does, with sources
+        // that may be in memory, on the same (uncalibrated) nominal model.
+        let model = Calibrated::new(self.0.clone(), Vec::new()).map_err(|e| e.to_string())?;
+        let (a, about_a) = train
+            .read_described(&R::JOINT_NAMES)
+            .map_err(|e| e.to_string())?;
+        let (b, about_b) = holdout
+            .read_described(&R::JOINT_NAMES)
+            .map_err(|e| e.to_string())?;
+        let all: Vec<_> = a.warnings.iter().chain(&b.warnings).cloned().collect();
+        let id =
+            identify(&model, &a, &b, &IdentifyOptions::default()).map_err(|e| e.to_string())?;
+        Ok(IdentifyOutput {
+            json: identify_json(<Calibrated<R, N> as Robot<N>>::NAME, &id),
+            warnings: dynamics_cli::warnings::lines(&all),
+            about: about_a.into_iter().chain(about_b).collect(),
+        })
     }
 
     fn boxed_clone(&self) -> Box<dyn Kernel> {

@@ -22,6 +22,7 @@ mod builtin;
 mod diagnose;
 mod kernel;
 mod robot;
+mod tasks;
 
 use std::sync::OnceLock;
 

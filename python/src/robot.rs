@@ -1,6 +1,8 @@
 //! The Python class `dynamics.Robot`: one robot's dynamics with NumPy in
 //! and out, its parameters and limits, and the gap diagnosis.
 
+use std::borrow::Cow;
+
 use dynamics_cli::gap::{Motion, Recording, SynthRequest};
 use dynamics_runtime::DynamicsError;
 use numpy::{PyArrayDyn, PyArrayMethods};
@@ -35,13 +37,15 @@ impl PyRobot {
         self.kernel.joint_names().len()
     }
 
-    /// Evaluates `what` on the arguments; returns its outputs (an array
-    /// each; a float for a scalar of one state).
+    /// Evaluates `what` on the arguments into new arrays, or into `out`
+    /// (see [`arrays::out_buffers`]); returns its outputs (an array each;
+    /// a float for a scalar of one state).
     fn compute<'py>(
         &self,
         py: Python<'py>,
         what: Quantity,
         objs: &[&Bound<'py, PyAny>],
+        out: Option<&Bound<'py, PyAny>>,
     ) -> PyResult<Vec<Bound<'py, PyAny>>> {
         let names = what.inputs();
         let args = names
@@ -51,17 +55,32 @@ impl PyRobot {
             .collect::<PyResult<Vec<_>>>()?;
         let batch = arrays::check(&args, self.nq_())?;
         let shapes = self.kernel.out_shapes(what);
-        let outs: Vec<Bound<'py, PyArrayDyn<f64>>> = shapes
+        let full: Vec<Vec<usize>> = shapes
             .iter()
             .map(|s| {
                 let mut shape = Vec::with_capacity(s.len() + 1);
                 shape.extend(batch.batch);
                 shape.extend(s);
-                arrays::output(py, &shape)
+                shape
             })
             .collect();
+        // Names for messages; borrowed for new arrays (no allocation on the
+        // call path of a single state).
+        let outs: Vec<(Cow<'static, str>, Bound<'py, PyArrayDyn<f64>>)> = match out {
+            Some(out) => arrays::out_buffers(out, &full)?
+                .into_iter()
+                .map(|(name, a)| (Cow::Owned(name), a))
+                .collect(),
+            None => full
+                .iter()
+                .map(|shape| (Cow::Borrowed("result"), arrays::output(py, shape)))
+                .collect(),
+        };
         {
-            let mut guards: Vec<_> = outs.iter().map(|o| o.readwrite()).collect();
+            let mut guards = outs
+                .iter()
+                .map(|(name, o)| o.try_readwrite().map_err(|e| arrays::write_error(name, e)))
+                .collect::<PyResult<Vec<_>>>()?;
             let mut slices: Vec<&mut [f64]> = guards
                 .iter_mut()
                 .map(|g| g.as_slice_mut())
@@ -83,7 +102,7 @@ impl PyRobot {
         }
         outs.into_iter()
             .zip(&shapes)
-            .map(|(o, s)| -> PyResult<Bound<'py, PyAny>> {
+            .map(|((_, o), s)| -> PyResult<Bound<'py, PyAny>> {
                 if s.is_empty() && batch.batch.is_none() {
                     let x = o
                         .readonly()
@@ -103,8 +122,9 @@ impl PyRobot {
         py: Python<'py>,
         what: Quantity,
         objs: &[&Bound<'py, PyAny>],
+        out: Option<&Bound<'py, PyAny>>,
     ) -> PyResult<Bound<'py, PyAny>> {
-        let mut v = self.compute(py, what, objs)?;
+        let mut v = self.compute(py, what, objs, out)?;
         v.pop().ok_or_else(|| PyValueError::new_err("no result"))
     }
 
@@ -113,8 +133,9 @@ impl PyRobot {
         py: Python<'py>,
         what: Quantity,
         objs: &[&Bound<'py, PyAny>],
+        out: Option<&Bound<'py, PyAny>>,
     ) -> PyResult<Bound<'py, PyTuple>> {
-        PyTuple::new(py, self.compute(py, what, objs)?)
+        PyTuple::new(py, self.compute(py, what, objs, out)?)
     }
 }
 
@@ -238,92 +259,170 @@ impl PyRobot {
     }
 
     /// Inverse dynamics: the efforts `tau` that give accelerations `a`.
+    ///
+    /// `out`: a C-contiguous float64 array of the result's shape, written in
+    /// place and returned (ValueError naming it when it does not fit).
+    #[pyo3(signature = (q, v, a, *, out=None))]
     fn rnea<'py>(
         &self,
         py: Python<'py>,
         q: &Bound<'py, PyAny>,
         v: &Bound<'py, PyAny>,
         a: &Bound<'py, PyAny>,
+        out: Option<&Bound<'py, PyAny>>,
     ) -> PyResult<Bound<'py, PyAny>> {
-        self.one(py, Quantity::Rnea, &[q, v, a])
+        self.one(py, Quantity::Rnea, &[q, v, a], out)
     }
 
     /// The inertia matrix `M(q)`, `(N, N)` or `(B, N, N)`.
+    ///
+    /// `out`: a C-contiguous float64 array of the result's shape, written in
+    /// place and returned (ValueError naming it when it does not fit).
+    #[pyo3(signature = (q, *, out=None))]
     fn mass_matrix<'py>(
         &self,
         py: Python<'py>,
         q: &Bound<'py, PyAny>,
+        out: Option<&Bound<'py, PyAny>>,
     ) -> PyResult<Bound<'py, PyAny>> {
-        self.one(py, Quantity::MassMatrix, &[q])
+        self.one(py, Quantity::MassMatrix, &[q], out)
     }
 
     /// Gravity efforts `g(q)` (what holds the robot still).
-    fn gravity<'py>(&self, py: Python<'py>, q: &Bound<'py, PyAny>) -> PyResult<Bound<'py, PyAny>> {
-        self.one(py, Quantity::Gravity, &[q])
+    ///
+    /// `out`: a C-contiguous float64 array of the result's shape, written in
+    /// place and returned (ValueError naming it when it does not fit).
+    #[pyo3(signature = (q, *, out=None))]
+    fn gravity<'py>(
+        &self,
+        py: Python<'py>,
+        q: &Bound<'py, PyAny>,
+        out: Option<&Bound<'py, PyAny>>,
+    ) -> PyResult<Bound<'py, PyAny>> {
+        self.one(py, Quantity::Gravity, &[q], out)
     }
 
     /// Efforts at zero acceleration, `C(q, v) v + g(q)` plus damping and friction.
+    ///
+    /// `out`: a C-contiguous float64 array of the result's shape, written in
+    /// place and returned (ValueError naming it when it does not fit).
+    #[pyo3(signature = (q, v, *, out=None))]
     fn nle<'py>(
         &self,
         py: Python<'py>,
         q: &Bound<'py, PyAny>,
         v: &Bound<'py, PyAny>,
+        out: Option<&Bound<'py, PyAny>>,
     ) -> PyResult<Bound<'py, PyAny>> {
-        self.one(py, Quantity::Nle, &[q, v])
+        self.one(py, Quantity::Nle, &[q, v], out)
     }
 
     /// The Christoffel Coriolis matrix `C(q, v)`.
+    ///
+    /// `out`: a C-contiguous float64 array of the result's shape, written in
+    /// place and returned (ValueError naming it when it does not fit).
+    #[pyo3(signature = (q, v, *, out=None))]
     fn coriolis_matrix<'py>(
         &self,
         py: Python<'py>,
         q: &Bound<'py, PyAny>,
         v: &Bound<'py, PyAny>,
+        out: Option<&Bound<'py, PyAny>>,
     ) -> PyResult<Bound<'py, PyAny>> {
-        self.one(py, Quantity::CoriolisMatrix, &[q, v])
+        self.one(py, Quantity::CoriolisMatrix, &[q, v], out)
     }
 
     /// Forward dynamics: the accelerations under efforts `tau`.
+    ///
+    /// `out`: a C-contiguous float64 array of the result's shape, written in
+    /// place and returned (ValueError naming it when it does not fit).
+    #[pyo3(signature = (q, v, tau, *, out=None))]
     fn aba<'py>(
         &self,
         py: Python<'py>,
         q: &Bound<'py, PyAny>,
         v: &Bound<'py, PyAny>,
         tau: &Bound<'py, PyAny>,
+        out: Option<&Bound<'py, PyAny>>,
     ) -> PyResult<Bound<'py, PyAny>> {
-        self.one(py, Quantity::Aba, &[q, v, tau])
+        self.one(py, Quantity::Aba, &[q, v, tau], out)
     }
 
     /// `(dtau_dq, dtau_dv)` of the inverse dynamics.
+    ///
+    /// `out`: a tuple of C-contiguous float64 arrays of the results' shapes,
+    /// written in place and returned (ValueError naming one that does not fit).
+    #[pyo3(signature = (q, v, a, *, out=None))]
     fn rnea_derivatives<'py>(
         &self,
         py: Python<'py>,
         q: &Bound<'py, PyAny>,
         v: &Bound<'py, PyAny>,
         a: &Bound<'py, PyAny>,
+        out: Option<&Bound<'py, PyAny>>,
     ) -> PyResult<Bound<'py, PyTuple>> {
-        self.tuple(py, Quantity::RneaDerivatives, &[q, v, a])
+        self.tuple(py, Quantity::RneaDerivatives, &[q, v, a], out)
     }
 
     /// `(ddq_dq, ddq_dv, ddq_dtau)` of the forward dynamics (`ddq_dtau = M^-1`).
+    ///
+    /// `out`: a tuple of C-contiguous float64 arrays of the results' shapes,
+    /// written in place and returned (ValueError naming one that does not fit).
+    #[pyo3(signature = (q, v, tau, *, out=None))]
     fn aba_derivatives<'py>(
         &self,
         py: Python<'py>,
         q: &Bound<'py, PyAny>,
         v: &Bound<'py, PyAny>,
         tau: &Bound<'py, PyAny>,
+        out: Option<&Bound<'py, PyAny>>,
     ) -> PyResult<Bound<'py, PyTuple>> {
-        self.tuple(py, Quantity::AbaDerivatives, &[q, v, tau])
+        self.tuple(py, Quantity::AbaDerivatives, &[q, v, tau], out)
     }
 
     /// The inertial regressor `Y(q, v, a)`, `(N, 10 L)`.
+    ///
+    /// `out`: a C-contiguous float64 array of the result's shape, written in
+    /// place and returned (ValueError naming it when it does not fit).
+    #[pyo3(signature = (q, v, a, *, out=None))]
     fn regressor<'py>(
         &self,
         py: Python<'py>,
         q: &Bound<'py, PyAny>,
         v: &Bound<'py, PyAny>,
         a: &Bound<'py, PyAny>,
+        out: Option<&Bound<'py, PyAny>>,
     ) -> PyResult<Bound<'py, PyAny>> {
-        self.one(py, Quantity::Regressor, &[q, v, a])
+        self.one(py, Quantity::Regressor, &[q, v, a], out)
+    }
+
+    /// The linearised model `(A, B)` of `x' = f(x, u)`, `x = [q; v]`, `u = tau`,
+    /// about `(q, v, tau)`: continuous (`dt=None`), `A_c = [[0, I], [ddq_dq,
+    /// ddq_dv]]` `(2N, 2N)` and `B_c = [[0], [M^-1]]` `(2N, N)`, as the runtime's
+    /// `linearize::state_space`; with `dt` (s) the runtime's zero-order hold
+    /// (`StateSpace::discretize`): `A_d = exp(A_c dt)`, `B_d = int_0^dt exp(A_c s) ds B_c`.
+    ///
+    /// `out`: a tuple of two C-contiguous float64 arrays, written in place.
+    #[pyo3(signature = (q, v, tau, dt=None, *, out=None))]
+    fn state_space<'py>(
+        &self,
+        py: Python<'py>,
+        q: &Bound<'py, PyAny>,
+        v: &Bound<'py, PyAny>,
+        tau: &Bound<'py, PyAny>,
+        dt: Option<f64>,
+        out: Option<&Bound<'py, PyAny>>,
+    ) -> PyResult<Bound<'py, PyTuple>> {
+        let what = match dt {
+            None => Quantity::StateSpace,
+            Some(h) if h.is_finite() && h > 0.0 => Quantity::StateSpaceDiscrete(h),
+            Some(h) => {
+                return Err(PyValueError::new_err(format!(
+                    "dt = {h}: the step must be a finite positive number of seconds"
+                )))
+            }
+        };
+        self.tuple(py, what, &[q, v, tau], out)
     }
 
     /// Kinetic energy `T(q, v)`: a float, or `(B,)`.
@@ -333,7 +432,7 @@ impl PyRobot {
         q: &Bound<'py, PyAny>,
         v: &Bound<'py, PyAny>,
     ) -> PyResult<Bound<'py, PyAny>> {
-        self.one(py, Quantity::KineticEnergy, &[q, v])
+        self.one(py, Quantity::KineticEnergy, &[q, v], None)
     }
 
     /// Potential energy (gravity and springs) `Pi(q)`: a float, or `(B,)`.
@@ -342,7 +441,7 @@ impl PyRobot {
         py: Python<'py>,
         q: &Bound<'py, PyAny>,
     ) -> PyResult<Bound<'py, PyAny>> {
-        self.one(py, Quantity::PotentialEnergy, &[q])
+        self.one(py, Quantity::PotentialEnergy, &[q], None)
     }
 
     /// World pose (4 x 4 homogeneous) of frame `frame` (see `frame_names`).
@@ -360,7 +459,7 @@ impl PyRobot {
                 names.join(", ")
             ))
         })?;
-        self.one(py, Quantity::FramePose(index), &[q])
+        self.one(py, Quantity::FramePose(index), &[q], None)
     }
 
     /// Synthetic measured data with a withheld effect, as `dynamics synth` writes it:
@@ -413,9 +512,68 @@ impl PyRobot {
         Ok(d)
     }
 
+    /// The robot under a computed-torque controller on its own model following
+    /// a reference, as `dynamics simulate` (the same function and options):
+    /// `{"t": (T,), "q", "qd", "qdd", "tau", "reference": (T, N)}`.
+    ///
+    /// `motion`: "sines" (default), "chirp", "pick-place" or the path of a CSV
+    /// with columns `t, q_<joint>`. `duration` (s), `rate` (Hz), `seed`,
+    /// `bandwidth` (rad/s), `home` and `amplitude` (one value or one per
+    /// joint) as the flags. `effects` act on the simulated robot only,
+    /// `baseline` on it and on the controller's model: each a JSON file's path
+    /// or the document as a mapping (a diagnosis report dict works).
+    #[pyo3(signature = (motion=None, *, duration=8.0, rate=1000.0, seed=1, bandwidth=12.0,
+        home=None, amplitude=None, effects=None, baseline=None))]
+    #[allow(clippy::too_many_arguments)]
+    fn simulate<'py>(
+        &self,
+        py: Python<'py>,
+        motion: Option<&Bound<'py, PyAny>>,
+        duration: f64,
+        rate: f64,
+        seed: u64,
+        bandwidth: f64,
+        home: Option<&Bound<'py, PyAny>>,
+        amplitude: Option<&Bound<'py, PyAny>>,
+        effects: Option<&Bound<'py, PyAny>>,
+        baseline: Option<&Bound<'py, PyAny>>,
+    ) -> PyResult<Bound<'py, PyDict>> {
+        crate::tasks::simulate(
+            self,
+            py,
+            crate::tasks::SimulateRequest {
+                motion,
+                duration,
+                rate,
+                seed,
+                bandwidth,
+                home,
+                amplitude,
+                effects,
+                baseline,
+            },
+        )
+    }
+
+    /// Least-squares identification of friction, offsets, rotor inertias and
+    /// link parameters on `train`, judged on `holdout`: the JSON of
+    /// `dynamics identify --json` as a dict. Data as for `diagnose` (paths,
+    /// DataFrames, mappings of arrays); `topic`: a ROS 2 bag's JointState
+    /// topic (default /joint_states). Data warnings go to the `dynamics` logger.
+    #[pyo3(signature = (train, holdout, *, topic=None))]
+    fn identify<'py>(
+        &self,
+        py: Python<'py>,
+        train: &Bound<'py, PyAny>,
+        holdout: &Bound<'py, PyAny>,
+        topic: Option<String>,
+    ) -> PyResult<Bound<'py, PyAny>> {
+        crate::tasks::identify(self, py, train, holdout, topic)
+    }
+
     /// The gap diagnosis (see `dynamics.Robot.diagnose` in the stubs).
-    #[pyo3(signature = (train, holdout, *, columns=None, train_window=None, holdout_window=None,
-        noise_tau=None, noise_q=None, noise_qd=None, progress=None))]
+    #[pyo3(signature = (train, holdout, *, columns=None, topic=None, train_window=None,
+        holdout_window=None, noise_tau=None, noise_q=None, noise_qd=None, progress=None))]
     #[allow(clippy::too_many_arguments)]
     fn diagnose<'py>(
         &self,
@@ -423,6 +581,7 @@ impl PyRobot {
         train: &Bound<'py, PyAny>,
         holdout: &Bound<'py, PyAny>,
         columns: Option<&str>,
+        topic: Option<String>,
         train_window: Option<&Bound<'py, PyAny>>,
         holdout_window: Option<&Bound<'py, PyAny>>,
         noise_tau: Option<&Bound<'py, PyAny>>,
@@ -437,6 +596,7 @@ impl PyRobot {
                 train,
                 holdout,
                 columns,
+                topic,
                 train_window,
                 holdout_window,
                 noise: [noise_tau, noise_q, noise_qd],

@@ -5,7 +5,7 @@ here in the test process, and a corrupt file is one row with its error."""
 import pytest
 
 import dynamics
-from dynamics.fleet import COLUMNS, diagnose_many, row
+from dynamics.fleet import COLUMNS, diagnose_many, row, to_parquet
 
 distributed = pytest.importorskip("distributed")
 
@@ -34,7 +34,7 @@ def logs(tmp_path_factory):
     return pairs
 
 
-def test_fifty_pairs_on_a_local_cluster_of_two_workers(logs):
+def test_fifty_pairs_on_a_local_cluster_of_two_workers(logs, tmp_path):
     with distributed.LocalCluster(n_workers=2, threads_per_worker=1, processes=True,
                                   dashboard_address=None) as cluster:
         with distributed.Client(cluster) as client:
@@ -58,3 +58,13 @@ def test_fifty_pairs_on_a_local_cluster_of_two_workers(logs):
     # The withheld friction is what the table names where there was one.
     found = table[table["log"] == "arm0/day00"].iloc[0]
     assert (found["verdict"], found["place"]) == ("coulomb_friction", "j2")
+    # The table as Parquet (pyarrow), read back: the same 50 rows, the error kept.
+    pytest.importorskip("pyarrow")
+    import pandas as pd
+
+    to_parquet(table, tmp_path / "fleet.parquet")
+    back = pd.read_parquet(tmp_path / "fleet.parquet")
+    assert len(back) == PAIRS and list(back["log"]) == list(table["log"])
+    assert list(back["error"].notna()) == list(table["error"].notna())
+    assert back["error"].iloc[17] == table["error"].iloc[17]
+    assert list(back["verdict"].fillna("-")) == list(table["verdict"].fillna("-"))
