@@ -10,11 +10,12 @@
 //! 2. an effect whose parameters the data do not determine, or that are
 //!    not physical (`determinacy.rs`), or a link correction that leaves no
 //!    physical body, is not named: a suggestion, with the reason;
-//! 3. every other effect must lower the held-out record's deviance, the
-//!    others refitted on the training record without it, by more than
-//!    chance would: `n_eff ln(sse_without / sse_with)` above the upper
-//!    quantile of a chi-square with as many degrees of freedom as the
-//!    effect has parameters, at `FAMILY_LEVEL / m` for `m` effects tested
+//! 3. every other effect must lower the held-out record's residual, the
+//!    others refitted on the training record without it, by more than the
+//!    sensor noise could: `(sse_without - sse_with) / tau` (sums of squares
+//!    in units of the noise floor, so noise alone gives a chi-square) above
+//!    the upper quantile of a chi-square with as many degrees of freedom
+//!    as the effect has parameters, at `FAMILY_LEVEL / m` for `m` effects tested
 //!    (so that the chance of any effect passing by chance is
 //!    [`FAMILY_LEVEL`]), `n_eff` the held-out rows over the integrated
 //!    autocorrelation time of the sensor noise through the smoothing (the
@@ -41,8 +42,9 @@ pub const FAMILY_LEVEL: f64 = 1e-3;
 /// How an effect of the explanation was confirmed.
 #[derive(Debug, Clone, Copy, PartialEq)]
 pub struct Confidence {
-    /// Deviance the held-out record gains without the effect (the others
-    /// refitted on the training record), in effective rows.
+    /// What the held-out residual's sum of squares gains without the
+    /// effect (the others refitted on the training record), in units of
+    /// the noise floor over the rows a noise sample is correlated over.
     pub held_out: f64,
     /// What chance would give (the chi-square quantile at the effect's
     /// parameter count, at the family level shared by the effects tested).
@@ -200,8 +202,8 @@ pub fn confirm<R: Robot<N>, const N: usize>(
         hold.residual(pos, &sol.theta).norm_squared()
     };
     let spacing = h.rows.windows(2).map(|w| w[1] - w[0]).min().unwrap_or(1);
-    let effective_rows =
-        hold.observed().len() as f64 / correlation_time(h.sig.sg.weights(0), spacing);
+    let tau = correlation_time(h.sig.sg.weights(0), spacing);
+    let effective_rows = hold.observed().len() as f64 / tau;
     let level = FAMILY_LEVEL / keep.len().max(1) as f64;
     let mut confidence;
     loop {
@@ -212,7 +214,7 @@ pub fn confirm<R: Robot<N>, const N: usize>(
                 let rest: Vec<usize> = keep.iter().copied().filter(|&m| m != i).collect();
                 let without = sse(&rest);
                 Confidence {
-                    held_out: effective_rows * (without.max(1e-300) / full.max(1e-300)).ln(),
+                    held_out: (without - full) / tau,
                     threshold: chi2_upper(pool.terms[e.set[i]].k, level),
                     effective_rows,
                 }
