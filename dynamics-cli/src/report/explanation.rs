@@ -95,8 +95,8 @@ pub fn section(report: &Report) -> String {
         s,
         "Each effect was chosen on the training data (forward selection by the information \
          criterion, confirmed by block cross-validation over its time segments) and then held \
-         on the held-out data: leaving it out raises the held-out deviance by more than \
-         chance would (0.999). Share = part of the training gap above noise it explained when \
+         on the held-out data: leaving it out raises the held-out residual by more than \
+         sensor noise could (chance 0.001, shared by the effects tested). Share = part of the training gap above noise it explained when \
          added; held-out contribution = how much the held-out gap grows when it alone is left \
          out (the others refitted).\n"
     );

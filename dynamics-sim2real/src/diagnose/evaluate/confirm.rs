@@ -52,6 +52,13 @@ pub struct Confidence {
     /// Held-out rows counted as independent: rows over the integrated
     /// autocorrelation time of noise through the smoothing.
     pub effective_rows: f64,
+    /// `held_out` as a share of the held-out gap above noise (the gap the
+    /// nominal model leaves there).
+    pub gain_share: f64,
+    /// `threshold` as the same share: what noise alone could explain.
+    pub chance_share: f64,
+    /// The chance level of each effect's test.
+    pub level: f64,
 }
 
 /// Why an effect the selection chose is not named.
@@ -205,6 +212,8 @@ pub fn confirm<R: Robot<N>, const N: usize>(
     let tau = correlation_time(h.sig.sg.weights(0), spacing);
     let effective_rows = hold.observed().len() as f64 / tau;
     let level = FAMILY_LEVEL / keep.len().max(1) as f64;
+    let y = hold.observed();
+    let gap = (y.norm_squared() - y.len() as f64).max(1e-300);
     let mut confidence;
     loop {
         let full = sse(&keep);
@@ -213,10 +222,14 @@ pub fn confirm<R: Robot<N>, const N: usize>(
             .map(|&i| {
                 let rest: Vec<usize> = keep.iter().copied().filter(|&m| m != i).collect();
                 let without = sse(&rest);
+                let threshold = chi2_upper(pool.terms[e.set[i]].k, level);
                 Confidence {
                     held_out: (without - full) / tau,
-                    threshold: chi2_upper(pool.terms[e.set[i]].k, level),
+                    threshold,
                     effective_rows,
+                    gain_share: (without - full) / gap,
+                    chance_share: threshold * tau / gap,
+                    level,
                 }
             })
             .collect::<Vec<_>>();

@@ -165,16 +165,24 @@ pub fn entries<R: Robot<N>, const N: usize>(
 /// The report's confidence of an effect.
 fn confidence_of(c: Option<&Confidence>) -> report::Confidence {
     let finite = |x: f64| if x.is_finite() { x } else { 0.0 };
-    let c = c.copied().unwrap_or(Confidence {
-        held_out: 0.0,
-        threshold: 0.0,
-        effective_rows: 0.0,
-    });
+    let (gain, chance, level) =
+        c.map_or((0.0, 0.0, 0.0), |c| (c.gain_share, c.chance_share, c.level));
     report::Confidence {
         status: "confirmed",
-        held_out_deviance: finite(c.held_out),
-        threshold: finite(c.threshold),
-        effective_rows: finite(c.effective_rows),
+        held_out_gain: finite(gain),
+        chance: finite(chance),
+        level: finite(level),
+    }
+}
+
+/// A share as a percentage, small ones in scientific notation.
+fn share(x: f64) -> String {
+    if !x.is_finite() {
+        "nothing".into()
+    } else if x.abs() >= 1e-3 {
+        format!("{:.2} %", 100.0 * x)
+    } else {
+        format!("{:.1e} %", 100.0 * x)
     }
 }
 
@@ -195,9 +203,9 @@ pub fn suggested<R: Robot<N>, const N: usize>(
                     "the correction the data ask for leaves no physical body (mass > 0, pseudo-inertia positive semi-definite)".into()
                 }
                 Unconfirmed::NotConfirmed(c) => format!(
-                    "helps only where it was fitted: on the held-out record it saves {:.1} of deviance, chance gives {:.1}",
-                    c.held_out.max(-1e9),
-                    c.threshold
+                    "helps only where it was fitted: on the held-out record it removes {} of the gap above noise, no more than noise alone could ({})",
+                    share(c.gain_share),
+                    share(c.chance_share)
                 ),
             };
             let parameters = if pool.terms[s.term].link.is_some() {

@@ -141,19 +141,18 @@ pub struct Explained {
 /// segments), then held on the held-out record.
 #[derive(Debug, Clone, Serialize)]
 pub struct Confidence {
-    /// `confirmed`: it lowers the held-out deviance by more than chance
-    /// would.
+    /// `confirmed`: leaving it out raises the held-out residual by more
+    /// than sensor noise could.
     pub status: &'static str,
-    /// Deviance the held-out record gains when the effect is left out
-    /// (the others refitted on the training record), counted in
-    /// independent rows.
-    pub held_out_deviance: f64,
-    /// What chance would give at 0.999 (chi-square at its parameter
-    /// count): `held_out_deviance` must exceed it.
-    pub threshold: f64,
-    /// Held-out rows counted as independent (rows over the residual's
-    /// integrated autocorrelation time).
-    pub effective_rows: f64,
+    /// What the held-out residual gains when the effect is left out (the
+    /// others refitted on the training record), as a share of the held-out
+    /// gap above noise.
+    pub held_out_gain: f64,
+    /// The share noise alone could give at `level` (the chi-square quantile
+    /// at its parameter count): `held_out_gain` exceeds it.
+    pub chance: f64,
+    /// The chance level of the test (0.001 shared by the effects tested).
+    pub level: f64,
 }
 
 /// An effect the selection chose that the data do not confirm: not named,
