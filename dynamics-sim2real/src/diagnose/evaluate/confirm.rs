@@ -236,7 +236,9 @@ pub fn confirm<R: Robot<N>, const N: usize>(
         let worst = confidence
             .iter()
             .enumerate()
-            .filter(|(_, c)| !(c.held_out > c.threshold))
+            .filter(|(_, c)| {
+                c.held_out.partial_cmp(&c.threshold) != Some(std::cmp::Ordering::Greater)
+            })
             .min_by(|a, b| {
                 (a.1.held_out - a.1.threshold).total_cmp(&(b.1.held_out - b.1.threshold))
             })

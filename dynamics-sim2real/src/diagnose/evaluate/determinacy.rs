@@ -37,7 +37,7 @@ pub fn why_not(
     }
     // Grid-searched values carry half a step as their spread by design.
     let grid = matches!(name, "vw" | "vs" | "alpha");
-    if !grid && !(std.is_finite() && std <= value.abs()) {
+    if !(grid || std.is_finite() && std <= value.abs()) {
         return Some(on_data("not identifiable"));
     }
     match kind {

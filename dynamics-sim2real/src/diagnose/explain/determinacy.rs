@@ -63,7 +63,6 @@ mod tests {
             value,
             std,
             note: None,
-            note: None,
         }
     }
 

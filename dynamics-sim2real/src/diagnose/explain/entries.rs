@@ -31,6 +31,7 @@ fn place_of<R: Robot<N>, const N: usize>(
 }
 
 /// The report's entries and the held-out steps.
+#[allow(clippy::too_many_arguments)]
 pub fn entries<R: Robot<N>, const N: usize>(
     pool: &Pool,
     e: &Explanation,

@@ -460,6 +460,12 @@ pub(crate) fn test_entry(
         holdout_contribution: 0.1,
         window: None,
         channel: None,
+        confidence: Confidence {
+            status: "confirmed",
+            held_out_gain: 0.1,
+            chance: 0.0,
+            level: 1e-3,
+        },
         ambiguous_with: None,
     }
 }
