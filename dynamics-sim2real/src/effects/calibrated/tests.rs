@@ -104,9 +104,31 @@ fn friction_and_armature_add_what_the_plant_adds() {
 }
 
 #[test]
-fn state_and_sensor_effects_are_refused_by_name() {
-    let e = Calibrated::new(Arm::default(), vec![Effect::TimeDelay { delay: 0.01 }]);
-    assert!(e.expect_err("refused").to_string().contains("time_delay"));
+fn state_effects_are_refused_by_name_and_sensor_effects_kept_apart() {
+    let elastic = Effect::JointElasticity {
+        joint: 0,
+        stiffness: 100.0,
+        damping: 1.0,
+        motor_inertia: 0.01,
+    };
+    let e = Calibrated::new(Arm::default(), vec![elastic]);
+    assert!(e
+        .expect_err("refused")
+        .to_string()
+        .contains("joint_elasticity"));
+    let late = Effect::TimeDelay { delay: 0.01 };
+    let scale = Effect::EffortScale {
+        joint: 1,
+        scale: 2.0,
+    };
+    let friction = Effect::ViscousFriction { joint: 1, fv: 0.6 };
+    let r = Calibrated::new(Arm::default(), vec![late, scale, friction]).expect("taken");
+    assert_eq!(r.sensor_effects(), &[late, scale]);
+    // The scaled joint's own friction, fitted in measured units, in applied ones.
+    assert_eq!(
+        r.effects(),
+        &[Effect::ViscousFriction { joint: 1, fv: 0.3 }]
+    );
     let e = Calibrated::new(
         Arm::default(),
         vec![Effect::Armature {
