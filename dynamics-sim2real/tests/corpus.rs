@@ -20,6 +20,7 @@ fn files() -> Vec<PathBuf> {
         root.join("../fuzz/seeds/npz"),
         // Inputs the fuzz targets found harmful once (each a regression test).
         root.join("../fuzz/seeds/mcap"),
+        root.join("../fuzz/seeds/parquet"),
     ];
     while let Some(dir) = dirs.pop() {
         for entry in std::fs::read_dir(&dir).expect("a seed directory") {

@@ -124,7 +124,27 @@ mod imp {
             file: file.to_string(),
             message: e.to_string(),
         };
+        let size = bytes.len() as i64;
         let reader = SerializedFileReader::new(bytes::Bytes::from(bytes)).map_err(err)?;
+        // Every column chunk inside the file: the crate asserts (panics on)
+        // a negative offset or length in the footer it has just parsed.
+        for (g, group) in reader.metadata().row_groups().iter().enumerate() {
+            for col in group.columns() {
+                let start = col
+                    .dictionary_page_offset()
+                    .unwrap_or(col.data_page_offset());
+                let len = col.compressed_size();
+                if start < 0 || len < 0 || start.checked_add(len).is_none_or(|end| end > size) {
+                    return Err(BagError::Parquet {
+                        file: file.to_string(),
+                        message: format!(
+                            "row group {g}, column `{}`: its chunk ({len} bytes at {start}) lies outside the file ({size} bytes)",
+                            col.column_path()
+                        ),
+                    });
+                }
+            }
+        }
         let header: Vec<String> = reader
             .metadata()
             .file_metadata()
