@@ -222,7 +222,18 @@ pub fn read_parquet_bytes<const N: usize>(
 ) -> Result<Measured<N>, BagError> {
     #[cfg(feature = "parquet")]
     {
-        imp::read(bytes, joints, file)
+        // The `parquet` crate panics on some malformed pages (an index out
+        // of bounds in its byte-stream-split decoder, found by fuzzing):
+        // a hostile file is an error here, never a crash.
+        std::panic::catch_unwind(std::panic::AssertUnwindSafe(|| {
+            imp::read(bytes, joints, file)
+        }))
+        .unwrap_or_else(|_| {
+            Err(BagError::Parquet {
+                file: file.to_string(),
+                message: "malformed data: the Parquet decoder failed on a page".into(),
+            })
+        })
     }
     #[cfg(not(feature = "parquet"))]
     {
