@@ -29,11 +29,13 @@
 #![cfg_attr(not(feature = "std"), no_std)]
 
 // What a robot needs at run time: `core` only, no heap.
+pub mod batch;
 mod check;
 mod constraint;
 pub mod control;
 mod error;
 pub mod fma;
+pub mod lanes;
 pub mod linearize;
 pub mod math;
 mod params;

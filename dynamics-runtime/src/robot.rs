@@ -2,6 +2,9 @@
 
 use nalgebra::{Matrix4, SMatrix, SVector, Vector3};
 
+use crate::batch::{self, BatchError, Level};
+use crate::lanes::{from_states, matrix_from_states, state, Lanes};
+use crate::linearize::ForwardDerivatives;
 use crate::{DynamicsError, Parameters};
 
 /// The kind of a joint, as declared in `robot!`.
@@ -285,6 +288,331 @@ pub trait Robot<const N: usize> {
         let qdd = accelerations(&self.motion_terms(q, qd))?;
         let pj = self.perturbation_jacobians(q, qd, &qdd);
         Some((qdd, pj))
+    }
+    /// [`Robot::inverse_dynamics`] of `L::WIDTH` states at once, each
+    /// argument a vector in lanes (entry `j` holds coordinate `j` of every
+    /// state). `robot!` emits the scalar method's code over `L`; the
+    /// default calls the scalar method per state. The batch functions
+    /// ([`Robot::inverse_dynamics_many`]) call this.
+    ///
+    /// ```
+    /// use dynamics_runtime::lanes::{state, F64x4, Lanes};
+    /// use dynamics_runtime::Robot;
+    /// dynamics_macros::robot! {
+    ///     pub robot Pendulum;
+    ///     gravity = [0.0, -9.81, 0.0];
+    ///     link base;
+    ///     link rod { mass = 1.0; com = [1.0, 0.0, 0.0]; }
+    ///     joint j = revolute(base -> rod) { transfer = [rot_z(q)]; }
+    /// }
+    /// let p = Pendulum::default();
+    /// let q = [F64x4::from_fn(|i| 0.5 * i as f64)];
+    /// let z = [F64x4::splat(0.0)];
+    /// let tau = p.inverse_dynamics_lanes(&q, &z, &z);
+    /// assert_eq!(state(&tau, 3), p.inverse_dynamics(&state(&q, 3), &state(&z, 3), &state(&z, 3)));
+    /// ```
+    #[inline(always)]
+    fn inverse_dynamics_lanes<L: Lanes>(&self, q: &[L; N], qd: &[L; N], qdd: &[L; N]) -> [L; N] {
+        from_states(|i| self.inverse_dynamics(&state(q, i), &state(qd, i), &state(qdd, i)))
+    }
+    /// [`Robot::mass_matrix`] over lanes (row-major; see
+    /// [`Robot::inverse_dynamics_lanes`]).
+    ///
+    /// ```
+    /// use dynamics_runtime::lanes::{F64x8, Lanes};
+    /// use dynamics_runtime::Robot;
+    /// dynamics_macros::robot! {
+    ///     pub robot Pendulum;
+    ///     gravity = [0.0, -9.81, 0.0];
+    ///     link base;
+    ///     link rod { mass = 2.0; com = [0.5, 0.0, 0.0]; }
+    ///     joint j = revolute(base -> rod) { transfer = [rot_z(q)]; }
+    /// }
+    /// let a = Pendulum::default().mass_matrix_lanes(&[F64x8::splat(0.1)]);
+    /// assert_eq!(a[0][0], F64x8::splat(0.5));
+    /// ```
+    #[inline(always)]
+    fn mass_matrix_lanes<L: Lanes>(&self, q: &[L; N]) -> [[L; N]; N] {
+        matrix_from_states(|i| self.mass_matrix(&state(q, i)))
+    }
+    /// [`Robot::motion_terms`] over lanes: `(A, Qqt1 + Qqt2, Q(0))` (see
+    /// [`Robot::inverse_dynamics_lanes`]).
+    ///
+    /// ```
+    /// use dynamics_runtime::lanes::{state, F64x4, Lanes};
+    /// use dynamics_runtime::Robot;
+    /// dynamics_macros::robot! {
+    ///     pub robot Pendulum;
+    ///     gravity = [0.0, -9.81, 0.0];
+    ///     link base;
+    ///     link rod { mass = 1.0; com = [1.0, 0.0, 0.0]; }
+    ///     joint j = revolute(base -> rod) { transfer = [rot_z(q)]; damping = 0.5; }
+    /// }
+    /// let p = Pendulum::default();
+    /// let (q, qd) = ([F64x4::splat(0.3)], [F64x4::splat(2.0)]);
+    /// let (_, qqt, q0) = p.motion_terms_lanes(&q, &qd);
+    /// assert_eq!(state(&q0, 1), p.motion_terms(&state(&q, 1), &state(&qd, 1)).q0);
+    /// ```
+    #[inline(always)]
+    #[allow(clippy::type_complexity)]
+    fn motion_terms_lanes<L: Lanes>(&self, q: &[L; N], qd: &[L; N]) -> ([[L; N]; N], [L; N], [L; N]) {
+        let terms = |i| self.motion_terms(&state(q, i), &state(qd, i));
+        (
+            matrix_from_states(|i| terms(i).a),
+            from_states(|i| terms(i).qqt),
+            from_states(|i| terms(i).q0),
+        )
+    }
+    /// [`Robot::perturbation_jacobians`] over lanes: `(K, D)` row-major
+    /// (see [`Robot::inverse_dynamics_lanes`]).
+    ///
+    /// ```
+    /// use dynamics_runtime::lanes::{F64x4, Lanes};
+    /// use dynamics_runtime::Robot;
+    /// dynamics_macros::robot! {
+    ///     pub robot Pendulum;
+    ///     gravity = [0.0, -9.81, 0.0];
+    ///     link base;
+    ///     link rod { mass = 1.0; com = [1.0, 0.0, 0.0]; }
+    ///     joint j = revolute(base -> rod) { transfer = [rot_z(q)]; damping = 0.5; }
+    /// }
+    /// let z = [F64x4::splat(0.0)];
+    /// let (k, d) = Pendulum::default().perturbation_jacobians_lanes(&z, &z, &z);
+    /// assert_eq!(d[0][0], F64x4::splat(0.5));
+    /// ```
+    #[inline(always)]
+    #[allow(clippy::type_complexity)]
+    fn perturbation_jacobians_lanes<L: Lanes>(
+        &self,
+        q: &[L; N],
+        qd: &[L; N],
+        qdd: &[L; N],
+    ) -> ([[L; N]; N], [[L; N]; N]) {
+        let pj = |i| self.perturbation_jacobians(&state(q, i), &state(qd, i), &state(qdd, i));
+        (
+            matrix_from_states(|i| pj(i).k),
+            matrix_from_states(|i| pj(i).d),
+        )
+    }
+    /// [`Robot::motion_and_jacobians`] over lanes: `accelerations` turns
+    /// `(A, Qqt1 + Qqt2, Q(0))` into qdd (a lane it cannot solve is left
+    /// NaN or flagged by the caller); returns `(qdd, K, D)`.
+    ///
+    /// ```
+    /// use dynamics_runtime::lanes::{F64x4, Lanes};
+    /// use dynamics_runtime::Robot;
+    /// dynamics_macros::robot! {
+    ///     pub robot Pendulum;
+    ///     gravity = [0.0, -9.81, 0.0];
+    ///     link base;
+    ///     link rod { mass = 2.0; com = [0.5, 0.0, 0.0]; }
+    ///     joint j = revolute(base -> rod) { transfer = [rot_z(q)]; }
+    /// }
+    /// let p = Pendulum::default();
+    /// let (q, qd) = ([F64x4::splat(0.3)], [F64x4::splat(-1.0)]);
+    /// let (qdd, _, _) = p.motion_and_jacobians_lanes(&q, &qd, |a, qqt, q0| [(q0[0] + qqt[0]) / a[0][0]]);
+    /// let scalar = p.forward_dynamics(&nalgebra::Vector1::new(0.3), &nalgebra::Vector1::new(-1.0), &nalgebra::Vector1::zeros());
+    /// assert!((qdd[0].lane(2) - scalar.unwrap()[0]).abs() < 1e-14);
+    /// ```
+    #[inline(always)]
+    #[allow(clippy::type_complexity)]
+    fn motion_and_jacobians_lanes<L: Lanes, F>(
+        &self,
+        q: &[L; N],
+        qd: &[L; N],
+        accelerations: F,
+    ) -> ([L; N], [[L; N]; N], [[L; N]; N])
+    where
+        F: FnOnce(&[[L; N]; N], &[L; N], &[L; N]) -> [L; N],
+    {
+        let (a, qqt, q0) = self.motion_terms_lanes(q, qd);
+        let qdd = accelerations(&a, &qqt, &q0);
+        let (k, d) = self.perturbation_jacobians_lanes(q, qd, &qdd);
+        (qdd, k, d)
+    }
+
+    /// Inverse dynamics of many states in vector lanes at the widest
+    /// [`Level`] this CPU has ([`batch::inverse_dynamics`]).
+    ///
+    /// ```
+    /// use dynamics_runtime::Robot;
+    /// use nalgebra::Vector1;
+    /// dynamics_macros::robot! {
+    ///     pub robot Pendulum;
+    ///     gravity = [0.0, -9.81, 0.0];
+    ///     link base;
+    ///     link rod { mass = 1.0; com = [1.0, 0.0, 0.0]; }
+    ///     joint j = revolute(base -> rod) { transfer = [rot_z(q)]; }
+    /// }
+    /// let p = Pendulum::default();
+    /// let q: Vec<_> = (0..100).map(|k| Vector1::new(0.01 * k as f64)).collect();
+    /// let z = vec![Vector1::zeros(); 100];
+    /// let mut tau = vec![Vector1::zeros(); 100];
+    /// p.inverse_dynamics_many(&q, &z, &z, &mut tau)?;
+    /// assert_eq!(tau[99], p.inverse_dynamics(&q[99], &z[99], &z[99]));
+    /// # Ok::<(), dynamics_runtime::batch::BatchError>(())
+    /// ```
+    fn inverse_dynamics_many(
+        &self,
+        q: &[SVector<f64, N>],
+        qd: &[SVector<f64, N>],
+        qdd: &[SVector<f64, N>],
+        out: &mut [SVector<f64, N>],
+    ) -> Result<(), BatchError>
+    where
+        Self: Sized,
+    {
+        batch::inverse_dynamics(self, Level::detect(), q, qd, qdd, out)
+    }
+    /// The inertia matrix of many states ([`batch::mass_matrix`]).
+    ///
+    /// ```
+    /// use dynamics_runtime::Robot;
+    /// use nalgebra::{Matrix1, Vector1};
+    /// dynamics_macros::robot! {
+    ///     pub robot Pendulum;
+    ///     gravity = [0.0, -9.81, 0.0];
+    ///     link base;
+    ///     link rod { mass = 2.0; com = [0.5, 0.0, 0.0]; }
+    ///     joint j = revolute(base -> rod) { transfer = [rot_z(q)]; }
+    /// }
+    /// let mut a = vec![Matrix1::zeros(); 3];
+    /// Pendulum::default().mass_matrix_many(&[Vector1::new(0.1); 3], &mut a)?;
+    /// assert_eq!(a[2][(0, 0)], 0.5);
+    /// # Ok::<(), dynamics_runtime::batch::BatchError>(())
+    /// ```
+    fn mass_matrix_many(
+        &self,
+        q: &[SVector<f64, N>],
+        out: &mut [SMatrix<f64, N, N>],
+    ) -> Result<(), BatchError>
+    where
+        Self: Sized,
+    {
+        batch::mass_matrix(self, Level::detect(), q, out)
+    }
+    /// A, the bias terms and Q(0) of many states ([`batch::motion_terms`]).
+    ///
+    /// ```
+    /// use dynamics_runtime::Robot;
+    /// use nalgebra::Vector1;
+    /// dynamics_macros::robot! {
+    ///     pub robot Pendulum;
+    ///     gravity = [0.0, -9.81, 0.0];
+    ///     link base;
+    ///     link rod { mass = 1.0; com = [1.0, 0.0, 0.0]; }
+    ///     joint j = revolute(base -> rod) { transfer = [rot_z(q)]; }
+    /// }
+    /// let p = Pendulum::default();
+    /// let z = [Vector1::zeros(); 2];
+    /// let mut terms = [p.motion_terms(&z[0], &z[0]); 2];
+    /// p.motion_terms_many(&z, &z, &mut terms)?;
+    /// assert!((terms[1].bias()[0] + 9.81).abs() < 1e-15);
+    /// # Ok::<(), dynamics_runtime::batch::BatchError>(())
+    /// ```
+    fn motion_terms_many(
+        &self,
+        q: &[SVector<f64, N>],
+        qd: &[SVector<f64, N>],
+        out: &mut [MotionTerms<N>],
+    ) -> Result<(), BatchError>
+    where
+        Self: Sized,
+    {
+        batch::motion_terms(self, Level::detect(), q, qd, out)
+    }
+    /// K and D of many states ([`batch::perturbation_jacobians`]).
+    ///
+    /// ```
+    /// use dynamics_runtime::Robot;
+    /// use nalgebra::Vector1;
+    /// dynamics_macros::robot! {
+    ///     pub robot Pendulum;
+    ///     gravity = [0.0, -9.81, 0.0];
+    ///     link base;
+    ///     link rod { mass = 1.0; com = [1.0, 0.0, 0.0]; }
+    ///     joint j = revolute(base -> rod) { transfer = [rot_z(q)]; damping = 0.5; }
+    /// }
+    /// let p = Pendulum::default();
+    /// let z = [Vector1::zeros(); 2];
+    /// let mut kd = [p.perturbation_jacobians(&z[0], &z[0], &z[0]); 2];
+    /// p.perturbation_jacobians_many(&z, &z, &z, &mut kd)?;
+    /// assert_eq!(kd[1].d[(0, 0)], 0.5);
+    /// # Ok::<(), dynamics_runtime::batch::BatchError>(())
+    /// ```
+    fn perturbation_jacobians_many(
+        &self,
+        q: &[SVector<f64, N>],
+        qd: &[SVector<f64, N>],
+        qdd: &[SVector<f64, N>],
+        out: &mut [PerturbationJacobians<N>],
+    ) -> Result<(), BatchError>
+    where
+        Self: Sized,
+    {
+        batch::perturbation_jacobians(self, Level::detect(), q, qd, qdd, out)
+    }
+    /// Forward dynamics of many states ([`batch::forward_dynamics`]).
+    ///
+    /// ```
+    /// use dynamics_runtime::Robot;
+    /// use nalgebra::Vector1;
+    /// dynamics_macros::robot! {
+    ///     pub robot Pendulum;
+    ///     gravity = [0.0, -9.81, 0.0];
+    ///     link base;
+    ///     link rod { mass = 1.0; com = [1.0, 0.0, 0.0]; }
+    ///     joint j = revolute(base -> rod) { transfer = [rot_z(q)]; }
+    /// }
+    /// let z = [Vector1::zeros(); 3];
+    /// let mut qdd = [Vector1::zeros(); 3];
+    /// Pendulum::default().forward_dynamics_many(&z, &z, &z, &mut qdd)?;
+    /// assert!((qdd[2][0] + 9.81).abs() < 1e-14);
+    /// # Ok::<(), dynamics_runtime::batch::BatchError>(())
+    /// ```
+    fn forward_dynamics_many(
+        &self,
+        q: &[SVector<f64, N>],
+        qd: &[SVector<f64, N>],
+        tau: &[SVector<f64, N>],
+        out: &mut [SVector<f64, N>],
+    ) -> Result<(), BatchError>
+    where
+        Self: Sized,
+    {
+        batch::forward_dynamics(self, Level::detect(), q, qd, tau, out)
+    }
+    /// Forward dynamics and their derivatives of many states
+    /// ([`batch::forward_dynamics_derivatives`]).
+    ///
+    /// ```
+    /// use dynamics_runtime::{linearize, Robot};
+    /// use nalgebra::Vector1;
+    /// dynamics_macros::robot! {
+    ///     pub robot Pendulum;
+    ///     gravity = [0.0, -9.81, 0.0];
+    ///     link base;
+    ///     link rod { mass = 1.0; com = [1.0, 0.0, 0.0]; }
+    ///     joint j = revolute(base -> rod) { transfer = [rot_z(q)]; damping = 0.5; }
+    /// }
+    /// let p = Pendulum::default();
+    /// let z = [Vector1::zeros(); 3];
+    /// let mut d = [linearize::forward_dynamics_derivatives(&p, &z[0], &z[0], &z[0])?; 3];
+    /// p.forward_dynamics_derivatives_many(&z, &z, &z, &mut d)?;
+    /// assert!((d[2].ddq_dv[(0, 0)] + 0.5).abs() < 1e-15);
+    /// # Ok::<(), Box<dyn std::error::Error>>(())
+    /// ```
+    fn forward_dynamics_derivatives_many(
+        &self,
+        q: &[SVector<f64, N>],
+        qd: &[SVector<f64, N>],
+        tau: &[SVector<f64, N>],
+        out: &mut [ForwardDerivatives<N>],
+    ) -> Result<(), BatchError>
+    where
+        Self: Sized,
+    {
+        batch::forward_dynamics_derivatives(self, Level::detect(), q, qd, tau, out)
     }
     /// T = 1/2 qd^T A qd.
     fn kinetic_energy(&self, q: &SVector<f64, N>, qd: &SVector<f64, N>) -> f64;

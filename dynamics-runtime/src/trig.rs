@@ -141,15 +141,24 @@ fn one_by_one<const N: usize>(x: [f64; N]) -> ([f64; N], [f64; N]) {
 /// integer operations; a table lookup per lane would be a gather).
 #[inline(always)]
 fn lanes(x: [f64; LANES]) -> ([f64; LANES], [f64; LANES]) {
-    let mut bits = [0u64; LANES];
-    let mut s = [0.0; LANES];
-    let mut c = [0.0; LANES];
-    for j in 0..LANES {
-        (bits[j], s[j], c[j]) = reduced(x[j]);
+    lanes_by::<LANES, false>(x)
+}
+
+/// [`sin_cos`] of `W` finite angles below [`REDUCE_LIMIT`] lane-wise, for
+/// the lane types of [`crate::lanes`]: the polynomials' multiply-adds
+/// fused when `FUSED` (the lane types run where the CPU has FMA), else as
+/// [`mul_add`] (the scalar code's, so the same results).
+#[inline(always)]
+pub(crate) fn lanes_by<const W: usize, const FUSED: bool>(x: [f64; W]) -> ([f64; W], [f64; W]) {
+    let mut bits = [0u64; W];
+    let mut s = [0.0; W];
+    let mut c = [0.0; W];
+    for j in 0..W {
+        (bits[j], s[j], c[j]) = reduced_by::<FUSED>(x[j]);
     }
-    let mut sin = [0.0; LANES];
-    let mut cos = [0.0; LANES];
-    for j in 0..LANES {
+    let mut sin = [0.0; W];
+    let mut cos = [0.0; W];
+    for j in 0..W {
         let swap = 0u64.wrapping_sub(bits[j] & 1);
         let (sb, cb) = (s[j].to_bits(), c[j].to_bits());
         let sin_sign = ((bits[j] >> 1) & 1) << 63;
@@ -160,17 +169,41 @@ fn lanes(x: [f64; LANES]) -> ([f64; LANES], [f64; LANES]) {
     (sin, cos)
 }
 
+/// Whether every angle is reduced here (finite and below [`REDUCE_LIMIT`]).
+#[inline(always)]
+#[allow(clippy::neg_cmp_op_on_partial_ord)] // NaN must take the slow path
+pub(crate) fn all_reducible(x: &[f64]) -> bool {
+    !x.iter().any(|v| !(v.abs() < REDUCE_LIMIT))
+}
+
+/// `a * b + c` as the lane types compute it: fused, or as [`mul_add`].
+#[inline(always)]
+pub(crate) fn mul_add_by<const FUSED: bool>(a: f64, b: f64, c: f64) -> f64 {
+    #[cfg(feature = "std")]
+    if FUSED {
+        return a.mul_add(b, c);
+    }
+    mul_add(a, b, c)
+}
+
 /// For |x| < [`REDUCE_LIMIT`]: the bits whose last two are the quadrant n
 /// mod 4 (x = n pi/2 + r, |r| <= pi/4), sin r and cos r.
 #[inline(always)]
 fn reduced(x: f64) -> (u64, f64, f64) {
+    reduced_by::<false>(x)
+}
+
+/// [`reduced`] with the multiply-adds of [`mul_add_by`].
+#[inline(always)]
+fn reduced_by<const FUSED: bool>(x: f64) -> (u64, f64, f64) {
+    let mul_add = mul_add_by::<FUSED>;
     // Round x 2/pi to the nearest integer n by adding 1.5 * 2^52: the sum's
     // last mantissa bits are n itself (two's complement), so neither a libm
     // `round` call (baseline x86-64 has no rounding instruction) nor an
     // integer conversion is needed.
     let shifted = mul_add(x, FRAC_2_PI, ROUNDER);
     let n = shifted - ROUNDER;
-    let r = reduce(x, n);
+    let r = reduce_by::<FUSED>(x, n);
     let z = r * r;
     // The kernels' polynomials in Estrin's form (pairs, then z^2 and z^4),
     // whose chain of dependent operations is half of Horner's: joint angles
@@ -205,7 +238,7 @@ const COS_C: [f64; 4] = [1.0, 0.0, -1.0, 0.0];
 
 /// x - n pi/2 for an integer n with |n| < 2^20.
 #[inline(always)]
-fn reduce(x: f64, n: f64) -> f64 {
+fn reduce_by<const FUSED: bool>(x: f64, n: f64) -> f64 {
     // A fused multiply-add rounds x - n part once, after the exact
     // product, so the parts need no trailing zero bits: full doubles, whose
     // three terms hold pi/2 to 2^-160 (r to about an ulp of itself, also
@@ -215,6 +248,7 @@ fn reduce(x: f64, n: f64) -> f64 {
     // iteration"), without which a tiny r loses most of its digits.
     #[cfg(any(target_feature = "fma", target_arch = "aarch64"))]
     {
+        let mul_add = mul_add_by::<FUSED>;
         let r = mul_add(-n, core::f64::consts::FRAC_PI_2, x);
         mul_add(-n, PIO2_TAIL, mul_add(-n, PIO2_LO, r))
     }

@@ -12,12 +12,41 @@ use crate::model::Model;
 pub struct Spelling<'a> {
     vars: Vars,
     model: &'a Model,
+    /// Parameters as lane values `L::splat(self.params.x)` (the lane
+    /// methods) rather than `self.params.x`.
+    lanes: bool,
 }
 
 impl<'a> Spelling<'a> {
     /// For this model.
     pub fn new(vars: Vars, model: &'a Model) -> Self {
-        Self { vars, model }
+        Self {
+            vars,
+            model,
+            lanes: false,
+        }
+    }
+
+    /// For the lane methods of this model (see `lanes.rs`).
+    pub fn lanes(vars: Vars, model: &'a Model) -> Self {
+        Self {
+            vars,
+            model,
+            lanes: true,
+        }
+    }
+
+    /// The emitted chain and roots as this spelling writes them: over
+    /// lanes, every `f64` of the scalar code made a lane value.
+    fn finish(&self, lets: TokenStream, roots: Vec<TokenStream>) -> (TokenStream, Vec<TokenStream>) {
+        if self.lanes {
+            (
+                super::lanes::over_lanes(lets),
+                roots.into_iter().map(super::lanes::over_lanes).collect(),
+            )
+        } else {
+            (lets, roots)
+        }
     }
 
     fn var(&self, v: Var) -> TokenStream {
@@ -29,7 +58,11 @@ impl<'a> Spelling<'a> {
             4 => quote!(t),
             _ => {
                 let field = format_ident!("{}", self.model.params[i].name.to_string());
-                quote!(self.params.#field)
+                if self.lanes {
+                    quote!(L::splat(self.params.#field))
+                } else {
+                    quote!(self.params.#field)
+                }
             }
         }
     }
@@ -37,20 +70,30 @@ impl<'a> Spelling<'a> {
 
 /// The `let` chain for `roots` and the tokens of each root's value.
 pub fn chain(g: &Graph, roots: &[Id], sp: &Spelling) -> (TokenStream, Vec<TokenStream>) {
-    let e = with_calls(|calls| dynamics_symbolic::emit_fused(g, roots, &|v| sp.var(v), calls));
-    (e.lets, e.roots)
+    let e = with_calls(sp.lanes, |calls| {
+        dynamics_symbolic::emit_fused(g, roots, &|v| sp.var(v), calls)
+    });
+    sp.finish(e.lets, e.roots)
 }
 
-/// `f` with the runtime functions the emitted code calls.
-fn with_calls<T>(f: impl FnOnce(&dynamics_symbolic::Calls) -> T) -> T {
-    let (sin_cos, sin_cos_n) = (
-        quote!(::dynamics_runtime::trig::sin_cos),
-        quote!(::dynamics_runtime::trig::sin_cos_n),
-    );
-    let (mul_add, math) = (
-        quote!(::dynamics_runtime::fma::mul_add),
-        quote!(::dynamics_runtime::math),
-    );
+/// `f` with the runtime functions the emitted code calls: the scalar ones,
+/// or their generic versions over lanes (`dynamics_runtime::lanes`).
+fn with_calls<T>(lanes: bool, f: impl FnOnce(&dynamics_symbolic::Calls) -> T) -> T {
+    let (sin_cos, sin_cos_n, mul_add, math) = if lanes {
+        (
+            quote!(::dynamics_runtime::lanes::sin_cos),
+            quote!(::dynamics_runtime::lanes::sin_cos_n),
+            quote!(::dynamics_runtime::lanes::mul_add),
+            quote!(::dynamics_runtime::lanes),
+        )
+    } else {
+        (
+            quote!(::dynamics_runtime::trig::sin_cos),
+            quote!(::dynamics_runtime::trig::sin_cos_n),
+            quote!(::dynamics_runtime::fma::mul_add),
+            quote!(::dynamics_runtime::math),
+        )
+    };
     f(&dynamics_symbolic::Calls {
         sin_cos: &sin_cos,
         sin_cos_n: &sin_cos_n,
@@ -63,10 +106,12 @@ fn with_calls<T>(f: impl FnOnce(&dynamics_symbolic::Calls) -> T) -> T {
 /// only what earlier stages did not (code may run between them), with the
 /// tokens of each stage's roots.
 pub fn stages(g: &Graph, stages: &[&[Id]], sp: &Spelling) -> Vec<(TokenStream, Vec<TokenStream>)> {
-    with_calls(|calls| dynamics_symbolic::emit_fused_stages(g, stages, &|v| sp.var(v), calls))
-        .into_iter()
-        .map(|e| (e.lets, e.roots))
-        .collect()
+    with_calls(sp.lanes, |calls| {
+        dynamics_symbolic::emit_fused_stages(g, stages, &|v| sp.var(v), calls)
+    })
+    .into_iter()
+    .map(|e| sp.finish(e.lets, e.roots))
+    .collect()
 }
 
 /// Body returning an `SVector<f64, n>`.

@@ -5,6 +5,7 @@
 
 mod body;
 mod constraints;
+mod lanes;
 mod params;
 mod regressor;
 mod robot;

@@ -6,7 +6,7 @@ use proc_macro2::{Literal, TokenStream};
 use quote::{format_ident, quote};
 
 use super::body::{self, Spelling};
-use super::{constraints, regressor};
+use super::{constraints, lanes, regressor};
 use crate::derive::Derived;
 use crate::model::{JointKind, Model};
 
@@ -153,6 +153,8 @@ pub fn emit(model: &Model, d: &Derived) -> TokenStream {
         quote! { #k => { ::core::option::Option::Some({ #b }) } }
     });
 
+    let lane_methods = lane_methods(model, d, &a_roots);
+
     let link_names = d
         .regressor
         .links
@@ -270,8 +272,110 @@ pub fn emit(model: &Model, d: &Derived) -> TokenStream {
                 -> ::core::option::Option<::dynamics_runtime::nalgebra::SMatrix<f64, 3, #n>> {
                 match index { #(#jac_arms)* _ => ::core::option::Option::None }
             }
+            #lane_methods
         }
 
         #constrained
+    }
+}
+
+/// The `*_lanes` methods: the scalar methods' chains over a lane type `L`
+/// (see `lanes.rs`), always inlined so that the batch functions compile
+/// them for the CPU features they run with.
+fn lane_methods(model: &Model, d: &Derived, a_roots: &[dynamics_symbolic::Id]) -> TokenStream {
+    let g = &d.graph;
+    let n = d.vars.n;
+    let sp = Spelling::lanes(d.vars, model);
+    let nn = n * n;
+    let tau = lanes::vector(g, &d.tau, &sp);
+
+    let mass_matrix = {
+        let (lets, vals) = body::chain(g, a_roots, &sp);
+        let zero = lanes::zero_matrix("a", n);
+        let set = lanes::assign_matrix(g, a_roots, &vals, n, quote!(a));
+        quote! { #lets #zero #set a }
+    };
+
+    let terms = {
+        let mut roots = a_roots.to_vec();
+        roots.extend(&d.qqt);
+        roots.extend(&d.q0);
+        let (lets, vals) = body::chain(g, &roots, &sp);
+        let zeros = [
+            lanes::zero_matrix("a", n),
+            lanes::zero_vector("qqt", n),
+            lanes::zero_vector("q0", n),
+        ];
+        let a_set = lanes::assign_matrix(g, a_roots, &vals[..nn], n, quote!(a));
+        let qqt_set = lanes::assign_vector(g, &d.qqt, &vals[nn..nn + n], quote!(qqt));
+        let q0_set = lanes::assign_vector(g, &d.q0, &vals[nn + n..], quote!(q0));
+        quote! { #lets #(#zeros)* #a_set #qqt_set #q0_set (a, qqt, q0) }
+    };
+
+    let perturbation = {
+        let p = &d.perturbation;
+        let mut roots: Vec<_> = p.k.iter().flatten().copied().collect();
+        roots.extend(p.d.iter().flatten());
+        let (lets, vals) = body::chain(g, &roots, &sp);
+        let zeros = [lanes::zero_matrix("k", n), lanes::zero_matrix("d", n)];
+        let k_set = lanes::assign_matrix(g, &roots[..nn], &vals[..nn], n, quote!(k));
+        let d_set = lanes::assign_matrix(g, &roots[nn..], &vals[nn..], n, quote!(d));
+        quote! { #lets #(#zeros)* #k_set #d_set (k, d) }
+    };
+
+    let fused = {
+        let p = &d.perturbation;
+        let upper: Vec<_> = (0..n).flat_map(|i| (0..n).map(move |j| (i, j))).collect();
+        let a_roots: Vec<_> = upper.iter().map(|&(i, j)| d.a_fused[i][j]).collect();
+        let mut first = a_roots.clone();
+        first.extend(&d.qqt_fused);
+        first.extend(&d.q0);
+        let mut second: Vec<_> = p.k.iter().flatten().copied().collect();
+        second.extend(p.d.iter().flatten());
+        let stages = body::stages(g, &[&first, &second], &sp);
+        let (lets1, vals1) = &stages[0];
+        let (lets2, vals2) = &stages[1];
+        let zeros1 = [
+            lanes::zero_matrix("a", n),
+            lanes::zero_vector("qqt", n),
+            lanes::zero_vector("q0", n),
+        ];
+        let zeros2 = [lanes::zero_matrix("k", n), lanes::zero_matrix("d", n)];
+        let a_set = lanes::assign_matrix(g, &a_roots, &vals1[..nn], n, quote!(a));
+        let qqt_set = lanes::assign_vector(g, &d.qqt_fused, &vals1[nn..nn + n], quote!(qqt));
+        let q0_set = lanes::assign_vector(g, &d.q0, &vals1[nn + n..], quote!(q0));
+        let k_set = lanes::assign_matrix(g, &second[..nn], &vals2[..nn], n, quote!(k));
+        let d_set = lanes::assign_matrix(g, &second[nn..], &vals2[nn..], n, quote!(d));
+        quote! {
+            #lets1
+            #(#zeros1)*
+            #a_set #qqt_set #q0_set
+            let qdd = accelerations(&a, &qqt, &q0);
+            #lets2
+            #(#zeros2)*
+            #k_set #d_set
+            (qdd, k, d)
+        }
+    };
+
+    quote! {
+        #[inline(always)]
+        fn inverse_dynamics_lanes<L: ::dynamics_runtime::lanes::Lanes>(&self,
+            q: &[L; #n], qd: &[L; #n], qdd: &[L; #n]) -> [L; #n] { #tau }
+        #[inline(always)]
+        fn mass_matrix_lanes<L: ::dynamics_runtime::lanes::Lanes>(&self, q: &[L; #n])
+            -> [[L; #n]; #n] { #mass_matrix }
+        #[inline(always)]
+        fn motion_terms_lanes<L: ::dynamics_runtime::lanes::Lanes>(&self, q: &[L; #n], qd: &[L; #n])
+            -> ([[L; #n]; #n], [L; #n], [L; #n]) { #terms }
+        #[inline(always)]
+        fn perturbation_jacobians_lanes<L: ::dynamics_runtime::lanes::Lanes>(&self,
+            q: &[L; #n], qd: &[L; #n], qdd: &[L; #n]) -> ([[L; #n]; #n], [[L; #n]; #n]) { #perturbation }
+        #[inline(always)]
+        fn motion_and_jacobians_lanes<L: ::dynamics_runtime::lanes::Lanes, F>(&self,
+            q: &[L; #n], qd: &[L; #n], accelerations: F) -> ([L; #n], [[L; #n]; #n], [[L; #n]; #n])
+        where
+            F: ::core::ops::FnOnce(&[[L; #n]; #n], &[L; #n], &[L; #n]) -> [L; #n],
+        { #fused }
     }
 }
