@@ -296,8 +296,8 @@ pub trait Robot<const N: usize> {
     /// ([`Robot::inverse_dynamics_many`]) call this.
     ///
     /// ```
-    /// use dynamics_runtime::lanes::{state, F64x4, Lanes};
     /// use dynamics_runtime::Robot;
+    /// use nalgebra::Vector1;
     /// dynamics_macros::robot! {
     ///     pub robot Pendulum;
     ///     gravity = [0.0, -9.81, 0.0];
@@ -306,10 +306,9 @@ pub trait Robot<const N: usize> {
     ///     joint j = revolute(base -> rod) { transfer = [rot_z(q)]; }
     /// }
     /// let p = Pendulum::default();
-    /// let q = [F64x4::from_fn(|i| 0.5 * i as f64)];
-    /// let z = [F64x4::splat(0.0)];
-    /// let tau = p.inverse_dynamics_lanes(&q, &z, &z);
-    /// assert_eq!(state(&tau, 3), p.inverse_dynamics(&state(&q, 3), &state(&z, 3), &state(&z, 3)));
+    /// let tau = p.inverse_dynamics_lanes(&[1.5], &[0.0], &[0.0]);
+    /// let z = Vector1::zeros();
+    /// assert_eq!(tau[0], p.inverse_dynamics(&Vector1::new(1.5), &z, &z)[0]);
     /// ```
     #[inline(always)]
     fn inverse_dynamics_lanes<L: Lanes>(&self, q: &[L; N], qd: &[L; N], qdd: &[L; N]) -> [L; N] {
@@ -319,7 +318,6 @@ pub trait Robot<const N: usize> {
     /// [`Robot::inverse_dynamics_lanes`]).
     ///
     /// ```
-    /// use dynamics_runtime::lanes::{F64x8, Lanes};
     /// use dynamics_runtime::Robot;
     /// dynamics_macros::robot! {
     ///     pub robot Pendulum;
@@ -328,8 +326,8 @@ pub trait Robot<const N: usize> {
     ///     link rod { mass = 2.0; com = [0.5, 0.0, 0.0]; }
     ///     joint j = revolute(base -> rod) { transfer = [rot_z(q)]; }
     /// }
-    /// let a = Pendulum::default().mass_matrix_lanes(&[F64x8::splat(0.1)]);
-    /// assert_eq!(a[0][0], F64x8::splat(0.5));
+    /// let a = Pendulum::default().mass_matrix_lanes(&[0.1]);
+    /// assert_eq!(a[0][0], 0.5);
     /// ```
     #[inline(always)]
     fn mass_matrix_lanes<L: Lanes>(&self, q: &[L; N]) -> [[L; N]; N] {
@@ -339,8 +337,8 @@ pub trait Robot<const N: usize> {
     /// [`Robot::inverse_dynamics_lanes`]).
     ///
     /// ```
-    /// use dynamics_runtime::lanes::{state, F64x4, Lanes};
     /// use dynamics_runtime::Robot;
+    /// use nalgebra::Vector1;
     /// dynamics_macros::robot! {
     ///     pub robot Pendulum;
     ///     gravity = [0.0, -9.81, 0.0];
@@ -349,9 +347,8 @@ pub trait Robot<const N: usize> {
     ///     joint j = revolute(base -> rod) { transfer = [rot_z(q)]; damping = 0.5; }
     /// }
     /// let p = Pendulum::default();
-    /// let (q, qd) = ([F64x4::splat(0.3)], [F64x4::splat(2.0)]);
-    /// let (_, qqt, q0) = p.motion_terms_lanes(&q, &qd);
-    /// assert_eq!(state(&q0, 1), p.motion_terms(&state(&q, 1), &state(&qd, 1)).q0);
+    /// let (_, _, q0) = p.motion_terms_lanes(&[0.3], &[2.0]);
+    /// assert_eq!(q0[0], p.motion_terms(&Vector1::new(0.3), &Vector1::new(2.0)).q0[0]);
     /// ```
     #[inline(always)]
     #[allow(clippy::type_complexity)]
@@ -367,7 +364,6 @@ pub trait Robot<const N: usize> {
     /// (see [`Robot::inverse_dynamics_lanes`]).
     ///
     /// ```
-    /// use dynamics_runtime::lanes::{F64x4, Lanes};
     /// use dynamics_runtime::Robot;
     /// dynamics_macros::robot! {
     ///     pub robot Pendulum;
@@ -376,9 +372,8 @@ pub trait Robot<const N: usize> {
     ///     link rod { mass = 1.0; com = [1.0, 0.0, 0.0]; }
     ///     joint j = revolute(base -> rod) { transfer = [rot_z(q)]; damping = 0.5; }
     /// }
-    /// let z = [F64x4::splat(0.0)];
-    /// let (k, d) = Pendulum::default().perturbation_jacobians_lanes(&z, &z, &z);
-    /// assert_eq!(d[0][0], F64x4::splat(0.5));
+    /// let (k, d) = Pendulum::default().perturbation_jacobians_lanes(&[0.0], &[0.0], &[0.0]);
+    /// assert_eq!(d[0][0], 0.5);
     /// ```
     #[inline(always)]
     #[allow(clippy::type_complexity)]
@@ -399,7 +394,6 @@ pub trait Robot<const N: usize> {
     /// NaN or flagged by the caller); returns `(qdd, K, D)`.
     ///
     /// ```
-    /// use dynamics_runtime::lanes::{F64x4, Lanes};
     /// use dynamics_runtime::Robot;
     /// dynamics_macros::robot! {
     ///     pub robot Pendulum;
@@ -409,10 +403,10 @@ pub trait Robot<const N: usize> {
     ///     joint j = revolute(base -> rod) { transfer = [rot_z(q)]; }
     /// }
     /// let p = Pendulum::default();
-    /// let (q, qd) = ([F64x4::splat(0.3)], [F64x4::splat(-1.0)]);
-    /// let (qdd, _, _) = p.motion_and_jacobians_lanes(&q, &qd, |a, qqt, q0| [(q0[0] + qqt[0]) / a[0][0]]);
-    /// let scalar = p.forward_dynamics(&nalgebra::Vector1::new(0.3), &nalgebra::Vector1::new(-1.0), &nalgebra::Vector1::zeros());
-    /// assert!((qdd[0].lane(2) - scalar.unwrap()[0]).abs() < 1e-14);
+    /// let (qdd, _, _) = p.motion_and_jacobians_lanes(&[0.3], &[-1.0], |a, qqt, q0| [(q0[0] + qqt[0]) / a[0][0]]);
+    /// let v = |x| nalgebra::Vector1::new(x);
+    /// let scalar = p.forward_dynamics(&v(0.3), &v(-1.0), &v(0.0)).unwrap();
+    /// assert!((qdd[0] - scalar[0]).abs() < 1e-14);
     /// ```
     #[inline(always)]
     #[allow(clippy::type_complexity)]

@@ -18,6 +18,7 @@
 use core::f64::consts::FRAC_2_PI;
 
 use crate::fma::mul_add;
+use crate::lanes::Lanes;
 
 // Without FMA: pi/2 in parts with trailing zero bits, so that n * part is
 // exact for the quotients used here (fdlibm's pio2_1, pio2_2), and the rest.
@@ -53,7 +54,7 @@ const C6: f64 = -1.135_964_755_778_819_482_65e-11;
 const ROUNDER: f64 = 6_755_399_441_055_744.0;
 
 /// Largest |x| reduced here; beyond it `std` (or `libm`) is used.
-const REDUCE_LIMIT: f64 = 1_647_099.0; // 2^20 * pi/2
+pub(crate) const REDUCE_LIMIT: f64 = 1_647_099.0; // 2^20 * pi/2
 
 /// `(sin x, cos x)` from one argument reduction.
 ///
@@ -141,24 +142,15 @@ fn one_by_one<const N: usize>(x: [f64; N]) -> ([f64; N], [f64; N]) {
 /// integer operations; a table lookup per lane would be a gather).
 #[inline(always)]
 fn lanes(x: [f64; LANES]) -> ([f64; LANES], [f64; LANES]) {
-    lanes_by::<LANES, false>(x)
-}
-
-/// [`sin_cos`] of `W` finite angles below [`REDUCE_LIMIT`] lane-wise, for
-/// the lane types of [`crate::lanes`]: the polynomials' multiply-adds
-/// fused when `FUSED` (the lane types run where the CPU has FMA), else as
-/// [`mul_add`] (the scalar code's, so the same results).
-#[inline(always)]
-pub(crate) fn lanes_by<const W: usize, const FUSED: bool>(x: [f64; W]) -> ([f64; W], [f64; W]) {
-    let mut bits = [0u64; W];
-    let mut s = [0.0; W];
-    let mut c = [0.0; W];
-    for j in 0..W {
-        (bits[j], s[j], c[j]) = reduced_by::<FUSED>(x[j]);
+    let mut bits = [0u64; LANES];
+    let mut s = [0.0; LANES];
+    let mut c = [0.0; LANES];
+    for j in 0..LANES {
+        (bits[j], s[j], c[j]) = reduced(x[j]);
     }
-    let mut sin = [0.0; W];
-    let mut cos = [0.0; W];
-    for j in 0..W {
+    let mut sin = [0.0; LANES];
+    let mut cos = [0.0; LANES];
+    for j in 0..LANES {
         let swap = 0u64.wrapping_sub(bits[j] & 1);
         let (sb, cb) = (s[j].to_bits(), c[j].to_bits());
         let sin_sign = ((bits[j] >> 1) & 1) << 63;
@@ -169,41 +161,17 @@ pub(crate) fn lanes_by<const W: usize, const FUSED: bool>(x: [f64; W]) -> ([f64;
     (sin, cos)
 }
 
-/// Whether every angle is reduced here (finite and below [`REDUCE_LIMIT`]).
-#[inline(always)]
-#[allow(clippy::neg_cmp_op_on_partial_ord)] // NaN must take the slow path
-pub(crate) fn all_reducible(x: &[f64]) -> bool {
-    !x.iter().any(|v| !(v.abs() < REDUCE_LIMIT))
-}
-
-/// `a * b + c` as the lane types compute it: fused, or as [`mul_add`].
-#[inline(always)]
-pub(crate) fn mul_add_by<const FUSED: bool>(a: f64, b: f64, c: f64) -> f64 {
-    #[cfg(feature = "std")]
-    if FUSED {
-        return a.mul_add(b, c);
-    }
-    mul_add(a, b, c)
-}
-
 /// For |x| < [`REDUCE_LIMIT`]: the bits whose last two are the quadrant n
 /// mod 4 (x = n pi/2 + r, |r| <= pi/4), sin r and cos r.
 #[inline(always)]
 fn reduced(x: f64) -> (u64, f64, f64) {
-    reduced_by::<false>(x)
-}
-
-/// [`reduced`] with the multiply-adds of [`mul_add_by`].
-#[inline(always)]
-fn reduced_by<const FUSED: bool>(x: f64) -> (u64, f64, f64) {
-    let mul_add = mul_add_by::<FUSED>;
     // Round x 2/pi to the nearest integer n by adding 1.5 * 2^52: the sum's
     // last mantissa bits are n itself (two's complement), so neither a libm
     // `round` call (baseline x86-64 has no rounding instruction) nor an
     // integer conversion is needed.
     let shifted = mul_add(x, FRAC_2_PI, ROUNDER);
     let n = shifted - ROUNDER;
-    let r = reduce_by::<FUSED>(x, n);
+    let r = reduce(x, n);
     let z = r * r;
     // The kernels' polynomials in Estrin's form (pairs, then z^2 and z^4),
     // whose chain of dependent operations is half of Horner's: joint angles
@@ -230,6 +198,45 @@ fn reduced_by<const FUSED: bool>(x: f64) -> (u64, f64, f64) {
     (shifted.to_bits(), s, c)
 }
 
+/// [`reduced`] over lanes (the same operations in the same order, with
+/// the lane type's multiply-add): the rounded quotient's bits as a float
+/// (`shifted`, whose last two mantissa bits are the quadrant), sin r and
+/// cos r. The caller checks that every lane is below [`REDUCE_LIMIT`].
+#[inline(always)]
+pub(crate) fn reduced_lanes<L: Lanes>(x: L) -> (L, L, L) {
+    let k = L::splat;
+    let shifted = x.mul_add(k(FRAC_2_PI), k(ROUNDER));
+    let n = shifted - k(ROUNDER);
+    #[cfg(any(target_feature = "fma", target_arch = "aarch64"))]
+    let r = {
+        let r = (-n).mul_add(k(core::f64::consts::FRAC_PI_2), x);
+        (-n).mul_add(k(PIO2_TAIL), (-n).mul_add(k(PIO2_LO), r))
+    };
+    #[cfg(not(any(target_feature = "fma", target_arch = "aarch64")))]
+    let r = {
+        let t = x - n * k(PIO2_1);
+        let w = n * k(PIO2_2);
+        let r = t - w;
+        r - (n * k(PIO2_2T) - ((t - r) - w))
+    };
+    let z = r * r;
+    let z2 = z * z;
+    let z4 = z2 * z2;
+    let ps = z4.mul_add(
+        z.mul_add(k(S6), k(S5)),
+        z2.mul_add(z.mul_add(k(S4), k(S3)), z.mul_add(k(S2), k(S1))),
+    );
+    let pc = z4.mul_add(
+        z.mul_add(k(C6), k(C5)),
+        z2.mul_add(z.mul_add(k(C4), k(C3)), z.mul_add(k(C2), k(C1))),
+    );
+    let s = (r * z).mul_add(ps, r);
+    let hz = k(0.5) * z;
+    let w = k(1.0) - hz;
+    let c = w + z2.mul_add(pc, (k(1.0) - w) - hz);
+    (shifted, s, c)
+}
+
 /// Factors of s and c in sin x and cos x, by quadrant.
 const SIN_S: [f64; 4] = [1.0, 0.0, -1.0, 0.0];
 const SIN_C: [f64; 4] = [0.0, 1.0, 0.0, -1.0];
@@ -238,7 +245,7 @@ const COS_C: [f64; 4] = [1.0, 0.0, -1.0, 0.0];
 
 /// x - n pi/2 for an integer n with |n| < 2^20.
 #[inline(always)]
-fn reduce_by<const FUSED: bool>(x: f64, n: f64) -> f64 {
+fn reduce(x: f64, n: f64) -> f64 {
     // A fused multiply-add rounds x - n part once, after the exact
     // product, so the parts need no trailing zero bits: full doubles, whose
     // three terms hold pi/2 to 2^-160 (r to about an ulp of itself, also
@@ -248,7 +255,6 @@ fn reduce_by<const FUSED: bool>(x: f64, n: f64) -> f64 {
     // iteration"), without which a tiny r loses most of its digits.
     #[cfg(any(target_feature = "fma", target_arch = "aarch64"))]
     {
-        let mul_add = mul_add_by::<FUSED>;
         let r = mul_add(-n, core::f64::consts::FRAC_PI_2, x);
         mul_add(-n, PIO2_TAIL, mul_add(-n, PIO2_LO, r))
     }

@@ -7,6 +7,7 @@ use libfuzzer_sys::fuzz_target;
 static ALLOC: dynamics_fuzz::Bounded = dynamics_fuzz::Bounded;
 
 fuzz_target!(|data: &[u8]| {
+    dynamics_fuzz::panics_unwind();
     let _ = dynamics_sim2real::data::parquet::read_parquet_bytes(
         data.to_vec(),
         &["j1", "j2", "j3"],

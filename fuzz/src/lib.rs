@@ -6,6 +6,19 @@
 
 use std::alloc::{GlobalAlloc, Layout, System};
 
+/// Lets panics unwind again, for a target whose reader catches a
+/// dependency's panics at its own boundary (the Parquet reader's
+/// `catch_unwind` around the `parquet` crate's decoder): libfuzzer-sys's
+/// panic hook aborts at the panic itself, before any unwinding, so it would
+/// report panics the reader catches and turns into errors. The hook set
+/// here is silent; a panic that escapes the reader still reaches
+/// libfuzzer-sys's own `catch_unwind` around the target, which aborts (a
+/// crash, with its input).
+pub fn panics_unwind() {
+    static ONCE: std::sync::Once = std::sync::Once::new();
+    ONCE.call_once(|| std::panic::set_hook(Box::new(|_| {})));
+}
+
 /// The largest single allocation a reader may make: 1 GiB.
 pub const LIMIT: usize = 1 << 30;
 

@@ -1,7 +1,9 @@
 //! The lane width chosen at run time: the widest vector unit the CPU has,
 //! so that a binary built for baseline x86-64 still uses AVX2 or AVX-512.
 
-use crate::lanes::{F64x4, F64x8, Lanes};
+use crate::lanes::Lanes;
+#[cfg(target_arch = "x86_64")]
+use crate::lanes::{F64x4, F64x8};
 
 /// The lanes a batch runs in.
 ///
@@ -14,11 +16,9 @@ use crate::lanes::{F64x4, F64x8, Lanes};
 pub enum Level {
     /// One state at a time: the scalar code.
     Scalar,
-    /// Four states per instruction ([`F64x4`]), in code compiled for AVX2
-    /// and FMA.
+    /// Four states per instruction, in code compiled for AVX2 and FMA.
     Avx2,
-    /// Eight states per instruction ([`F64x8`]), in code compiled for
-    /// AVX-512F.
+    /// Eight states per instruction, in code compiled for AVX-512F.
     Avx512,
 }
 
@@ -65,8 +65,8 @@ impl Level {
     pub fn width(self) -> usize {
         match self {
             Level::Scalar => 1,
-            Level::Avx2 => F64x4::WIDTH,
-            Level::Avx512 => F64x8::WIDTH,
+            Level::Avx2 => 4,
+            Level::Avx512 => 8,
         }
     }
 }

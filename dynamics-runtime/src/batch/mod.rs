@@ -14,9 +14,13 @@
 //!
 //! The [`Robot`] methods `inverse_dynamics_many` etc. call these at
 //! [`Level::detect`]; the functions here take the level, for comparisons.
+//! With the feature `rayon`, `parallel` spreads large batches over all
+//! cores.
 
 mod dispatch;
 mod ldlt;
+#[cfg(feature = "rayon")]
+pub mod parallel;
 
 use nalgebra::{SMatrix, SVector};
 use thiserror::Error;

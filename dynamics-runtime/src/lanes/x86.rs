@@ -1,0 +1,219 @@
+//! The x86-64 lane types: four states in an AVX2 register, eight in an
+//! AVX-512 one, each operation an intrinsic.
+//!
+//! Every intrinsic here is compiled for the CPU features of the function
+//! it is inlined into: everything is `#[inline(always)]` down to the
+//! `#[target_feature]` functions of `batch/dispatch.rs`, the only code
+//! that makes values of these types, and only after the run-time check
+//! that the CPU has those features. That check is what makes the `unsafe`
+//! calls below sound; the types are private to the crate so that no other
+//! code can make a value of them.
+#![allow(unsafe_code)]
+
+use core::arch::x86_64::*;
+use core::ops::{Add, Div, Mul, Neg, Sub};
+
+use super::Lanes;
+use crate::{math, trig};
+
+/// The lane type `$name` over the vector `$v` and its intrinsics.
+macro_rules! vector_lanes {
+    (
+        $(#[$doc:meta])*
+        $name:ident, $width:literal, $v:ty, $vi:ty,
+        set1: $set1:ident, add: $add:ident, sub: $sub:ident, mul: $mul:ident, div: $div:ident,
+        fmadd: $fmadd:ident, sqrt: $sqrt:ident,
+        to_int: $to_int:ident, to_float: $to_float:ident,
+        and: $and:ident, or: $or:ident, andnot: $andnot:ident, xor: $xor:ident,
+        add64: $add64:ident, sub64: $sub64:ident, srli: $srli:ident, slli: $slli:ident,
+        set1_64: $set1_64:ident, zero_int: $zero_int:ident,
+        all_below: $all_below:expr
+    ) => {
+        $(#[$doc])*
+        #[derive(Clone, Copy)]
+        #[repr(transparent)]
+        pub(crate) struct $name($v);
+
+        impl $name {
+            /// The lanes as an array (a reinterpretation, no instruction).
+            #[inline(always)]
+            fn to_array(self) -> [f64; $width] {
+                // SAFETY: both are $width f64 with no invalid bit patterns.
+                unsafe { core::mem::transmute::<$v, [f64; $width]>(self.0) }
+            }
+            #[inline(always)]
+            fn from_array(a: [f64; $width]) -> Self {
+                // SAFETY: as above.
+                Self(unsafe { core::mem::transmute::<[f64; $width], $v>(a) })
+            }
+            /// The sign bit alone in every lane.
+            #[inline(always)]
+            fn sign() -> $vi {
+                // SAFETY: see the module doc.
+                unsafe { $set1_64(i64::MIN) }
+            }
+        }
+
+        impl Add for $name {
+            type Output = Self;
+            #[inline(always)]
+            fn add(self, rhs: Self) -> Self {
+                // SAFETY: see the module doc.
+                Self(unsafe { $add(self.0, rhs.0) })
+            }
+        }
+        impl Sub for $name {
+            type Output = Self;
+            #[inline(always)]
+            fn sub(self, rhs: Self) -> Self {
+                // SAFETY: see the module doc.
+                Self(unsafe { $sub(self.0, rhs.0) })
+            }
+        }
+        impl Mul for $name {
+            type Output = Self;
+            #[inline(always)]
+            fn mul(self, rhs: Self) -> Self {
+                // SAFETY: see the module doc.
+                Self(unsafe { $mul(self.0, rhs.0) })
+            }
+        }
+        impl Div for $name {
+            type Output = Self;
+            #[inline(always)]
+            fn div(self, rhs: Self) -> Self {
+                // SAFETY: see the module doc.
+                Self(unsafe { $div(self.0, rhs.0) })
+            }
+        }
+        impl Neg for $name {
+            type Output = Self;
+            #[inline(always)]
+            fn neg(self) -> Self {
+                // SAFETY: see the module doc.
+                Self(unsafe { $to_float($xor($to_int(self.0), Self::sign())) })
+            }
+        }
+
+        impl Lanes for $name {
+            const WIDTH: usize = $width;
+            // SAFETY: $width f64 reinterpreted, no instruction.
+            const NAN: Self =
+                Self(unsafe { core::mem::transmute::<[f64; $width], $v>([f64::NAN; $width]) });
+            // SAFETY: as above.
+            const INFINITY: Self =
+                Self(unsafe { core::mem::transmute::<[f64; $width], $v>([f64::INFINITY; $width]) });
+            #[inline(always)]
+            fn splat(x: f64) -> Self {
+                // SAFETY: see the module doc.
+                Self(unsafe { $set1(x) })
+            }
+            #[inline(always)]
+            fn from_fn(mut f: impl FnMut(usize) -> f64) -> Self {
+                let mut a = [0.0; $width];
+                for (i, x) in a.iter_mut().enumerate() {
+                    *x = f(i);
+                }
+                Self::from_array(a)
+            }
+            #[inline(always)]
+            fn lane(self, i: usize) -> f64 {
+                self.to_array()[i]
+            }
+            #[inline(always)]
+            fn abs(self) -> Self {
+                // SAFETY: see the module doc.
+                Self(unsafe { $to_float($andnot(Self::sign(), $to_int(self.0))) })
+            }
+            #[inline(always)]
+            fn mul_add(self, b: Self, c: Self) -> Self {
+                // SAFETY: see the module doc.
+                Self(unsafe { $fmadd(self.0, b.0, c.0) })
+            }
+            #[inline(always)]
+            fn sin_cos(self) -> (Self, Self) {
+                let limit = Self::splat(trig::REDUCE_LIMIT);
+                let below: fn(Self, Self) -> bool = $all_below;
+                if !below(self.abs(), limit) {
+                    return Self::cold_sin_cos(self);
+                }
+                let (shifted, s, c) = trig::reduced_lanes(self);
+                Self::by_quadrant(shifted, s, c)
+            }
+            #[inline(always)]
+            fn sin_cos_n<const K: usize>(x: [Self; K]) -> ([Self; K], [Self; K]) {
+                let mut s = [Self::splat(0.0); K];
+                let mut c = [Self::splat(0.0); K];
+                for k in 0..K {
+                    (s[k], c[k]) = x[k].sin_cos();
+                }
+                (s, c)
+            }
+            #[inline(always)]
+            fn sqrt(self) -> Self {
+                // SAFETY: see the module doc.
+                Self(unsafe { $sqrt(self.0) })
+            }
+            #[inline(always)]
+            fn tanh(self) -> Self {
+                Self::from_array(self.to_array().map(math::tanh))
+            }
+            #[inline(always)]
+            fn powi(self, n: i32) -> Self {
+                Self::from_array(self.to_array().map(|x| math::powi(x, n)))
+            }
+            #[inline(always)]
+            fn by_quadrant(shifted: Self, s: Self, c: Self) -> (Self, Self) {
+                // SAFETY: see the module doc.
+                unsafe {
+                    let bits = $to_int(shifted.0);
+                    let one = $set1_64(1);
+                    let swap = $sub64($zero_int(), $and(bits, one));
+                    let sin_sign = $slli::<63>($and($srli::<1>(bits), one));
+                    let cos_sign = $slli::<63>($and($srli::<1>($add64(bits, one)), one));
+                    let (sb, cb) = ($to_int(s.0), $to_int(c.0));
+                    let sin = $xor($or($and(cb, swap), $andnot(swap, sb)), sin_sign);
+                    let cos = $xor($or($and(sb, swap), $andnot(swap, cb)), cos_sign);
+                    (Self($to_float(sin)), Self($to_float(cos)))
+                }
+            }
+        }
+
+        impl $name {
+            /// `sin_cos` when a lane is huge or not finite: each lane by
+            /// the scalar kernel (which sends those to `std` or `libm`).
+            #[cold]
+            #[inline(never)]
+            fn cold_sin_cos(x: Self) -> (Self, Self) {
+                let (s, c) = trig::sin_cos_n(x.to_array());
+                (Self::from_array(s), Self::from_array(c))
+            }
+        }
+    };
+}
+
+vector_lanes!(
+    /// Four states: one AVX2 register.
+    F64x4, 4, __m256d, __m256i,
+    set1: _mm256_set1_pd, add: _mm256_add_pd, sub: _mm256_sub_pd, mul: _mm256_mul_pd,
+    div: _mm256_div_pd, fmadd: _mm256_fmadd_pd, sqrt: _mm256_sqrt_pd,
+    to_int: _mm256_castpd_si256, to_float: _mm256_castsi256_pd,
+    and: _mm256_and_si256, or: _mm256_or_si256, andnot: _mm256_andnot_si256, xor: _mm256_xor_si256,
+    add64: _mm256_add_epi64, sub64: _mm256_sub_epi64, srli: _mm256_srli_epi64, slli: _mm256_slli_epi64,
+    set1_64: _mm256_set1_epi64x, zero_int: _mm256_setzero_si256,
+    // SAFETY: see the module doc.
+    all_below: |a, b| unsafe { _mm256_movemask_pd(_mm256_cmp_pd::<_CMP_LT_OQ>(a.0, b.0)) == 0b1111 }
+);
+
+vector_lanes!(
+    /// Eight states: one AVX-512 register.
+    F64x8, 8, __m512d, __m512i,
+    set1: _mm512_set1_pd, add: _mm512_add_pd, sub: _mm512_sub_pd, mul: _mm512_mul_pd,
+    div: _mm512_div_pd, fmadd: _mm512_fmadd_pd, sqrt: _mm512_sqrt_pd,
+    to_int: _mm512_castpd_si512, to_float: _mm512_castsi512_pd,
+    and: _mm512_and_si512, or: _mm512_or_si512, andnot: _mm512_andnot_si512, xor: _mm512_xor_si512,
+    add64: _mm512_add_epi64, sub64: _mm512_sub_epi64, srli: _mm512_srli_epi64, slli: _mm512_slli_epi64,
+    set1_64: _mm512_set1_epi64, zero_int: _mm512_setzero_si512,
+    // SAFETY: see the module doc.
+    all_below: |a, b| unsafe { _mm512_cmp_pd_mask::<_CMP_LT_OQ>(a.0, b.0) == 0xff }
+);
