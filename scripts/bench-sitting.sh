@@ -23,10 +23,15 @@ ROBOTS="${ROBOTS:-$ALL}"
 BUILD="${BUILD:-/tmp/anchors/build}"
 cd "$ROOT"
 cargo bench -p robots --bench dynamics --no-run >/dev/null 2>&1
+cargo bench -p robots --bench batch --no-run >/dev/null 2>&1
 rm -f "$OUT"/casadi-*.log
 [ "$ROBOTS" = "$ALL" ] && bash "$ANCHOR/build.sh" casadi > "$OUT/casadi-before.log" 2>&1
 for r in $ROBOTS; do rm -rf "target/criterion/$r"; done
 $PIN cargo bench -p robots --bench dynamics -- "^($(echo $ROBOTS | tr ' ' '|'))/" > "$OUT/ours.log" 2>&1
+# The batch functions (1000 states a call) on the arms the batch bench covers.
+BATCHED="$(for r in $ROBOTS; do case $r in ur5|panda) echo -n "$r ";; esac; done)"
+for r in $BATCHED; do rm -rf "target/criterion/$r x1000"; done
+[ -n "$BATCHED" ] && $PIN cargo bench -p robots --bench batch -- "^($(echo $BATCHED | tr ' ' '|')) x1000/" > "$OUT/ours-batch.log" 2>&1
 if [ "$ROBOTS" = "$ALL" ]; then
   bash "$ANCHOR/build.sh" casadi > "$OUT/casadi-after.log" 2>&1
   bash "$ANCHOR/build.sh" run > "$OUT/pinocchio.log" 2>&1
@@ -84,4 +89,25 @@ for r in robots:
     fd = ours[(r, "forward_dynamics_derivatives")]; ss = ours[(r, "state_space")]
     zoh = ours[(r, "zero_order_hold")]; ad = float(pin[r]["aba_derivs"])
     row([r, f(fd), f(ad), f"{fd/ad:.2f}", f(ss), f"{ss/ad:.2f}", f(zoh)])
+batch = {}
+for f in glob.glob(os.path.join(crit, "* x1000", "*", "new", "benchmark.json")):
+    b = json.load(open(f))
+    est = json.load(open(os.path.join(os.path.dirname(f), "estimates.json")))
+    batch[(b["group_id"].split(" ")[0], b["function_id"])] = est["median"]["point_estimate"] / 1000.0
+batched = [r for r in robots if (r, "inverse_dynamics: scalar calls") in batch]
+if batched:
+    print("\nPer state, batches of 1000 states (ns; ours: best lane level this CPU has, and the")
+    print("scalar methods called once per state; Pinocchio: its loop over 1000 states, one call each).\n")
+    row(["robot", "output", "ours batch", "ours scalar", "speed-up", "Pinocchio", "ratio batch", "ratio single call"])
+    row(["---"] * 8)
+    for r in batched:
+        for name, pin_key in [("inverse_dynamics", "rnea"), ("mass_matrix", "crba"),
+                              ("perturbation_jacobians", "rnea_derivs"),
+                              ("forward_dynamics_derivatives", "aba_derivs")]:
+            levels = [v for (rr, fid), v in batch.items() if rr == r and fid.startswith(name + ": batch")]
+            if not levels:
+                continue
+            b, sc = min(levels), batch[(r, name + ": scalar calls")]
+            p = float(pin[r][pin_key])
+            row([r, name, f(b), f(sc), f"{sc/b:.2f}", f(p), f"{b/p:.3f}", f"{sc/p:.3f}"])
 PY

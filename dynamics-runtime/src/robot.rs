@@ -314,7 +314,8 @@ pub trait Robot<const N: usize> {
     fn inverse_dynamics_lanes<L: Lanes>(&self, q: &[L; N], qd: &[L; N], qdd: &[L; N]) -> [L; N] {
         from_states(|i| self.inverse_dynamics(&state(q, i), &state(qd, i), &state(qdd, i)))
     }
-    /// [`Robot::mass_matrix`] over lanes (row-major; see
+    /// [`Robot::mass_matrix`] over lanes (column-major as nalgebra's,
+    /// `a[column][row]`; see
     /// [`Robot::inverse_dynamics_lanes`]).
     ///
     /// ```
@@ -352,7 +353,11 @@ pub trait Robot<const N: usize> {
     /// ```
     #[inline(always)]
     #[allow(clippy::type_complexity)]
-    fn motion_terms_lanes<L: Lanes>(&self, q: &[L; N], qd: &[L; N]) -> ([[L; N]; N], [L; N], [L; N]) {
+    fn motion_terms_lanes<L: Lanes>(
+        &self,
+        q: &[L; N],
+        qd: &[L; N],
+    ) -> ([[L; N]; N], [L; N], [L; N]) {
         let terms = |i| self.motion_terms(&state(q, i), &state(qd, i));
         (
             matrix_from_states(|i| terms(i).a),
@@ -360,7 +365,7 @@ pub trait Robot<const N: usize> {
             from_states(|i| terms(i).q0),
         )
     }
-    /// [`Robot::perturbation_jacobians`] over lanes: `(K, D)` row-major
+    /// [`Robot::perturbation_jacobians`] over lanes: `(K, D)` column-major
     /// (see [`Robot::inverse_dynamics_lanes`]).
     ///
     /// ```

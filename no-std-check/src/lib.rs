@@ -170,6 +170,21 @@ outputs!(arm3r, Arm3r, 3);
 outputs!(ur5, Ur5, 6);
 outputs!(panda, Panda, 7);
 
+/// Inverse dynamics and forward-dynamics derivatives of many states in
+/// vector lanes (the lane width the build targets: no run-time CPU check
+/// without std; scalar on the Cortex-M4F).
+pub fn arm3r_batch(
+    r: &Arm3r,
+    q: &[SVector<f64, 3>],
+    qd: &[SVector<f64, 3>],
+    qdd: &[SVector<f64, 3>],
+    tau: &mut [SVector<f64, 3>],
+    derivatives: &mut [linearize::ForwardDerivatives<3>],
+) -> Result<(), dynamics_runtime::batch::BatchError> {
+    r.inverse_dynamics_many(q, qd, qdd, tau)?;
+    r.forward_dynamics_derivatives_many(q, qd, tau, derivatives)
+}
+
 /// Sets a parameter of [`Slide`] by name: the error names the parameter
 /// and the known ones without a heap.
 pub fn set_payload(r: &mut Slide, name: &str, value: f64) -> Result<(), DynamicsError> {

@@ -108,7 +108,9 @@ fn bench_robot<R: Robot<N>, const N: usize, M: Measurement>(
     group.bench_function("forward_dynamics_derivatives: scalar calls", |b| {
         b.iter(|| {
             for k in 0..STATES {
-                if let Ok(d) = linearize::forward_dynamics_derivatives(r, black_box(&q[k]), &v[k], &a[k]) {
+                if let Ok(d) =
+                    linearize::forward_dynamics_derivatives(r, black_box(&q[k]), &v[k], &a[k])
+                {
                     fd[k] = d;
                 }
             }
@@ -118,7 +120,8 @@ fn bench_robot<R: Robot<N>, const N: usize, M: Measurement>(
     for &l in &levels {
         group.bench_function(format!("forward_dynamics_derivatives: batch {l:?}"), |b| {
             b.iter(|| {
-                let done = batch::forward_dynamics_derivatives(r, l, black_box(&q), &v, &a, &mut fd);
+                let done =
+                    batch::forward_dynamics_derivatives(r, l, black_box(&q), &v, &a, &mut fd);
                 black_box((done.is_ok(), &fd));
             })
         });

@@ -38,7 +38,11 @@ impl<'a> Spelling<'a> {
 
     /// The emitted chain and roots as this spelling writes them: over
     /// lanes, every `f64` of the scalar code made a lane value.
-    fn finish(&self, lets: TokenStream, roots: Vec<TokenStream>) -> (TokenStream, Vec<TokenStream>) {
+    fn finish(
+        &self,
+        lets: TokenStream,
+        roots: Vec<TokenStream>,
+    ) -> (TokenStream, Vec<TokenStream>) {
         if self.lanes {
             (
                 super::lanes::over_lanes(lets),

@@ -75,7 +75,9 @@ pub fn assign_vector(
     quote!(#(#sets)*)
 }
 
-/// `target[i][j] = value;` for every non-zero root of a row-major matrix.
+/// `target[j][i] = value;` for every non-zero root `(i, j)` of row-major
+/// roots: lane matrices are column-major as nalgebra's (`m[column][row]`),
+/// so that a state's matrix is the columns' lanes in memory order.
 pub fn assign_matrix(
     g: &Graph,
     roots: &[Id],
@@ -89,7 +91,7 @@ pub fn assign_matrix(
         .enumerate()
         .filter_map(|(k, (id, v))| {
             let (i, j) = (k / cols, k % cols);
-            (g.as_constant(*id) != Some(0.0)).then(|| quote!(#target[#i][#j] = #v;))
+            (g.as_constant(*id) != Some(0.0)).then(|| quote!(#target[#j][#i] = #v;))
         });
     quote!(#(#sets)*)
 }

@@ -14,13 +14,15 @@ pub(crate) struct Ldlt<L, const N: usize> {
 }
 
 impl<L: Lanes, const N: usize> Ldlt<L, N> {
-    /// Factors `a` (row-major, its lower triangle read) lane by lane; the
+    /// Factors `a` (column-major, `a[column][row]`, its lower triangle
+    /// read) lane by lane; the
     /// lanes whose every pivot is positive and finite are marked in the
     /// returned mask (bit `i` for lane `i`).
     #[inline(always)]
     pub(crate) fn new(a: &[[L; N]; N]) -> (Self, u32) {
         let zero = L::splat(0.0);
-        let mut s: [[L; N]; N] = core::array::from_fn(|k| core::array::from_fn(|i| a[i][k]));
+        // `s[k][i]` holds entry (i, k): column k, as `a` is laid out.
+        let mut s: [[L; N]; N] = *a;
         let mut l = [[zero; N]; N];
         let mut inv_d = [zero; N];
         let mut ok = u32::MAX;

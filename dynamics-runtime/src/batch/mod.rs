@@ -25,10 +25,10 @@ pub mod parallel;
 use nalgebra::{SMatrix, SVector};
 use thiserror::Error;
 
-pub use dispatch::Level;
 use dispatch::Kernel;
+pub use dispatch::Level;
 
-use crate::lanes::Lanes;
+use crate::lanes::{Lanes, MAX_WIDTH};
 use crate::linearize::ForwardDerivatives;
 use crate::{DynamicsError, MotionTerms, PerturbationJacobians, Robot};
 
@@ -52,7 +52,7 @@ pub enum BatchError {
         found: usize,
     },
     /// The scalar function fails at this state (the outputs of the states
-    /// before it are written, the others are not).
+    /// before it are written; the others' are unspecified).
     #[error("state {state}: {error}")]
     State {
         /// Index of the state in the slices.
@@ -83,27 +83,37 @@ fn gather<L: Lanes, const N: usize>(x: &[SVector<f64, N>], start: usize) -> [L; 
     core::array::from_fn(|j| L::from_fn(|i| x[(start + i).min(last)][j]))
 }
 
-/// State `i` of lanes.
+/// Writes the lanes of `values` into the states of `out` (at most
+/// `WIDTH`), each state's part `field` of it: `values` in that part's
+/// memory order (a vector's entries; a matrix's columns, column-major).
 #[inline(always)]
-fn vector<L: Lanes, const N: usize>(x: &[L; N], i: usize) -> SVector<f64, N> {
-    SVector::from_fn(|j, _| x[j].lane(i))
-}
-
-/// State `i` of row-major lane matrices.
-#[inline(always)]
-fn matrix<L: Lanes, const N: usize>(x: &[[L; N]; N], i: usize) -> SMatrix<f64, N, N> {
-    SMatrix::from_fn(|r, c| x[r][c].lane(i))
-}
-
-/// Calls `f(start, lanes)` for each group of `WIDTH` states of `len`, with
-/// the number of real states in the group.
-#[inline(always)]
-fn groups<L: Lanes>(len: usize, mut f: impl FnMut(usize, usize)) {
-    let mut start = 0;
-    while start < len {
-        f(start, L::WIDTH.min(len - start));
-        start += L::WIDTH;
+fn store<L: Lanes, T>(
+    values: &[L],
+    out: &mut [T],
+    field: impl for<'a> Fn(&'a mut T) -> &'a mut [f64],
+) {
+    let mut slots: [&mut [f64]; MAX_WIDTH] = core::array::from_fn(|_| &mut [][..]);
+    let m = out.len();
+    for (slot, o) in slots.iter_mut().zip(out.iter_mut()) {
+        *slot = field(o);
     }
+    L::store_states(values, &mut slots[..m]);
+}
+
+/// `sum(x * 0)` over `values`: 0 in the lanes where every value is finite,
+/// NaN where one is not (`inf * 0` and `NaN * 0` are NaN); one multiply-add
+/// a value for all lanes instead of a test per value and state.
+#[inline(always)]
+fn finite_probe<'a, L: Lanes + 'a>(values: impl Iterator<Item = &'a L>) -> L {
+    let zero = L::splat(0.0);
+    values.fold(zero, |acc, &v| v.mul_add(zero, acc))
+}
+
+/// The rows of a column-major lane matrix (`rows[i][j]` = entry (i, j)),
+/// or the columns of rows: a transposition.
+#[inline(always)]
+fn transposed<L: Lanes, const N: usize>(m: &[[L; N]; N]) -> [[L; N]; N] {
+    core::array::from_fn(|i| core::array::from_fn(|j| m[j][i]))
 }
 
 /// Inverse dynamics of every state (see [`Robot::inverse_dynamics`]).
@@ -149,16 +159,15 @@ pub fn inverse_dynamics<R: Robot<N>, const N: usize>(
         #[inline(always)]
         fn run<L: Lanes>(self) {
             let [q, qd, qdd] = self.x;
-            groups::<L>(q.len(), |s, m| {
+            for s in (0..q.len()).step_by(L::WIDTH) {
+                let m = L::WIDTH.min(q.len() - s);
                 let tau = self.robot.inverse_dynamics_lanes(
                     &gather::<L, N>(q, s),
                     &gather(qd, s),
                     &gather(qdd, s),
                 );
-                for i in 0..m {
-                    self.out[s + i] = vector(&tau, i);
-                }
-            });
+                store(&tau, &mut self.out[s..s + m], |o| o.as_mut_slice());
+            }
         }
     }
     dispatch::run(
@@ -207,12 +216,13 @@ pub fn mass_matrix<R: Robot<N>, const N: usize>(
         type Output = ();
         #[inline(always)]
         fn run<L: Lanes>(self) {
-            groups::<L>(self.q.len(), |s, m| {
+            for s in (0..self.q.len()).step_by(L::WIDTH) {
+                let m = L::WIDTH.min(self.q.len() - s);
                 let a = self.robot.mass_matrix_lanes(&gather::<L, N>(self.q, s));
-                for i in 0..m {
-                    self.out[s + i] = matrix(&a, i);
-                }
-            });
+                store(a.as_flattened(), &mut self.out[s..s + m], |o| {
+                    o.as_mut_slice()
+                });
+            }
         }
     }
     dispatch::run(level, K { robot, q, out });
@@ -258,18 +268,16 @@ pub fn motion_terms<R: Robot<N>, const N: usize>(
         #[inline(always)]
         fn run<L: Lanes>(self) {
             let [q, qd] = self.x;
-            groups::<L>(q.len(), |s, m| {
+            for s in (0..q.len()).step_by(L::WIDTH) {
+                let m = L::WIDTH.min(q.len() - s);
                 let (a, qqt, q0) = self
                     .robot
                     .motion_terms_lanes(&gather::<L, N>(q, s), &gather(qd, s));
-                for i in 0..m {
-                    self.out[s + i] = MotionTerms {
-                        a: matrix(&a, i),
-                        qqt: vector(&qqt, i),
-                        q0: vector(&q0, i),
-                    };
-                }
-            });
+                let out = &mut self.out[s..s + m];
+                store(a.as_flattened(), out, |o| o.a.as_mut_slice());
+                store(&qqt, out, |o| o.qqt.as_mut_slice());
+                store(&q0, out, |o| o.q0.as_mut_slice());
+            }
         }
     }
     dispatch::run(
@@ -327,19 +335,17 @@ pub fn perturbation_jacobians<R: Robot<N>, const N: usize>(
         #[inline(always)]
         fn run<L: Lanes>(self) {
             let [q, qd, qdd] = self.x;
-            groups::<L>(q.len(), |s, m| {
+            for s in (0..q.len()).step_by(L::WIDTH) {
+                let m = L::WIDTH.min(q.len() - s);
                 let (k, d) = self.robot.perturbation_jacobians_lanes(
                     &gather::<L, N>(q, s),
                     &gather(qd, s),
                     &gather(qdd, s),
                 );
-                for i in 0..m {
-                    self.out[s + i] = PerturbationJacobians {
-                        k: matrix(&k, i),
-                        d: matrix(&d, i),
-                    };
-                }
-            });
+                let out = &mut self.out[s..s + m];
+                store(k.as_flattened(), out, |o| o.k.as_mut_slice());
+                store(d.as_flattened(), out, |o| o.d.as_mut_slice());
+            }
         }
     }
     dispatch::run(
@@ -359,8 +365,8 @@ pub fn perturbation_jacobians<R: Robot<N>, const N: usize>(
 ///
 /// Errors at the first state where the scalar function fails (an input
 /// that is not finite, an inertia matrix that is not positive definite, a
-/// result that is not finite), naming it; the states before it are
-/// written.
+/// result that is not finite), naming it; the outputs of the states before
+/// it are written.
 ///
 /// ```
 /// use dynamics_runtime::batch::{self, Level};
@@ -409,11 +415,8 @@ pub fn forward_dynamics_derivatives<R: Robot<N>, const N: usize>(
         #[inline(always)]
         fn run<L: Lanes>(self) -> Result<(), BatchError> {
             let [q, qd, tau] = self.x;
-            let mut result = Ok(());
-            groups::<L>(q.len(), |s, m| {
-                if result.is_err() {
-                    return;
-                }
+            for s in (0..q.len()).step_by(L::WIDTH) {
+                let m = L::WIDTH.min(q.len() - s);
                 let t = gather::<L, N>(tau, s);
                 let mut factors = None;
                 let (qdd, k, d) = self.robot.motion_and_jacobians_lanes(
@@ -428,24 +431,26 @@ pub fn forward_dynamics_derivatives<R: Robot<N>, const N: usize>(
                     },
                 );
                 let Some((f, ok)) = factors else {
-                    return;
+                    continue;
                 };
-                let mut kd = [k, d];
+                // -A^-1 K and -A^-1 D on the matrices' rows, back to columns.
+                let mut kd = [transposed(&k), transposed(&d)];
                 for rows in &mut kd {
                     f.solve_rows(rows, -1.0);
                 }
-                let [ddq_dq, ddq_dv] = kd;
-                for i in 0..m {
-                    let d = ForwardDerivatives {
-                        qdd: vector(&qdd, i),
-                        ddq_dq: matrix(&ddq_dq, i),
-                        ddq_dv: matrix(&ddq_dv, i),
-                    };
-                    let finite = d.qdd.iter().all(|x| x.is_finite())
-                        && d.ddq_dq.iter().all(|x| x.is_finite())
-                        && d.ddq_dv.iter().all(|x| x.is_finite());
-                    self.out[s + i] = if ok & (1 << i) != 0 && finite {
-                        d
+                let [ddq_dq, ddq_dv] = kd.map(|rows| transposed(&rows));
+                let out = &mut self.out[s..s + m];
+                store(&qdd, out, |o| o.qdd.as_mut_slice());
+                store(ddq_dq.as_flattened(), out, |o| o.ddq_dq.as_mut_slice());
+                store(ddq_dv.as_flattened(), out, |o| o.ddq_dv.as_mut_slice());
+                let all = qdd
+                    .iter()
+                    .chain(ddq_dq.as_flattened())
+                    .chain(ddq_dv.as_flattened());
+                let probe = finite_probe(all);
+                for (i, d) in out.iter_mut().enumerate() {
+                    *d = if ok & (1 << i) != 0 && probe.lane(i) == 0.0 {
+                        *d
                     } else {
                         // The scalar function says why (or, at an edge
                         // the lanes judged otherwise, gives the value).
@@ -454,15 +459,12 @@ pub fn forward_dynamics_derivatives<R: Robot<N>, const N: usize>(
                             self.robot, &q[k], &qd[k], &tau[k],
                         ) {
                             Ok(d) => d,
-                            Err(error) => {
-                                result = Err(BatchError::State { state: k, error });
-                                return;
-                            }
+                            Err(error) => return Err(BatchError::State { state: k, error }),
                         }
                     };
                 }
-            });
-            result
+            }
+            Ok(())
         }
     }
     dispatch::run(
@@ -525,11 +527,8 @@ pub fn forward_dynamics<R: Robot<N>, const N: usize>(
         #[inline(always)]
         fn run<L: Lanes>(self) -> Result<(), BatchError> {
             let [q, qd, tau] = self.x;
-            let mut result = Ok(());
-            groups::<L>(q.len(), |s, m| {
-                if result.is_err() {
-                    return;
-                }
+            for s in (0..q.len()).step_by(L::WIDTH) {
+                let m = L::WIDTH.min(q.len() - s);
                 let (a, qqt, q0) = self
                     .robot
                     .motion_terms_lanes(&gather::<L, N>(q, s), &gather(qd, s));
@@ -537,23 +536,22 @@ pub fn forward_dynamics<R: Robot<N>, const N: usize>(
                 let (f, ok) = ldlt::Ldlt::new(&a);
                 let b: [L; N] = core::array::from_fn(|j| q0[j] + qqt[j] + t[j]);
                 let qdd = f.solve(&b);
-                for i in 0..m {
-                    let v = vector(&qdd, i);
-                    self.out[s + i] = if ok & (1 << i) != 0 && v.iter().all(|x| x.is_finite()) {
-                        v
+                let out = &mut self.out[s..s + m];
+                store(&qdd, out, |o| o.as_mut_slice());
+                let probe = finite_probe(qdd.iter());
+                for (i, v) in out.iter_mut().enumerate() {
+                    *v = if ok & (1 << i) != 0 && probe.lane(i) == 0.0 {
+                        *v
                     } else {
                         let k = s + i;
                         match robot_forward(self.robot, &q[k], &qd[k], &tau[k]) {
                             Ok(v) => v,
-                            Err(error) => {
-                                result = Err(BatchError::State { state: k, error });
-                                return;
-                            }
+                            Err(error) => return Err(BatchError::State { state: k, error }),
                         }
                     };
                 }
-            });
-            result
+            }
+            Ok(())
         }
     }
     dispatch::run(

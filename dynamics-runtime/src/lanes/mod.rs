@@ -32,7 +32,7 @@ use nalgebra::{SMatrix, SVector};
 use crate::{fma, math, trig};
 
 /// The widest lane type.
-const MAX_WIDTH: usize = 8;
+pub(crate) const MAX_WIDTH: usize = 8;
 
 #[cfg(target_arch = "x86_64")]
 mod x86;
@@ -98,6 +98,10 @@ pub trait Lanes:
     /// of `shifted` selects and signs `s` and `c`, with bit masks.
     #[doc(hidden)]
     fn by_quadrant(shifted: Self, s: Self, c: Self) -> (Self, Self);
+    /// Writes lane `i` of every value of `values` into `states[i]` (whose
+    /// length is `values.len()`), for the first `states.len()` lanes.
+    #[doc(hidden)]
+    fn store_states(values: &[Self], states: &mut [&mut [f64]]);
 }
 
 impl Lanes for f64 {
@@ -155,6 +159,12 @@ impl Lanes for f64 {
             f64::from_bits(((cb & swap) | (sb & !swap)) ^ sin_sign),
             f64::from_bits(((sb & swap) | (cb & !swap)) ^ cos_sign),
         )
+    }
+    #[inline(always)]
+    fn store_states(values: &[Self], states: &mut [&mut [f64]]) {
+        if let [state] = states {
+            state.copy_from_slice(values);
+        }
     }
 }
 
@@ -249,12 +259,13 @@ pub fn from_states<L: Lanes, const N: usize>(
     core::array::from_fn(|j| L::from_fn(|i| states[i][j]))
 }
 
-/// A row-major matrix in lanes whose state `i` is `f(i)`.
+/// A matrix in lanes, column-major as nalgebra's (`m[column][row]`),
+/// whose state `i` is `f(i)`.
 ///
 /// ```
 /// use dynamics_runtime::lanes::matrix_from_states;
 /// let m: [[f64; 2]; 2] = matrix_from_states(|_| nalgebra::Matrix2::new(1.0, 2.0, 3.0, 4.0));
-/// assert_eq!(m, [[1.0, 2.0], [3.0, 4.0]]);
+/// assert_eq!(m, [[1.0, 3.0], [2.0, 4.0]]);
 /// ```
 #[inline(always)]
 pub fn matrix_from_states<L: Lanes, const N: usize>(
@@ -264,7 +275,7 @@ pub fn matrix_from_states<L: Lanes, const N: usize>(
     for (i, s) in states.iter_mut().enumerate().take(L::WIDTH) {
         *s = f(i);
     }
-    core::array::from_fn(|r| core::array::from_fn(|c| L::from_fn(|i| states[i][(r, c)])))
+    core::array::from_fn(|c| core::array::from_fn(|r| L::from_fn(|i| states[i][(r, c)])))
 }
 
 #[cfg(all(test, target_arch = "x86_64"))]
@@ -323,6 +334,36 @@ mod tests {
             assert_eq!(q.lane(5), (100.0 / 2.0 + 1.0) * 4.0 - 100.0);
             assert_eq!((-x).abs().lane(1), 2.0);
         }
+        // SAFETY: each runs only where the CPU has its features.
+        #[allow(unsafe_code)]
+        on_this_cpu(|| unsafe { four() }, || unsafe { eight() });
+    }
+
+    #[test]
+    fn stores_of_whole_and_partial_lanes_give_each_state_its_values() {
+        fn check<L: Lanes>() {
+            // 11 values: whole blocks and a tail, for 1..=WIDTH states.
+            let values: [L; 11] = core::array::from_fn(|k| L::from_fn(|i| (100 * k + i) as f64));
+            for m in 1..=L::WIDTH {
+                let mut states = vec![vec![0.0; 11]; m];
+                let mut slots: Vec<&mut [f64]> = states.iter_mut().map(|s| &mut s[..]).collect();
+                L::store_states(&values, &mut slots);
+                for (i, s) in states.iter().enumerate() {
+                    for (k, x) in s.iter().enumerate() {
+                        assert_eq!(*x, (100 * k + i) as f64, "{m} states, state {i}, value {k}");
+                    }
+                }
+            }
+        }
+        #[target_feature(enable = "avx2,fma")]
+        fn four() {
+            check::<F64x4>();
+        }
+        #[target_feature(enable = "avx512f,avx2,fma")]
+        fn eight() {
+            check::<F64x8>();
+        }
+        check::<f64>();
         // SAFETY: each runs only where the CPU has its features.
         #[allow(unsafe_code)]
         on_this_cpu(|| unsafe { four() }, || unsafe { eight() });

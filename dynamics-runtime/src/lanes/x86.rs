@@ -27,7 +27,8 @@ macro_rules! vector_lanes {
         and: $and:ident, or: $or:ident, andnot: $andnot:ident, xor: $xor:ident,
         add64: $add64:ident, sub64: $sub64:ident, srli: $srli:ident, slli: $slli:ident,
         set1_64: $set1_64:ident, zero_int: $zero_int:ident,
-        all_below: $all_below:expr
+        all_below: $all_below:expr,
+        transpose: $transpose:expr
     ) => {
         $(#[$doc])*
         #[derive(Clone, Copy)]
@@ -177,6 +178,29 @@ macro_rules! vector_lanes {
                     (Self($to_float(sin)), Self($to_float(cos)))
                 }
             }
+            #[inline(always)]
+            fn store_states(values: &[Self], states: &mut [&mut [f64]]) {
+                let mut k = 0;
+                // Whole lanes: blocks of $width values turned by a register
+                // transpose into $width runs of one state each, one vector
+                // store per state (not $width scalar stores per value).
+                if states.len() == $width {
+                    let transpose: fn(&[Self]) -> [Self; $width] = $transpose;
+                    while k + $width <= values.len() {
+                        let rows = transpose(&values[k..k + $width]);
+                        for (state, row) in states.iter_mut().zip(rows) {
+                            state[k..k + $width].copy_from_slice(&row.to_array());
+                        }
+                        k += $width;
+                    }
+                }
+                for (j, v) in values.iter().enumerate().skip(k) {
+                    let lanes = v.to_array();
+                    for (state, x) in states.iter_mut().zip(lanes) {
+                        state[j] = x;
+                    }
+                }
+            }
         }
 
         impl $name {
@@ -202,7 +226,21 @@ vector_lanes!(
     add64: _mm256_add_epi64, sub64: _mm256_sub_epi64, srli: _mm256_srli_epi64, slli: _mm256_slli_epi64,
     set1_64: _mm256_set1_epi64x, zero_int: _mm256_setzero_si256,
     // SAFETY: see the module doc.
-    all_below: |a, b| unsafe { _mm256_movemask_pd(_mm256_cmp_pd::<_CMP_LT_OQ>(a.0, b.0)) == 0b1111 }
+    all_below: |a, b| unsafe { _mm256_movemask_pd(_mm256_cmp_pd::<_CMP_LT_OQ>(a.0, b.0)) == 0b1111 },
+    // 4 x 4: pairs of 64-bit lanes interleaved, then 128-bit halves.
+    // SAFETY: see the module doc.
+    transpose: |v| unsafe {
+        let t0 = _mm256_unpacklo_pd(v[0].0, v[1].0);
+        let t1 = _mm256_unpackhi_pd(v[0].0, v[1].0);
+        let t2 = _mm256_unpacklo_pd(v[2].0, v[3].0);
+        let t3 = _mm256_unpackhi_pd(v[2].0, v[3].0);
+        [
+            F64x4(_mm256_permute2f128_pd::<0x20>(t0, t2)),
+            F64x4(_mm256_permute2f128_pd::<0x20>(t1, t3)),
+            F64x4(_mm256_permute2f128_pd::<0x31>(t0, t2)),
+            F64x4(_mm256_permute2f128_pd::<0x31>(t1, t3)),
+        ]
+    }
 );
 
 vector_lanes!(
@@ -215,5 +253,38 @@ vector_lanes!(
     add64: _mm512_add_epi64, sub64: _mm512_sub_epi64, srli: _mm512_srli_epi64, slli: _mm512_slli_epi64,
     set1_64: _mm512_set1_epi64, zero_int: _mm512_setzero_si512,
     // SAFETY: see the module doc.
-    all_below: |a, b| unsafe { _mm512_cmp_pd_mask::<_CMP_LT_OQ>(a.0, b.0) == 0xff }
+    all_below: |a, b| unsafe { _mm512_cmp_pd_mask::<_CMP_LT_OQ>(a.0, b.0) == 0xff },
+    // 8 x 8: pairs of 64-bit lanes interleaved, then 128-bit blocks
+    // gathered twice (blocks 0, 2 with 0x88; 1, 3 with 0xdd).
+    // SAFETY: see the module doc.
+    transpose: |v| unsafe {
+        let t: [__m512d; 8] = core::array::from_fn(|k| {
+            let (a, b) = (v[k & !1].0, v[k | 1].0);
+            if k % 2 == 0 {
+                _mm512_unpacklo_pd(a, b)
+            } else {
+                _mm512_unpackhi_pd(a, b)
+            }
+        });
+        let u = [
+            _mm512_shuffle_f64x2::<0x88>(t[0], t[2]),
+            _mm512_shuffle_f64x2::<0x88>(t[1], t[3]),
+            _mm512_shuffle_f64x2::<0xdd>(t[0], t[2]),
+            _mm512_shuffle_f64x2::<0xdd>(t[1], t[3]),
+            _mm512_shuffle_f64x2::<0x88>(t[4], t[6]),
+            _mm512_shuffle_f64x2::<0x88>(t[5], t[7]),
+            _mm512_shuffle_f64x2::<0xdd>(t[4], t[6]),
+            _mm512_shuffle_f64x2::<0xdd>(t[5], t[7]),
+        ];
+        [
+            F64x8(_mm512_shuffle_f64x2::<0x88>(u[0], u[4])),
+            F64x8(_mm512_shuffle_f64x2::<0x88>(u[1], u[5])),
+            F64x8(_mm512_shuffle_f64x2::<0x88>(u[2], u[6])),
+            F64x8(_mm512_shuffle_f64x2::<0x88>(u[3], u[7])),
+            F64x8(_mm512_shuffle_f64x2::<0xdd>(u[0], u[4])),
+            F64x8(_mm512_shuffle_f64x2::<0xdd>(u[1], u[5])),
+            F64x8(_mm512_shuffle_f64x2::<0xdd>(u[2], u[6])),
+            F64x8(_mm512_shuffle_f64x2::<0xdd>(u[3], u[7])),
+        ]
+    }
 );
