@@ -49,27 +49,22 @@ impl<L: Lanes, const N: usize> Ldlt<L, N> {
         (Self { l, inv_d }, ok)
     }
 
-    /// `s A^-1 B` in place of the rows of `B` (`rows[i]` = row `i`).
+    /// `s A^-1 x` in place of `x`: the scalar solve's operations on each
+    /// entry in its order (there a right-hand side matrix's columns go
+    /// together, row by row; each column is this).
     #[inline(always)]
-    pub(crate) fn solve_rows<const M: usize>(&self, rows: &mut [[L; M]; N], s: f64) {
+    pub(crate) fn solve_in_place(&self, x: &mut [L; N], s: f64) {
         for i in 0..N {
             for k in 0..i {
-                let (fk, rk) = (self.l[i][k], rows[k]);
-                for (x, y) in rows[i].iter_mut().zip(rk) {
-                    *x = mul_add(-fk, y, *x);
-                }
+                x[i] = mul_add(-self.l[i][k], x[k], x[i]);
             }
         }
-        for (row, inv_d) in rows.iter_mut().zip(self.inv_d) {
-            let f = inv_d * L::splat(s);
-            row.iter_mut().for_each(|x| *x = *x * f);
+        for i in 0..N {
+            x[i] = x[i] * (self.inv_d[i] * L::splat(s));
         }
         for i in (0..N).rev() {
             for k in i + 1..N {
-                let (fk, rk) = (self.l[k][i], rows[k]);
-                for (x, y) in rows[i].iter_mut().zip(rk) {
-                    *x = mul_add(-fk, y, *x);
-                }
+                x[i] = mul_add(-self.l[k][i], x[k], x[i]);
             }
         }
     }
@@ -77,8 +72,8 @@ impl<L: Lanes, const N: usize> Ldlt<L, N> {
     /// `A^-1 b`.
     #[inline(always)]
     pub(crate) fn solve(&self, b: &[L; N]) -> [L; N] {
-        let mut rows: [[L; 1]; N] = core::array::from_fn(|i| [b[i]]);
-        self.solve_rows(&mut rows, 1.0);
-        core::array::from_fn(|i| rows[i][0])
+        let mut x = *b;
+        self.solve_in_place(&mut x, 1.0);
+        x
     }
 }

@@ -104,16 +104,13 @@ fn store<L: Lanes, T>(
 /// NaN where one is not (`inf * 0` and `NaN * 0` are NaN); one multiply-add
 /// a value for all lanes instead of a test per value and state.
 #[inline(always)]
-fn finite_probe<'a, L: Lanes + 'a>(values: impl Iterator<Item = &'a L>) -> L {
+fn finite_probe<L: Lanes>(values: &[L]) -> L {
     let zero = L::splat(0.0);
-    values.fold(zero, |acc, &v| v.mul_add(zero, acc))
-}
-
-/// The rows of a column-major lane matrix (`rows[i][j]` = entry (i, j)),
-/// or the columns of rows: a transposition.
-#[inline(always)]
-fn transposed<L: Lanes, const N: usize>(m: &[[L; N]; N]) -> [[L; N]; N] {
-    core::array::from_fn(|i| core::array::from_fn(|j| m[j][i]))
+    let mut acc = zero;
+    for &v in values {
+        acc = v.mul_add(zero, acc);
+    }
+    acc
 }
 
 /// Inverse dynamics of every state (see [`Robot::inverse_dynamics`]).
@@ -433,21 +430,19 @@ pub fn forward_dynamics_derivatives<R: Robot<N>, const N: usize>(
                 let Some((f, ok)) = factors else {
                     continue;
                 };
-                // -A^-1 K and -A^-1 D on the matrices' rows, back to columns.
-                let mut kd = [transposed(&k), transposed(&d)];
-                for rows in &mut kd {
-                    f.solve_rows(rows, -1.0);
+                // -A^-1 K and -A^-1 D column by column, in place.
+                let (mut ddq_dq, mut ddq_dv) = (k, d);
+                for c in 0..N {
+                    f.solve_in_place(&mut ddq_dq[c], -1.0);
+                    f.solve_in_place(&mut ddq_dv[c], -1.0);
                 }
-                let [ddq_dq, ddq_dv] = kd.map(|rows| transposed(&rows));
                 let out = &mut self.out[s..s + m];
                 store(&qdd, out, |o| o.qdd.as_mut_slice());
                 store(ddq_dq.as_flattened(), out, |o| o.ddq_dq.as_mut_slice());
                 store(ddq_dv.as_flattened(), out, |o| o.ddq_dv.as_mut_slice());
-                let all = qdd
-                    .iter()
-                    .chain(ddq_dq.as_flattened())
-                    .chain(ddq_dv.as_flattened());
-                let probe = finite_probe(all);
+                let probe = finite_probe(&qdd)
+                    + finite_probe(ddq_dq.as_flattened())
+                    + finite_probe(ddq_dv.as_flattened());
                 for (i, d) in out.iter_mut().enumerate() {
                     *d = if ok & (1 << i) != 0 && probe.lane(i) == 0.0 {
                         *d
@@ -538,7 +533,7 @@ pub fn forward_dynamics<R: Robot<N>, const N: usize>(
                 let qdd = f.solve(&b);
                 let out = &mut self.out[s..s + m];
                 store(&qdd, out, |o| o.as_mut_slice());
-                let probe = finite_probe(qdd.iter());
+                let probe = finite_probe(&qdd);
                 for (i, v) in out.iter_mut().enumerate() {
                     *v = if ok & (1 << i) != 0 && probe.lane(i) == 0.0 {
                         *v
