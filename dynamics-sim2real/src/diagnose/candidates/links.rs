@@ -55,34 +55,23 @@ pub fn regressor_columns<R: Robot<N>, const N: usize>(
     let sig = &p.sig;
     let h = sig.sg.half();
     let w = sig.sg.weights(0);
-    let (a, z) = sig.range;
-    // The regressor at every sample a row's window reaches.
-    let mut y = vec![vec![SMatrix::<f64, N, 10>::zeros(); links]; sig.t.len()];
-    let mut need = vec![false; sig.t.len()];
-    for &k in &p.rows {
-        for m in k.saturating_sub(h)..(k + h + 1).min(sig.t.len()) {
-            need[m] = true;
-        }
-    }
-    for k in a..z {
-        if need[k]
-            && robot
-                .inertial_regressor(&sig.q[k], &sig.qd[k], &sig.qdd[k], &mut y[k])
-                .is_err()
-        {
-            return None;
-        }
-    }
+    let n = sig.t.len();
     let mut out: Vec<Vec<Vec<f64>>> = (0..links)
         .map(|_| (0..10).map(|_| Vec::with_capacity(p.n())).collect())
         .collect();
+    // The regressor over the window of the current row only (the rows go
+    // forward, so a window shares its first samples with the previous
+    // one's last): memory bounded by one window whatever the record's
+    // length, and every sample evaluated once.
+    let mut window = RegressorWindow::<N>::new(links);
     for &k in &p.rows {
+        window.advance(robot, sig, k.saturating_sub(h), (k + h + 1).min(n))?;
         for (l, link) in out.iter_mut().enumerate() {
             let mut s = SMatrix::<f64, N, 10>::zeros();
             for (i, wi) in w.iter().enumerate() {
                 let m = k + i;
-                if m >= h && m - h < sig.t.len() {
-                    s += y[m - h][l] * *wi;
+                if m >= h && m - h < n {
+                    s += window.at(m - h, l) * *wi;
                 }
             }
             for (c, col) in link.iter_mut().enumerate() {
@@ -94,6 +83,65 @@ pub fn regressor_columns<R: Robot<N>, const N: usize>(
         }
     }
     Some(out)
+}
+
+/// The inertial regressor of every link at the samples of one window
+/// `[from, to)` (zero outside the signals' range), evaluated per sample:
+/// the one place the link columns evaluate the model along the record.
+struct RegressorWindow<const N: usize> {
+    /// First sample held.
+    from: usize,
+    /// Per sample from `from`, per link.
+    y: std::collections::VecDeque<Vec<SMatrix<f64, N, 10>>>,
+    links: usize,
+}
+
+impl<const N: usize> RegressorWindow<N> {
+    fn new(links: usize) -> Self {
+        RegressorWindow {
+            from: 0,
+            y: Default::default(),
+            links,
+        }
+    }
+
+    /// Holds the samples `[from, to)`: drops those before `from`, evaluates
+    /// those not yet held (`None` when the robot does not give its
+    /// regressor). `from` and `to` never go back.
+    fn advance<R: Robot<N>>(
+        &mut self,
+        robot: &R,
+        sig: &crate::diagnose::signals::Signals<N>,
+        from: usize,
+        to: usize,
+    ) -> Option<()> {
+        while self.from < from && !self.y.is_empty() {
+            self.y.pop_front();
+            self.from += 1;
+        }
+        if self.y.is_empty() {
+            self.from = from;
+        }
+        let (a, z) = sig.range;
+        for k in self.from + self.y.len()..to {
+            let mut y = vec![SMatrix::<f64, N, 10>::zeros(); self.links];
+            if k >= a
+                && k < z
+                && robot
+                    .inertial_regressor(&sig.q[k], &sig.qd[k], &sig.qdd[k], &mut y)
+                    .is_err()
+            {
+                return None;
+            }
+            self.y.push_back(y);
+        }
+        Some(())
+    }
+
+    /// Link `l`'s regressor at sample `k` (held).
+    fn at(&self, k: usize, l: usize) -> SMatrix<f64, N, 10> {
+        self.y[k - self.from][l]
+    }
 }
 
 /// A link's determined combinations from its whitened columns.

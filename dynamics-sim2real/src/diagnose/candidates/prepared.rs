@@ -2,6 +2,8 @@
 //! column cache every candidate's columns come from, the rows a fit uses
 //! and the sensors' noise levels behind the floor.
 
+use std::sync::Arc;
+
 use nalgebra::SVector;
 
 use super::basis::Basis;
@@ -15,8 +17,9 @@ use dynamics_runtime::Robot;
 pub struct Prepared<const N: usize> {
     /// Signals.
     pub sig: Signals<N>,
-    /// Shared quantities.
-    pub basis: Basis<N>,
+    /// Shared quantities (never changed once made: shared, not copied,
+    /// by the copies of a record the compound explanation works on).
+    pub basis: Arc<Basis<N>>,
     /// Sample indices used as rows (every half-window, away from the edges).
     pub rows: Vec<usize>,
     /// Sensor noise levels per joint (q, qd, tau; stated, or estimated
@@ -39,7 +42,7 @@ impl<const N: usize> Prepared<N> {
         levels: Option<&[SVector<f64, N>; 3]>,
     ) -> Self {
         let (sig, levels) = Signals::new(robot, m, levels);
-        let basis = Basis::new(robot, &sig);
+        let basis = Arc::new(Basis::new(robot, &sig));
         let h = sig.sg.half();
         let (a, z) = sig.range;
         let rows = (a + h..z.saturating_sub(h))
