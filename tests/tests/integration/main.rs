@@ -1,5 +1,6 @@
 //! Integration tests, compiled into one binary (faster on two cores).
 
+mod chunks;
 mod clearance;
 mod compound;
 mod determinism;

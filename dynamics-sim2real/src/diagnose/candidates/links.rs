@@ -10,6 +10,7 @@
 
 use nalgebra::{DMatrix, SMatrix, SVector};
 
+use crate::diagnose::along;
 use crate::diagnose::candidates::Prepared;
 use dynamics_runtime::Robot;
 
@@ -63,7 +64,7 @@ pub fn regressor_columns<R: Robot<N>, const N: usize>(
     // forward, so a window shares its first samples with the previous
     // one's last): memory bounded by one window whatever the record's
     // length, and every sample evaluated once.
-    let mut window = RegressorWindow::<N>::new(links);
+    let mut window = RegressorWindow::<N>::new(links, p.chunk);
     for &k in &p.rows {
         window.advance(robot, sig, k.saturating_sub(h), (k + h + 1).min(n))?;
         for (l, link) in out.iter_mut().enumerate() {
@@ -85,29 +86,34 @@ pub fn regressor_columns<R: Robot<N>, const N: usize>(
     Some(out)
 }
 
-/// The inertial regressor of every link at the samples of one window
-/// `[from, to)` (zero outside the signals' range), evaluated per sample:
-/// the one place the link columns evaluate the model along the record.
+/// The inertial regressor of every link along a record, held from the
+/// first sample the current row's window reaches and evaluated `chunk`
+/// samples ahead at a time (`along.rs`): what the link columns hold of the
+/// record at once, whatever its length (a chunk of the whole record
+/// evaluates it whole).
 struct RegressorWindow<const N: usize> {
     /// First sample held.
     from: usize,
-    /// Per sample from `from`, per link.
+    /// Per sample from `from`, per link (zero outside the signals' range).
     y: std::collections::VecDeque<Vec<SMatrix<f64, N, 10>>>,
     links: usize,
+    chunk: usize,
 }
 
 impl<const N: usize> RegressorWindow<N> {
-    fn new(links: usize) -> Self {
+    fn new(links: usize, chunk: usize) -> Self {
         RegressorWindow {
             from: 0,
             y: Default::default(),
             links,
+            chunk: if chunk == 0 { along::CHUNK } else { chunk },
         }
     }
 
-    /// Holds the samples `[from, to)`: drops those before `from`, evaluates
-    /// those not yet held (`None` when the robot does not give its
-    /// regressor). `from` and `to` never go back.
+    /// Holds at least the samples `[from, to)`: drops those before `from`,
+    /// evaluates a chunk (or up to `to`) when `to` is not held yet (`None`
+    /// when the robot does not give its regressor). `from` and `to` never
+    /// go back.
     fn advance<R: Robot<N>>(
         &mut self,
         robot: &R,
@@ -122,18 +128,23 @@ impl<const N: usize> RegressorWindow<N> {
         if self.y.is_empty() {
             self.from = from;
         }
+        let start = self.from + self.y.len();
+        if start >= to {
+            return Some(());
+        }
+        let end = start.saturating_add(self.chunk).max(to).min(sig.t.len());
         let (a, z) = sig.range;
-        for k in self.from + self.y.len()..to {
-            let mut y = vec![SMatrix::<f64, N, 10>::zeros(); self.links];
-            if k >= a
-                && k < z
-                && robot
-                    .inertial_regressor(&sig.q[k], &sig.qd[k], &sig.qdd[k], &mut y)
-                    .is_err()
-            {
-                return None;
-            }
-            self.y.push_back(y);
+        let zero = || vec![SMatrix::<f64, N, 10>::zeros(); self.links];
+        // The samples of `[start, end)` inside the range `[a, z)`.
+        let lo = start.clamp(a.min(end), end);
+        let inside = lo..end.min(z).max(lo);
+        for _ in start..inside.start {
+            self.y.push_back(zero());
+        }
+        let motion = [&sig.q[..], &sig.qd[..], &sig.qdd[..]];
+        along::inertial_regressor(robot, motion, inside.clone(), self.links, &mut self.y).ok()?;
+        for _ in inside.end..end {
+            self.y.push_back(zero());
         }
         Some(())
     }

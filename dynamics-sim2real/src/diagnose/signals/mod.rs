@@ -9,6 +9,7 @@ mod segments;
 use nalgebra::SVector;
 
 use crate::data::Measured;
+use crate::diagnose::along;
 use crate::smoothing::SavitzkyGolay;
 use dynamics_runtime::Robot;
 pub use noise::SensorNoise;
@@ -79,8 +80,9 @@ impl<const N: usize> Signals<N> {
         robot: &R,
         m: &Measured<N>,
         levels: Option<&[SVector<f64, N>; 3]>,
+        chunk: usize,
     ) -> (Self, [SVector<f64, N>; 3]) {
-        let mut sig = Self::unfloored(robot, m);
+        let mut sig = Self::unfloored_chunked(robot, m, chunk);
         let levels = match levels {
             Some(l) => *l,
             None => sensor_levels(m, &sig),
@@ -93,6 +95,12 @@ impl<const N: usize> Signals<N> {
     /// an identification by plain least squares, and the floor's own noisy
     /// twin, work on.
     pub fn unfloored<R: Robot<N>>(robot: &R, m: &Measured<N>) -> Self {
+        Self::unfloored_chunked(robot, m, 0)
+    }
+
+    /// [`Signals::unfloored`], the model evaluated `chunk` samples at a
+    /// time (`along.rs`; 0: the default).
+    pub fn unfloored_chunked<R: Robot<N>>(robot: &R, m: &Measured<N>, chunk: usize) -> Self {
         let n = m.len();
         let dt = m.sample_interval();
         let sg = SavitzkyGolay::analysis(dt);
@@ -128,8 +136,8 @@ impl<const N: usize> Signals<N> {
         let range = (half, n.saturating_sub(half));
         let mut model = zero.clone();
         let mut residual = zero;
+        along::inverse_dynamics(robot, [&q, &qd, &qdd], range.0..range.1, chunk, &mut model);
         for k in range.0..range.1 {
-            model[k] = robot.inverse_dynamics(&q[k], &qd[k], &qdd[k]);
             residual[k] = tau[k] - model[k];
         }
         let mut model_rate = vec![SVector::<f64, N>::zeros(); n];
