@@ -151,7 +151,7 @@ impl<const N: usize> Basis<N> {
             compliance: vec![SVector::zeros(); n],
             gravity: Vector3::from(R::GRAVITY),
             tip,
-            qdd: sig.qdd.clone(),
+            qdd: sig.qdd.to_vec(),
             sign: smoothed_column(sig, smooth_sign),
             coulomb: COULOMB_WIDTHS[1..]
                 .iter()
