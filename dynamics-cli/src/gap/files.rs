@@ -4,6 +4,7 @@
 use std::path::Path;
 
 use dynamics_runtime::Robot;
+use dynamics_sim2real::data::Measured;
 use dynamics_sim2real::diagnose::traces::{traces, Traces};
 use dynamics_sim2real::diagnose::{diagnose, Options, Report};
 use dynamics_sim2real::effects::{undo_sensors, Effect};
@@ -69,7 +70,16 @@ pub fn diagnose_calibrated<R: Robot<N> + Clone + Sync, const N: usize>(
 ) -> Result<(Report, Vec<String>, Vec<String>), GapError> {
     let (a, about_a) = train.read_described(&R::JOINT_NAMES)?;
     let (b, about_b) = holdout.read_described(&R::JOINT_NAMES)?;
-    let (a, b) = (undo_sensors(&a, sensors), undo_sensors(&b, sensors));
+    // The records as read are dropped once the sensors' effects are undone
+    // (a long log is not held twice).
+    let undo = |m: Measured<N>| {
+        if sensors.is_empty() {
+            m
+        } else {
+            undo_sensors(&m, sensors)
+        }
+    };
+    let (a, b) = (undo(a), undo(b));
     let report = diagnose(robot, &a, &b, options, progress)?;
     let warnings = crate::warnings::lines(&report.warnings);
     let about = [

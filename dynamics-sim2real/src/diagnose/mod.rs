@@ -36,7 +36,8 @@
 //! # Stages
 //!
 //! One diagnosis runs six stages, each a folder whose imports go one way
-//! (each uses only the stages listed after it, and `numeric.rs`):
+//! (each uses only the stages listed after it, `numeric.rs`, and
+//! `along.rs`, the one place the model is evaluated at every sample):
 //!
 //! 1. `explain/`: the report in the user's words (the only stage that
 //!    knows the report's schema);
@@ -51,6 +52,7 @@
 //! [`diagnose`] runs them in the order of the data: signals and candidates,
 //! fit, select, evaluate, explain.
 
+mod along;
 mod candidates;
 mod error;
 mod evaluate;

@@ -37,6 +37,10 @@ pub struct Options {
     pub floor_ratio: f64,
     /// Threads (0: all cores).
     pub threads: usize,
+    /// Samples the model is evaluated at a time along a record, and the
+    /// most the link columns hold of it at once (0: 4096); the result does
+    /// not depend on it. `usize::MAX` evaluates each record whole.
+    pub chunk: usize,
     /// Sensor noise, when known: the torque residual's noise floor is then
     /// what this noise makes of it (pushed through the same smoothing and
     /// inverse dynamics) rather than what noise of the levels estimated
@@ -56,6 +60,7 @@ impl Default for Options {
             cv_margin: 0.0,
             floor_ratio: 1.0,
             threads: 0,
+            chunk: 0,
             noise: None,
         }
     }

@@ -1,6 +1,7 @@
 //! Integration tests, compiled into one binary (faster on two cores).
 
 mod batch;
+mod chunks;
 mod clearance;
 mod compound;
 mod determinism;

@@ -6,6 +6,7 @@
 use nalgebra::{SMatrix, SVector, Vector3};
 
 use super::grids::{COULOMB_WIDTHS, STRIBECK_GRID};
+use crate::diagnose::along;
 use crate::diagnose::candidates::force_filter::through_motion;
 use crate::diagnose::signals::Signals;
 use crate::effects::nominal_friction;
@@ -46,7 +47,8 @@ pub struct Basis<const N: usize> {
     /// they are compared with shows a force (`force_filter.rs`).
     pub sign: Vec<SVector<f64, N>>,
     /// The same for `tanh(v / vw)`, one per width of [`COULOMB_WIDTHS`]
-    /// (the first, the sharp one, is `sign`).
+    /// after the first (the first, the sharp one, is `sign`, not kept
+    /// twice).
     pub coulomb: Vec<Vec<SVector<f64, N>>>,
     /// The same for the Stribeck term `exp(-(v/vs)^2) sign(v)`, one per
     /// velocity of [`STRIBECK_GRID`].
@@ -136,7 +138,9 @@ fn smooth_in_place<const R: usize, const C: usize>(
 
 impl<const N: usize> Basis<N> {
     /// Evaluates the shared quantities along `sig`.
-    pub fn new<R: Robot<N>>(robot: &R, sig: &Signals<N>) -> Self {
+    /// The model is evaluated `chunk` samples at a time (`along.rs`; 0:
+    /// the default).
+    pub fn new<R: Robot<N>>(robot: &R, sig: &Signals<N>, chunk: usize) -> Self {
         let n = sig.t.len();
         let tip = Tip::of::<R, N>();
         let mut b = Basis {
@@ -147,9 +151,9 @@ impl<const N: usize> Basis<N> {
             compliance: vec![SVector::zeros(); n],
             gravity: Vector3::from(R::GRAVITY),
             tip,
-            qdd: sig.qdd.clone(),
+            qdd: sig.qdd.to_vec(),
             sign: smoothed_column(sig, smooth_sign),
-            coulomb: COULOMB_WIDTHS
+            coulomb: COULOMB_WIDTHS[1..]
                 .iter()
                 .map(|&w| smoothed_column(sig, |v| (v / w).tanh()))
                 .collect(),
@@ -163,17 +167,10 @@ impl<const N: usize> Basis<N> {
         if let Some(q) = sig.q.get(a) {
             b.friction = nominal_friction(robot, q);
         }
-        for k in a..z {
-            let (q, qd, qdd) = (&sig.q[k], &sig.qd[k], &sig.qdd[k]);
-            b.k[k] = robot.perturbation_jacobians(q, qd, qdd).k;
-            let (_, jac) = tip.position_jacobian(robot, q);
-            b.jac[k] = jac;
-            b.tip_acc[k] = jac * qdd + tip.bias_acceleration(robot, q, qd);
-            let m = robot.mass_matrix(q);
-            for j in 0..N {
-                b.inertia[j] += m[(j, j)];
-            }
-        }
+        let motion = [&sig.q[..], &sig.qd[..], &sig.qdd[..]];
+        along::perturbation_k(robot, motion, a..z, chunk, &mut b.k);
+        along::tip_motion(robot, &tip, motion, a..z, chunk, &mut b.jac, &mut b.tip_acc);
+        b.inertia = along::mass_diagonal_sum(robot, &sig.q, a..z, chunk);
         b.inertia /= (z - a).max(1) as f64;
         // The link's response to its own effort, as one over its mean own
         // inertia. The inverse mass matrix's diagonal at each sample (the

@@ -310,8 +310,11 @@ impl Candidate {
         let qd = &sig.qd[k];
         match *self {
             Candidate::Coulomb(j, w) => {
-                let i = COULOMB_WIDTHS.iter().position(|&g| g == w).unwrap_or(0);
-                c[0][j] = basis.coulomb[i][k][j];
+                // The sharp width's column is the sign's (`Basis::coulomb`).
+                c[0][j] = match COULOMB_WIDTHS.iter().position(|&g| g == w) {
+                    Some(i) if i > 0 => basis.coulomb[i - 1][k][j],
+                    _ => basis.sign[k][j],
+                };
             }
             Candidate::Viscous(j) => c[0][j] = qd[j],
             Candidate::Stribeck(j, vs) => {

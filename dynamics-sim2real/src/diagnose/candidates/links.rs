@@ -10,6 +10,7 @@
 
 use nalgebra::{DMatrix, SMatrix, SVector};
 
+use crate::diagnose::along;
 use crate::diagnose::candidates::Prepared;
 use dynamics_runtime::Robot;
 
@@ -55,34 +56,23 @@ pub fn regressor_columns<R: Robot<N>, const N: usize>(
     let sig = &p.sig;
     let h = sig.sg.half();
     let w = sig.sg.weights(0);
-    let (a, z) = sig.range;
-    // The regressor at every sample a row's window reaches.
-    let mut y = vec![vec![SMatrix::<f64, N, 10>::zeros(); links]; sig.t.len()];
-    let mut need = vec![false; sig.t.len()];
-    for &k in &p.rows {
-        for m in k.saturating_sub(h)..(k + h + 1).min(sig.t.len()) {
-            need[m] = true;
-        }
-    }
-    for k in a..z {
-        if need[k]
-            && robot
-                .inertial_regressor(&sig.q[k], &sig.qd[k], &sig.qdd[k], &mut y[k])
-                .is_err()
-        {
-            return None;
-        }
-    }
+    let n = sig.t.len();
     let mut out: Vec<Vec<Vec<f64>>> = (0..links)
         .map(|_| (0..10).map(|_| Vec::with_capacity(p.n())).collect())
         .collect();
+    // The regressor over the window of the current row only (the rows go
+    // forward, so a window shares its first samples with the previous
+    // one's last): memory bounded by one window whatever the record's
+    // length, and every sample evaluated once.
+    let mut window = RegressorWindow::<N>::new(links, p.chunk);
     for &k in &p.rows {
+        window.advance(robot, sig, k.saturating_sub(h), (k + h + 1).min(n))?;
         for (l, link) in out.iter_mut().enumerate() {
             let mut s = SMatrix::<f64, N, 10>::zeros();
             for (i, wi) in w.iter().enumerate() {
                 let m = k + i;
-                if m >= h && m - h < sig.t.len() {
-                    s += y[m - h][l] * *wi;
+                if m >= h && m - h < n {
+                    s += window.at(m - h, l) * *wi;
                 }
             }
             for (c, col) in link.iter_mut().enumerate() {
@@ -94,6 +84,75 @@ pub fn regressor_columns<R: Robot<N>, const N: usize>(
         }
     }
     Some(out)
+}
+
+/// The inertial regressor of every link along a record, held from the
+/// first sample the current row's window reaches and evaluated `chunk`
+/// samples ahead at a time (`along.rs`): what the link columns hold of the
+/// record at once, whatever its length (a chunk of the whole record
+/// evaluates it whole).
+struct RegressorWindow<const N: usize> {
+    /// First sample held.
+    from: usize,
+    /// Per sample from `from`, per link (zero outside the signals' range).
+    y: std::collections::VecDeque<Vec<SMatrix<f64, N, 10>>>,
+    links: usize,
+    chunk: usize,
+}
+
+impl<const N: usize> RegressorWindow<N> {
+    fn new(links: usize, chunk: usize) -> Self {
+        RegressorWindow {
+            from: 0,
+            y: Default::default(),
+            links,
+            chunk: if chunk == 0 { along::CHUNK } else { chunk },
+        }
+    }
+
+    /// Holds at least the samples `[from, to)`: drops those before `from`,
+    /// evaluates a chunk (or up to `to`) when `to` is not held yet (`None`
+    /// when the robot does not give its regressor). `from` and `to` never
+    /// go back.
+    fn advance<R: Robot<N>>(
+        &mut self,
+        robot: &R,
+        sig: &crate::diagnose::signals::Signals<N>,
+        from: usize,
+        to: usize,
+    ) -> Option<()> {
+        while self.from < from && !self.y.is_empty() {
+            self.y.pop_front();
+            self.from += 1;
+        }
+        if self.y.is_empty() {
+            self.from = from;
+        }
+        let start = self.from + self.y.len();
+        if start >= to {
+            return Some(());
+        }
+        let end = start.saturating_add(self.chunk).max(to).min(sig.t.len());
+        let (a, z) = sig.range;
+        let zero = || vec![SMatrix::<f64, N, 10>::zeros(); self.links];
+        // The samples of `[start, end)` inside the range `[a, z)`.
+        let lo = start.clamp(a.min(end), end);
+        let inside = lo..end.min(z).max(lo);
+        for _ in start..inside.start {
+            self.y.push_back(zero());
+        }
+        let motion = [&sig.q[..], &sig.qd[..], &sig.qdd[..]];
+        along::inertial_regressor(robot, motion, inside.clone(), self.links, &mut self.y).ok()?;
+        for _ in inside.end..end {
+            self.y.push_back(zero());
+        }
+        Some(())
+    }
+
+    /// Link `l`'s regressor at sample `k` (held).
+    fn at(&self, k: usize, l: usize) -> SMatrix<f64, N, 10> {
+        self.y[k - self.from][l]
+    }
 }
 
 /// A link's determined combinations from its whitened columns.

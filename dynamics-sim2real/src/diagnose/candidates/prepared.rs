@@ -2,6 +2,8 @@
 //! column cache every candidate's columns come from, the rows a fit uses
 //! and the sensors' noise levels behind the floor.
 
+use std::sync::Arc;
+
 use nalgebra::SVector;
 
 use super::basis::Basis;
@@ -15,13 +17,17 @@ use dynamics_runtime::Robot;
 pub struct Prepared<const N: usize> {
     /// Signals.
     pub sig: Signals<N>,
-    /// Shared quantities.
-    pub basis: Basis<N>,
+    /// Shared quantities (never changed once made: shared, not copied,
+    /// by the copies of a record the compound explanation works on).
+    pub basis: Arc<Basis<N>>,
     /// Sample indices used as rows (every half-window, away from the edges).
     pub rows: Vec<usize>,
     /// Sensor noise levels per joint (q, qd, tau; stated, or estimated
     /// from the data) behind the noise floor and the prediction yardstick.
     pub levels: [SVector<f64, N>; 3],
+    /// Samples the model is evaluated at a time along the record
+    /// ([`Options::chunk`](crate::diagnose::Options::chunk)).
+    pub chunk: usize,
 }
 
 impl<const N: usize> Prepared<N> {
@@ -38,8 +44,29 @@ impl<const N: usize> Prepared<N> {
         m: &Measured<N>,
         levels: Option<&[SVector<f64, N>; 3]>,
     ) -> Self {
-        let (sig, levels) = Signals::new(robot, m, levels);
-        let basis = Basis::new(robot, &sig);
+        Self::chunked(robot, m, levels, 0)
+    }
+
+    /// [`Prepared::with_noise`], the model evaluated along the record
+    /// `chunk` samples at a time (0: the default; the result does not
+    /// depend on it).
+    ///
+    /// ```
+    /// use dynamics_runtime::Robot;
+    /// use dynamics_sim2real::data::Measured;
+    /// use dynamics_sim2real::diagnose::Prepared;
+    /// fn ready<R: Robot<3>>(robot: &R, m: &Measured<3>) -> Prepared<3> {
+    ///     Prepared::chunked(robot, m, None, 512)
+    /// }
+    /// ```
+    pub fn chunked<R: Robot<N>>(
+        robot: &R,
+        m: &Measured<N>,
+        levels: Option<&[SVector<f64, N>; 3]>,
+        chunk: usize,
+    ) -> Self {
+        let (sig, levels) = Signals::new(robot, m, levels, chunk);
+        let basis = Arc::new(Basis::new(robot, &sig, chunk));
         let h = sig.sg.half();
         let (a, z) = sig.range;
         let rows = (a + h..z.saturating_sub(h))
@@ -51,6 +78,7 @@ impl<const N: usize> Prepared<N> {
             basis,
             rows,
             levels,
+            chunk,
         }
     }
 

@@ -77,8 +77,8 @@ impl<'a, const N: usize> Records<'a, N> {
             .map(|n| n.per_joint::<N>())
             .transpose()?;
         let (p, h) = rayon::join(
-            || Prepared::with_noise(robot, &train, levels.as_ref()),
-            || Prepared::with_noise(robot, &holdout, levels.as_ref()),
+            || Prepared::chunked(robot, &train, levels.as_ref(), options.chunk),
+            || Prepared::chunked(robot, &holdout, levels.as_ref(), options.chunk),
         );
         let mut warnings: Vec<Warning> = train.warnings.clone();
         warnings.extend(holdout.warnings.iter().cloned());

@@ -6,9 +6,12 @@
 mod noise;
 mod segments;
 
+use std::sync::Arc;
+
 use nalgebra::SVector;
 
 use crate::data::Measured;
+use crate::diagnose::along;
 use crate::smoothing::SavitzkyGolay;
 use dynamics_runtime::Robot;
 pub use noise::SensorNoise;
@@ -18,7 +21,9 @@ pub use segments::Mask;
 /// Half-width of the light smoother of velocities, s.
 pub const LIGHT_HALF_WIDTH: f64 = 0.004;
 
-/// One data set, prepared.
+/// One data set, prepared. The per-sample signals that do not change once
+/// made are shared (`Arc`) by the copies of a record (the compound
+/// explanation's, which change the model's efforts and the residual only).
 #[derive(Debug, Clone)]
 pub struct Signals<const N: usize> {
     /// Sample interval.
@@ -26,13 +31,13 @@ pub struct Signals<const N: usize> {
     /// First and one-past-last sample with a full filter window.
     pub range: (usize, usize),
     /// Times.
-    pub t: Vec<f64>,
+    pub t: Arc<[f64]>,
     /// Smoothed positions.
-    pub q: Vec<SVector<f64, N>>,
+    pub q: Arc<[SVector<f64, N>]>,
     /// Smoothed velocities.
-    pub qd: Vec<SVector<f64, N>>,
+    pub qd: Arc<[SVector<f64, N>]>,
     /// Accelerations (derivative of the smoothing fit).
-    pub qdd: Vec<SVector<f64, N>>,
+    pub qdd: Arc<[SVector<f64, N>]>,
     /// Whether the velocities were measured (the accelerations are then
     /// the first derivative of their smoothing fit; else the second of
     /// the positions').
@@ -40,15 +45,15 @@ pub struct Signals<const N: usize> {
     /// Velocities smoothed only lightly (over [`LIGHT_HALF_WIDTH`]): the
     /// argument of effects that are nonlinear in the velocity, whose
     /// columns are then filtered as the residual shows them.
-    pub qd_light: Vec<SVector<f64, N>>,
+    pub qd_light: Arc<[SVector<f64, N>]>,
     /// Measured efforts, raw.
-    pub tau_raw: Vec<SVector<f64, N>>,
+    pub tau_raw: Arc<[SVector<f64, N>]>,
     /// Measured efforts, smoothed.
-    pub tau: Vec<SVector<f64, N>>,
+    pub tau: Arc<[SVector<f64, N>]>,
     /// The nominal model's efforts along the smoothed motion.
     pub model: Vec<SVector<f64, N>>,
     /// Rate of the model efforts (derivative of their smoothing fit).
-    pub model_rate: Vec<SVector<f64, N>>,
+    pub model_rate: Arc<[SVector<f64, N>]>,
     /// `tau - model`.
     pub residual: Vec<SVector<f64, N>>,
     /// Noise floor of the smoothed residual per joint: what the sensors'
@@ -79,8 +84,9 @@ impl<const N: usize> Signals<N> {
         robot: &R,
         m: &Measured<N>,
         levels: Option<&[SVector<f64, N>; 3]>,
+        chunk: usize,
     ) -> (Self, [SVector<f64, N>; 3]) {
-        let mut sig = Self::unfloored(robot, m);
+        let mut sig = Self::unfloored_chunked(robot, m, chunk);
         let levels = match levels {
             Some(l) => *l,
             None => sensor_levels(m, &sig),
@@ -93,6 +99,12 @@ impl<const N: usize> Signals<N> {
     /// an identification by plain least squares, and the floor's own noisy
     /// twin, work on.
     pub fn unfloored<R: Robot<N>>(robot: &R, m: &Measured<N>) -> Self {
+        Self::unfloored_chunked(robot, m, 0)
+    }
+
+    /// [`Signals::unfloored`], the model evaluated `chunk` samples at a
+    /// time (`along.rs`; 0: the default).
+    pub fn unfloored_chunked<R: Robot<N>>(robot: &R, m: &Measured<N>, chunk: usize) -> Self {
         let n = m.len();
         let dt = m.sample_interval();
         let sg = SavitzkyGolay::analysis(dt);
@@ -128,8 +140,8 @@ impl<const N: usize> Signals<N> {
         let range = (half, n.saturating_sub(half));
         let mut model = zero.clone();
         let mut residual = zero;
+        along::inverse_dynamics(robot, [&q, &qd, &qdd], range.0..range.1, chunk, &mut model);
         for k in range.0..range.1 {
-            model[k] = robot.inverse_dynamics(&q[k], &qd[k], &qdd[k]);
             residual[k] = tau[k] - model[k];
         }
         let mut model_rate = vec![SVector::<f64, N>::zeros(); n];
@@ -148,17 +160,17 @@ impl<const N: usize> Signals<N> {
         let mask = Mask::new(m, half, range);
         Signals {
             mask,
-            model_rate,
+            model_rate: model_rate.into(),
             dt,
             range,
-            t: m.t.clone(),
-            q,
-            qd,
-            qdd,
+            t: m.t.as_slice().into(),
+            q: q.into(),
+            qd: qd.into(),
+            qdd: qdd.into(),
             qd_measured: m.qd_measured,
-            qd_light,
-            tau_raw: m.tau.clone(),
-            tau,
+            qd_light: qd_light.into(),
+            tau_raw: m.tau.as_slice().into(),
+            tau: tau.into(),
             model,
             residual,
             floor: SVector::zeros(),

@@ -6,7 +6,7 @@
 mod refine;
 mod spread;
 
-use super::motor_sim::transmitted_raw_many;
+use super::motor_sim::transmitted_each;
 use super::one::{whitened_nominal, Fit};
 use crate::diagnose::candidates::{
     motor_feasible, motor_grid, signature_limit, Candidate, MotorGuess, Prepared,
@@ -45,21 +45,18 @@ pub(super) fn stiff_rotor<const N: usize>(linear: Fit, j: usize, p: &Prepared<N>
     };
     // Whitened SSE with each rotor of `gs` (simulated side by side).
     let costs = |gs: &[MotorGuess]| -> Vec<f64> {
-        transmitted_raw_many(&p.sig, j, gs, false, &p.basis.compliance)
-            .iter()
-            .map(|t| {
-                let sse: f64 = base - own
-                    + p.rows
-                        .iter()
-                        .map(|&k| ((p.sig.sg.at(t, 0, k) - p.sig.model[k][j]) * w).powi(2))
-                        .sum::<f64>();
-                if sse.is_finite() {
-                    sse
-                } else {
-                    f64::INFINITY
-                }
-            })
-            .collect()
+        transmitted_each(&p.sig, j, gs, false, &p.basis.compliance, |t| {
+            let sse: f64 = base - own
+                + p.rows
+                    .iter()
+                    .map(|&k| ((p.sig.sg.at(t, 0, k) - p.sig.model[k][j]) * w).powi(2))
+                    .sum::<f64>();
+            if sse.is_finite() {
+                sse
+            } else {
+                f64::INFINITY
+            }
+        })
     };
     let start = linear
         .theta
@@ -132,15 +129,12 @@ pub(super) fn fit_motor<R: Robot<N>, const N: usize>(c: Candidate, p: &Prepared<
     // Whitened rows of joint j with each guess of `gs` (simulated side by
     // side).
     let rows = |gs: &[MotorGuess]| -> Vec<Vec<f64>> {
-        transmitted_raw_many(&p.sig, j, gs, backlash, &p.basis.compliance)
-            .iter()
-            .map(|t| {
-                p.rows
-                    .iter()
-                    .map(|&k| (p.sig.sg.at(t, 0, k) - p.sig.model[k][j]) * w)
-                    .collect()
-            })
-            .collect()
+        transmitted_each(&p.sig, j, gs, backlash, &p.basis.compliance, |t| {
+            p.rows
+                .iter()
+                .map(|&k| (p.sig.sg.at(t, 0, k) - p.sig.model[k][j]) * w)
+                .collect()
+        })
     };
     // Whitened SSE of each guess (infinite outside the physical box,
     // which is not simulated).

@@ -62,6 +62,24 @@ pub fn transmitted_raw_many<const N: usize>(
     out
 }
 
+/// [`transmitted_raw_many`] of every guess of `gs`, each raw transmitted
+/// effort handed to `reduce` as soon as its lanes are integrated and then
+/// dropped: at most [`LANES`] records' worth of simulation held at once,
+/// however many guesses (a grid holds dozens), the same results.
+pub fn transmitted_each<const N: usize, T>(
+    sig: &Signals<N>,
+    j: usize,
+    gs: &[MotorGuess],
+    backlash: bool,
+    compliance: &[SVector<f64, N>],
+    mut reduce: impl FnMut(&[f64]) -> T,
+) -> Vec<T> {
+    gs.chunks(LANES)
+        .flat_map(|now| transmitted_raw_many(sig, j, now, backlash, compliance))
+        .map(|t| reduce(&t))
+        .collect()
+}
+
 /// `L` lanes side by side, `B` backlash; `gs` has 1 to `L` guesses (the
 /// last repeated to fill the lanes, its copies dropped).
 fn lanes<const N: usize, const L: usize, const B: bool>(

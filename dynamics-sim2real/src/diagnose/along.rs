@@ -1,0 +1,138 @@
+//! The nominal model evaluated along a record: the one place each
+//! per-sample model quantity of the diagnosis is computed (inverse
+//! dynamics, the perturbation Jacobian K, the tip's Jacobian and bias
+//! acceleration, the mass matrix's diagonal, the inertial regressor), over
+//! a range of samples taken `chunk` samples at a time. A batch evaluation
+//! of many states at once replaces the per-sample call inside one chunk
+//! without touching the stages; the chunk also bounds what a stage that
+//! streams the record (the link columns, `candidates/links.rs`) holds at
+//! once.
+
+use std::ops::Range;
+
+use nalgebra::{SMatrix, SVector, Vector3};
+
+use crate::effects::Tip;
+use dynamics_runtime::{DynamicsError, Robot};
+
+/// Samples a chunk takes unless told otherwise ([`crate::diagnose::Options::chunk`]
+/// 0): some 16 MB of a 7-joint arm's link regressors.
+pub const CHUNK: usize = 4096;
+
+/// The chunks of `range`, `chunk` samples each (the last one shorter; 0
+/// reads as [`CHUNK`]).
+pub fn chunks(range: Range<usize>, chunk: usize) -> impl Iterator<Item = Range<usize>> {
+    let step = if chunk == 0 { CHUNK } else { chunk };
+    range
+        .clone()
+        .step_by(step)
+        .map(move |a| a..(a.saturating_add(step)).min(range.end))
+}
+
+/// The nominal model's efforts `ID(q, qd, qdd)` at the samples of `range`
+/// into `out` (the other samples left as they are).
+pub fn inverse_dynamics<R: Robot<N>, const N: usize>(
+    robot: &R,
+    [q, qd, qdd]: [&[SVector<f64, N>]; 3],
+    range: Range<usize>,
+    chunk: usize,
+    out: &mut [SVector<f64, N>],
+) {
+    for c in chunks(range, chunk) {
+        for k in c {
+            out[k] = robot.inverse_dynamics(&q[k], &qd[k], &qdd[k]);
+        }
+    }
+}
+
+/// The perturbation Jacobian K = dF/dq at the samples of `range` into
+/// `out`.
+pub fn perturbation_k<R: Robot<N>, const N: usize>(
+    robot: &R,
+    [q, qd, qdd]: [&[SVector<f64, N>]; 3],
+    range: Range<usize>,
+    chunk: usize,
+    out: &mut [SMatrix<f64, N, N>],
+) {
+    for c in chunks(range, chunk) {
+        for k in c {
+            out[k] = robot.perturbation_jacobians(&q[k], &qd[k], &qdd[k]).k;
+        }
+    }
+}
+
+/// The tip's position Jacobian J and acceleration `J qdd + Jd qd` at the
+/// samples of `range` into `jac` and `acc`.
+pub fn tip_motion<R: Robot<N>, const N: usize>(
+    robot: &R,
+    tip: &Tip,
+    [q, qd, qdd]: [&[SVector<f64, N>]; 3],
+    range: Range<usize>,
+    chunk: usize,
+    jac: &mut [SMatrix<f64, 3, N>],
+    acc: &mut [Vector3<f64>],
+) {
+    for c in chunks(range, chunk) {
+        for k in c {
+            let (_, j) = tip.position_jacobian(robot, &q[k]);
+            jac[k] = j;
+            acc[k] = j * qdd[k] + tip.bias_acceleration(robot, &q[k], &qd[k]);
+        }
+    }
+}
+
+/// The sum over the samples of `range` of the mass matrix's diagonal.
+pub fn mass_diagonal_sum<R: Robot<N>, const N: usize>(
+    robot: &R,
+    q: &[SVector<f64, N>],
+    range: Range<usize>,
+    chunk: usize,
+) -> SVector<f64, N> {
+    let mut sum = SVector::<f64, N>::zeros();
+    for c in chunks(range, chunk) {
+        for k in c {
+            let m = robot.mass_matrix(&q[k]);
+            for j in 0..N {
+                sum[j] += m[(j, j)];
+            }
+        }
+    }
+    sum
+}
+
+/// Every link's inertial regressor at each sample of `range` (a chunk or
+/// less), appended to `out` one entry a sample, `links` matrices each.
+pub fn inertial_regressor<R: Robot<N>, const N: usize>(
+    robot: &R,
+    [q, qd, qdd]: [&[SVector<f64, N>]; 3],
+    range: Range<usize>,
+    links: usize,
+    out: &mut impl Extend<Vec<SMatrix<f64, N, 10>>>,
+) -> Result<(), DynamicsError> {
+    for k in range {
+        let mut y = vec![SMatrix::<f64, N, 10>::zeros(); links];
+        robot.inertial_regressor(&q[k], &qd[k], &qdd[k], &mut y)?;
+        out.extend(std::iter::once(y));
+    }
+    Ok(())
+}
+
+#[cfg(test)]
+mod tests {
+    use super::chunks;
+
+    /// The chunks cover the range once, in order, each at most `chunk`
+    /// long; 0 takes the default; a chunk longer than the range is the
+    /// whole range.
+    #[test]
+    fn chunks_cover_the_range_once() {
+        assert_eq!(chunks(3..10, 4).collect::<Vec<_>>(), vec![3..7, 7..10]);
+        assert_eq!(chunks(3..10, 1).count(), 7);
+        assert_eq!(chunks(3..10, usize::MAX).collect::<Vec<_>>(), vec![3..10]);
+        assert_eq!(
+            chunks(0..10_000, 0).collect::<Vec<_>>(),
+            vec![0..4096, 4096..8192, 8192..10_000]
+        );
+        assert_eq!(chunks(5..5, 3).count(), 0);
+    }
+}
