@@ -100,6 +100,16 @@ fn store<L: Lanes, T>(
     L::store_states(values, &mut slots[..m]);
 }
 
+/// `Q(0) + (Qqt1 + Qqt2) + tau` (the scalar code's order).
+#[inline(always)]
+fn rhs<L: Lanes, const N: usize>(q0: &[L; N], qqt: &[L; N], tau: &[L; N]) -> [L; N] {
+    let mut b = *q0;
+    for j in 0..N {
+        b[j] = b[j] + qqt[j] + tau[j];
+    }
+    b
+}
+
 /// `sum(x * 0)` over `values`: 0 in the lanes where every value is finite,
 /// NaN where one is not (`inf * 0` and `NaN * 0` are NaN); one multiply-add
 /// a value for all lanes instead of a test per value and state.
@@ -419,10 +429,12 @@ pub fn forward_dynamics_derivatives<R: Robot<N>, const N: usize>(
                 let (qdd, k, d) = self.robot.motion_and_jacobians_lanes(
                     &gather::<L, N>(q, s),
                     &gather(qd, s),
+                    // Inlined: as a function of its own it would be compiled
+                    // without the lanes' CPU features.
+                    #[inline(always)]
                     |a, qqt, q0| {
                         let (f, ok) = ldlt::Ldlt::new(a);
-                        let b: [L; N] = core::array::from_fn(|j| q0[j] + qqt[j] + t[j]);
-                        let qdd = f.solve(&b);
+                        let qdd = f.solve(&rhs(q0, qqt, &t));
                         factors = Some((f, ok));
                         qdd
                     },
@@ -529,8 +541,7 @@ pub fn forward_dynamics<R: Robot<N>, const N: usize>(
                     .motion_terms_lanes(&gather::<L, N>(q, s), &gather(qd, s));
                 let t = gather::<L, N>(tau, s);
                 let (f, ok) = ldlt::Ldlt::new(&a);
-                let b: [L; N] = core::array::from_fn(|j| q0[j] + qqt[j] + t[j]);
-                let qdd = f.solve(&b);
+                let qdd = f.solve(&rhs(&q0, &qqt, &t));
                 let out = &mut self.out[s..s + m];
                 store(&qdd, out, |o| o.as_mut_slice());
                 let probe = finite_probe(&qdd);

@@ -27,8 +27,8 @@ macro_rules! vector_lanes {
         and: $and:ident, or: $or:ident, andnot: $andnot:ident, xor: $xor:ident,
         add64: $add64:ident, sub64: $sub64:ident, srli: $srli:ident, slli: $slli:ident,
         set1_64: $set1_64:ident, zero_int: $zero_int:ident,
-        all_below: $all_below:expr,
-        transpose: $transpose:expr
+        all_below: |$a:ident, $b:ident| $all_below:block,
+        transpose: |$vs:ident| $transpose:block
     ) => {
         $(#[$doc])*
         #[derive(Clone, Copy)]
@@ -47,6 +47,17 @@ macro_rules! vector_lanes {
                 // SAFETY: as above.
                 Self(unsafe { core::mem::transmute::<[f64; $width], $v>(a) })
             }
+            /// Whether every lane of `a` is below that of `b` (false for NaN).
+            // Methods, not closures: a closure would be a function of its
+            // own, compiled without the lanes' CPU features.
+            #[inline(always)]
+            fn all_below($a: Self, $b: Self) -> bool $all_below
+
+            /// `$width` vectors of `$width` lanes transposed: lane `i` of
+            /// vector `k` becomes lane `k` of vector `i`.
+            #[inline(always)]
+            fn transpose($vs: &[Self]) -> [Self; $width] $transpose
+
             /// The sign bit alone in every lane.
             #[inline(always)]
             fn sign() -> $vi {
@@ -134,8 +145,7 @@ macro_rules! vector_lanes {
             #[inline(always)]
             fn sin_cos(self) -> (Self, Self) {
                 let limit = Self::splat(trig::REDUCE_LIMIT);
-                let below: fn(Self, Self) -> bool = $all_below;
-                if !below(self.abs(), limit) {
+                if !Self::all_below(self.abs(), limit) {
                     return Self::cold_sin_cos(self);
                 }
                 let (shifted, s, c) = trig::reduced_lanes(self);
@@ -185,9 +195,8 @@ macro_rules! vector_lanes {
                 // transpose into $width runs of one state each, one vector
                 // store per state (not $width scalar stores per value).
                 if states.len() == $width {
-                    let transpose: fn(&[Self]) -> [Self; $width] = $transpose;
                     while k + $width <= values.len() {
-                        let rows = transpose(&values[k..k + $width]);
+                        let rows = Self::transpose(&values[k..k + $width]);
                         for (state, row) in states.iter_mut().zip(rows) {
                             state[k..k + $width].copy_from_slice(&row.to_array());
                         }
@@ -226,10 +235,11 @@ vector_lanes!(
     add64: _mm256_add_epi64, sub64: _mm256_sub_epi64, srli: _mm256_srli_epi64, slli: _mm256_slli_epi64,
     set1_64: _mm256_set1_epi64x, zero_int: _mm256_setzero_si256,
     // SAFETY: see the module doc.
-    all_below: |a, b| unsafe { _mm256_movemask_pd(_mm256_cmp_pd::<_CMP_LT_OQ>(a.0, b.0)) == 0b1111 },
+    // SAFETY: see the module doc.
+    all_below: |a, b| { unsafe { _mm256_movemask_pd(_mm256_cmp_pd::<_CMP_LT_OQ>(a.0, b.0)) == 0b1111 } },
     // 4 x 4: pairs of 64-bit lanes interleaved, then 128-bit halves.
     // SAFETY: see the module doc.
-    transpose: |v| unsafe {
+    transpose: |v| { unsafe {
         let t0 = _mm256_unpacklo_pd(v[0].0, v[1].0);
         let t1 = _mm256_unpackhi_pd(v[0].0, v[1].0);
         let t2 = _mm256_unpacklo_pd(v[2].0, v[3].0);
@@ -240,7 +250,7 @@ vector_lanes!(
             F64x4(_mm256_permute2f128_pd::<0x31>(t0, t2)),
             F64x4(_mm256_permute2f128_pd::<0x31>(t1, t3)),
         ]
-    }
+    } }
 );
 
 vector_lanes!(
@@ -253,19 +263,22 @@ vector_lanes!(
     add64: _mm512_add_epi64, sub64: _mm512_sub_epi64, srli: _mm512_srli_epi64, slli: _mm512_slli_epi64,
     set1_64: _mm512_set1_epi64, zero_int: _mm512_setzero_si512,
     // SAFETY: see the module doc.
-    all_below: |a, b| unsafe { _mm512_cmp_pd_mask::<_CMP_LT_OQ>(a.0, b.0) == 0xff },
+    // SAFETY: see the module doc.
+    all_below: |a, b| { unsafe { _mm512_cmp_pd_mask::<_CMP_LT_OQ>(a.0, b.0) == 0xff } },
     // 8 x 8: pairs of 64-bit lanes interleaved, then 128-bit blocks
     // gathered twice (blocks 0, 2 with 0x88; 1, 3 with 0xdd).
     // SAFETY: see the module doc.
-    transpose: |v| unsafe {
-        let t: [__m512d; 8] = core::array::from_fn(|k| {
-            let (a, b) = (v[k & !1].0, v[k | 1].0);
-            if k % 2 == 0 {
-                _mm512_unpacklo_pd(a, b)
-            } else {
-                _mm512_unpackhi_pd(a, b)
-            }
-        });
+    transpose: |v| { unsafe {
+        let t = [
+            _mm512_unpacklo_pd(v[0].0, v[1].0),
+            _mm512_unpackhi_pd(v[0].0, v[1].0),
+            _mm512_unpacklo_pd(v[2].0, v[3].0),
+            _mm512_unpackhi_pd(v[2].0, v[3].0),
+            _mm512_unpacklo_pd(v[4].0, v[5].0),
+            _mm512_unpackhi_pd(v[4].0, v[5].0),
+            _mm512_unpacklo_pd(v[6].0, v[7].0),
+            _mm512_unpackhi_pd(v[6].0, v[7].0),
+        ];
         let u = [
             _mm512_shuffle_f64x2::<0x88>(t[0], t[2]),
             _mm512_shuffle_f64x2::<0x88>(t[1], t[3]),
@@ -286,5 +299,5 @@ vector_lanes!(
             F64x8(_mm512_shuffle_f64x2::<0xdd>(u[2], u[6])),
             F64x8(_mm512_shuffle_f64x2::<0xdd>(u[3], u[7])),
         ]
-    }
+    } }
 );

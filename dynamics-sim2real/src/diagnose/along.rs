@@ -2,18 +2,18 @@
 //! per-sample model quantity of the diagnosis is computed (inverse
 //! dynamics, the perturbation Jacobian K, the tip's Jacobian and bias
 //! acceleration, the mass matrix's diagonal, the inertial regressor), over
-//! a range of samples taken `chunk` samples at a time. A batch evaluation
-//! of many states at once replaces the per-sample call inside one chunk
-//! without touching the stages; the chunk also bounds what a stage that
-//! streams the record (the link columns, `candidates/links.rs`) holds at
-//! once.
+//! a range of samples taken `chunk` samples at a time. Inverse dynamics,
+//! K and the mass matrix go through the runtime's batch functions (vector
+//! lanes, several samples per instruction); the chunk also bounds what a
+//! stage that streams the record (the link columns, `candidates/links.rs`)
+//! holds at once.
 
 use std::ops::Range;
 
 use nalgebra::{SMatrix, SVector, Vector3};
 
 use crate::effects::Tip;
-use dynamics_runtime::{DynamicsError, Robot};
+use dynamics_runtime::{DynamicsError, PerturbationJacobians, Robot};
 
 /// Samples a chunk takes unless told otherwise ([`crate::diagnose::Options::chunk`]
 /// 0): some 16 MB of a 7-joint arm's link regressors.
@@ -39,8 +39,13 @@ pub fn inverse_dynamics<R: Robot<N>, const N: usize>(
     out: &mut [SVector<f64, N>],
 ) {
     for c in chunks(range, chunk) {
-        for k in c {
-            out[k] = robot.inverse_dynamics(&q[k], &qd[k], &qdd[k]);
+        let (q, qd, qdd) = (&q[c.clone()], &qd[c.clone()], &qdd[c.clone()]);
+        // Slices of one length: the batch cannot fail.
+        if robot
+            .inverse_dynamics_many(q, qd, qdd, &mut out[c])
+            .is_err()
+        {
+            unreachable!("slices of one chunk have one length");
         }
     }
 }
@@ -54,9 +59,19 @@ pub fn perturbation_k<R: Robot<N>, const N: usize>(
     chunk: usize,
     out: &mut [SMatrix<f64, N, N>],
 ) {
+    let mut kd = Vec::new();
     for c in chunks(range, chunk) {
-        for k in c {
-            out[k] = robot.perturbation_jacobians(&q[k], &qd[k], &qdd[k]).k;
+        let (q, qd, qdd) = (&q[c.clone()], &qd[c.clone()], &qdd[c.clone()]);
+        let zero = SMatrix::<f64, N, N>::zeros();
+        kd.resize(c.len(), PerturbationJacobians { k: zero, d: zero });
+        if robot
+            .perturbation_jacobians_many(q, qd, qdd, &mut kd)
+            .is_err()
+        {
+            unreachable!("slices of one chunk have one length");
+        }
+        for (o, pj) in out[c].iter_mut().zip(&kd) {
+            *o = pj.k;
         }
     }
 }
@@ -89,9 +104,13 @@ pub fn mass_diagonal_sum<R: Robot<N>, const N: usize>(
     chunk: usize,
 ) -> SVector<f64, N> {
     let mut sum = SVector::<f64, N>::zeros();
+    let mut a = Vec::new();
     for c in chunks(range, chunk) {
-        for k in c {
-            let m = robot.mass_matrix(&q[k]);
+        a.resize(c.len(), SMatrix::<f64, N, N>::zeros());
+        if robot.mass_matrix_many(&q[c], &mut a).is_err() {
+            unreachable!("slices of one chunk have one length");
+        }
+        for m in &a {
             for j in 0..N {
                 sum[j] += m[(j, j)];
             }
