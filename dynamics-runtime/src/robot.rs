@@ -2,9 +2,7 @@
 
 use nalgebra::{Matrix4, SMatrix, SVector, Vector3};
 
-use crate::batch::{self, BatchError, Level};
 use crate::lanes::{from_states, matrix_from_states, state, Lanes};
-use crate::linearize::ForwardDerivatives;
 use crate::{DynamicsError, Parameters};
 
 /// The kind of a joint, as declared in `robot!`.
@@ -293,7 +291,7 @@ pub trait Robot<const N: usize> {
     /// argument a vector in lanes (entry `j` holds coordinate `j` of every
     /// state). `robot!` emits the scalar method's code over `L`; the
     /// default calls the scalar method per state. The batch functions
-    /// ([`Robot::inverse_dynamics_many`]) call this.
+    /// ([`crate::batch`]) call this.
     ///
     /// ```
     /// use dynamics_runtime::Robot;
@@ -430,189 +428,6 @@ pub trait Robot<const N: usize> {
         (qdd, k, d)
     }
 
-    /// Inverse dynamics of many states in vector lanes at the widest
-    /// [`Level`] this CPU has ([`batch::inverse_dynamics`]).
-    ///
-    /// ```
-    /// use dynamics_runtime::Robot;
-    /// use nalgebra::Vector1;
-    /// dynamics_macros::robot! {
-    ///     pub robot Pendulum;
-    ///     gravity = [0.0, -9.81, 0.0];
-    ///     link base;
-    ///     link rod { mass = 1.0; com = [1.0, 0.0, 0.0]; }
-    ///     joint j = revolute(base -> rod) { transfer = [rot_z(q)]; }
-    /// }
-    /// let p = Pendulum::default();
-    /// let q: Vec<_> = (0..100).map(|k| Vector1::new(0.01 * k as f64)).collect();
-    /// let z = vec![Vector1::zeros(); 100];
-    /// let mut tau = vec![Vector1::zeros(); 100];
-    /// p.inverse_dynamics_many(&q, &z, &z, &mut tau)?;
-    /// assert_eq!(tau[99], p.inverse_dynamics(&q[99], &z[99], &z[99]));
-    /// # Ok::<(), dynamics_runtime::batch::BatchError>(())
-    /// ```
-    fn inverse_dynamics_many(
-        &self,
-        q: &[SVector<f64, N>],
-        qd: &[SVector<f64, N>],
-        qdd: &[SVector<f64, N>],
-        out: &mut [SVector<f64, N>],
-    ) -> Result<(), BatchError>
-    where
-        Self: Sized,
-    {
-        batch::inverse_dynamics(self, Level::detect(), q, qd, qdd, out)
-    }
-    /// The inertia matrix of many states ([`batch::mass_matrix`]).
-    ///
-    /// ```
-    /// use dynamics_runtime::Robot;
-    /// use nalgebra::{Matrix1, Vector1};
-    /// dynamics_macros::robot! {
-    ///     pub robot Pendulum;
-    ///     gravity = [0.0, -9.81, 0.0];
-    ///     link base;
-    ///     link rod { mass = 2.0; com = [0.5, 0.0, 0.0]; }
-    ///     joint j = revolute(base -> rod) { transfer = [rot_z(q)]; }
-    /// }
-    /// let mut a = vec![Matrix1::zeros(); 3];
-    /// Pendulum::default().mass_matrix_many(&[Vector1::new(0.1); 3], &mut a)?;
-    /// assert_eq!(a[2][(0, 0)], 0.5);
-    /// # Ok::<(), dynamics_runtime::batch::BatchError>(())
-    /// ```
-    fn mass_matrix_many(
-        &self,
-        q: &[SVector<f64, N>],
-        out: &mut [SMatrix<f64, N, N>],
-    ) -> Result<(), BatchError>
-    where
-        Self: Sized,
-    {
-        batch::mass_matrix(self, Level::detect(), q, out)
-    }
-    /// A, the bias terms and Q(0) of many states ([`batch::motion_terms`]).
-    ///
-    /// ```
-    /// use dynamics_runtime::Robot;
-    /// use nalgebra::Vector1;
-    /// dynamics_macros::robot! {
-    ///     pub robot Pendulum;
-    ///     gravity = [0.0, -9.81, 0.0];
-    ///     link base;
-    ///     link rod { mass = 1.0; com = [1.0, 0.0, 0.0]; }
-    ///     joint j = revolute(base -> rod) { transfer = [rot_z(q)]; }
-    /// }
-    /// let p = Pendulum::default();
-    /// let z = [Vector1::zeros(); 2];
-    /// let mut terms = [p.motion_terms(&z[0], &z[0]); 2];
-    /// p.motion_terms_many(&z, &z, &mut terms)?;
-    /// assert!((terms[1].bias()[0] + 9.81).abs() < 1e-15);
-    /// # Ok::<(), dynamics_runtime::batch::BatchError>(())
-    /// ```
-    fn motion_terms_many(
-        &self,
-        q: &[SVector<f64, N>],
-        qd: &[SVector<f64, N>],
-        out: &mut [MotionTerms<N>],
-    ) -> Result<(), BatchError>
-    where
-        Self: Sized,
-    {
-        batch::motion_terms(self, Level::detect(), q, qd, out)
-    }
-    /// K and D of many states ([`batch::perturbation_jacobians`]).
-    ///
-    /// ```
-    /// use dynamics_runtime::Robot;
-    /// use nalgebra::Vector1;
-    /// dynamics_macros::robot! {
-    ///     pub robot Pendulum;
-    ///     gravity = [0.0, -9.81, 0.0];
-    ///     link base;
-    ///     link rod { mass = 1.0; com = [1.0, 0.0, 0.0]; }
-    ///     joint j = revolute(base -> rod) { transfer = [rot_z(q)]; damping = 0.5; }
-    /// }
-    /// let p = Pendulum::default();
-    /// let z = [Vector1::zeros(); 2];
-    /// let mut kd = [p.perturbation_jacobians(&z[0], &z[0], &z[0]); 2];
-    /// p.perturbation_jacobians_many(&z, &z, &z, &mut kd)?;
-    /// assert_eq!(kd[1].d[(0, 0)], 0.5);
-    /// # Ok::<(), dynamics_runtime::batch::BatchError>(())
-    /// ```
-    fn perturbation_jacobians_many(
-        &self,
-        q: &[SVector<f64, N>],
-        qd: &[SVector<f64, N>],
-        qdd: &[SVector<f64, N>],
-        out: &mut [PerturbationJacobians<N>],
-    ) -> Result<(), BatchError>
-    where
-        Self: Sized,
-    {
-        batch::perturbation_jacobians(self, Level::detect(), q, qd, qdd, out)
-    }
-    /// Forward dynamics of many states ([`batch::forward_dynamics`]).
-    ///
-    /// ```
-    /// use dynamics_runtime::Robot;
-    /// use nalgebra::Vector1;
-    /// dynamics_macros::robot! {
-    ///     pub robot Pendulum;
-    ///     gravity = [0.0, -9.81, 0.0];
-    ///     link base;
-    ///     link rod { mass = 1.0; com = [1.0, 0.0, 0.0]; }
-    ///     joint j = revolute(base -> rod) { transfer = [rot_z(q)]; }
-    /// }
-    /// let z = [Vector1::zeros(); 3];
-    /// let mut qdd = [Vector1::zeros(); 3];
-    /// Pendulum::default().forward_dynamics_many(&z, &z, &z, &mut qdd)?;
-    /// assert!((qdd[2][0] + 9.81).abs() < 1e-14);
-    /// # Ok::<(), dynamics_runtime::batch::BatchError>(())
-    /// ```
-    fn forward_dynamics_many(
-        &self,
-        q: &[SVector<f64, N>],
-        qd: &[SVector<f64, N>],
-        tau: &[SVector<f64, N>],
-        out: &mut [SVector<f64, N>],
-    ) -> Result<(), BatchError>
-    where
-        Self: Sized,
-    {
-        batch::forward_dynamics(self, Level::detect(), q, qd, tau, out)
-    }
-    /// Forward dynamics and their derivatives of many states
-    /// ([`batch::forward_dynamics_derivatives`]).
-    ///
-    /// ```
-    /// use dynamics_runtime::{linearize, Robot};
-    /// use nalgebra::Vector1;
-    /// dynamics_macros::robot! {
-    ///     pub robot Pendulum;
-    ///     gravity = [0.0, -9.81, 0.0];
-    ///     link base;
-    ///     link rod { mass = 1.0; com = [1.0, 0.0, 0.0]; }
-    ///     joint j = revolute(base -> rod) { transfer = [rot_z(q)]; damping = 0.5; }
-    /// }
-    /// let p = Pendulum::default();
-    /// let z = [Vector1::zeros(); 3];
-    /// let mut d = [linearize::forward_dynamics_derivatives(&p, &z[0], &z[0], &z[0])?; 3];
-    /// p.forward_dynamics_derivatives_many(&z, &z, &z, &mut d)?;
-    /// assert!((d[2].ddq_dv[(0, 0)] + 0.5).abs() < 1e-15);
-    /// # Ok::<(), Box<dyn std::error::Error>>(())
-    /// ```
-    fn forward_dynamics_derivatives_many(
-        &self,
-        q: &[SVector<f64, N>],
-        qd: &[SVector<f64, N>],
-        tau: &[SVector<f64, N>],
-        out: &mut [ForwardDerivatives<N>],
-    ) -> Result<(), BatchError>
-    where
-        Self: Sized,
-    {
-        batch::forward_dynamics_derivatives(self, Level::detect(), q, qd, tau, out)
-    }
     /// T = 1/2 qd^T A qd.
     fn kinetic_energy(&self, q: &SVector<f64, N>, qd: &SVector<f64, N>) -> f64;
     /// Pi: gravity (V = -sum m gravity . c over moving bodies) plus springs.

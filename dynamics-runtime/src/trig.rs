@@ -18,40 +18,39 @@
 use core::f64::consts::FRAC_2_PI;
 
 use crate::fma::mul_add;
-use crate::lanes::Lanes;
 
 // Without FMA: pi/2 in parts with trailing zero bits, so that n * part is
 // exact for the quotients used here (fdlibm's pio2_1, pio2_2), and the rest.
 #[cfg(not(any(target_feature = "fma", target_arch = "aarch64")))]
-const PIO2_1: f64 = 1.570_796_326_734_125_614_17e+00;
+pub(crate) const PIO2_1: f64 = 1.570_796_326_734_125_614_17e+00;
 #[cfg(not(any(target_feature = "fma", target_arch = "aarch64")))]
-const PIO2_2: f64 = 6.077_100_506_303_965_976_60e-11;
+pub(crate) const PIO2_2: f64 = 6.077_100_506_303_965_976_60e-11;
 /// pi/2 - PIO2_1 - PIO2_2 (fdlibm's pio2_2t).
 #[cfg(not(any(target_feature = "fma", target_arch = "aarch64")))]
-const PIO2_2T: f64 = 2.022_266_248_795_950_631_54e-21;
+pub(crate) const PIO2_2T: f64 = 2.022_266_248_795_950_631_54e-21;
 // With FMA: pi/2 = FRAC_PI_2 + PIO2_LO + PIO2_TAIL, each the double
 // nearest the rest.
 #[cfg(any(target_feature = "fma", target_arch = "aarch64"))]
-const PIO2_LO: f64 = 6.123_233_995_736_766e-17;
+pub(crate) const PIO2_LO: f64 = 6.123_233_995_736_766e-17;
 #[cfg(any(target_feature = "fma", target_arch = "aarch64"))]
-const PIO2_TAIL: f64 = -1.497_384_904_859_169_8e-33;
+pub(crate) const PIO2_TAIL: f64 = -1.497_384_904_859_169_8e-33;
 
-const S1: f64 = -1.666_666_666_666_663_243_48e-01;
-const S2: f64 = 8.333_333_333_322_489_461_24e-03;
-const S3: f64 = -1.984_126_982_985_794_931_34e-04;
-const S4: f64 = 2.755_731_370_707_006_767_89e-06;
-const S5: f64 = -2.505_076_025_340_686_341_95e-08;
-const S6: f64 = 1.589_690_995_211_550_102_21e-10;
+pub(crate) const S1: f64 = -1.666_666_666_666_663_243_48e-01;
+pub(crate) const S2: f64 = 8.333_333_333_322_489_461_24e-03;
+pub(crate) const S3: f64 = -1.984_126_982_985_794_931_34e-04;
+pub(crate) const S4: f64 = 2.755_731_370_707_006_767_89e-06;
+pub(crate) const S5: f64 = -2.505_076_025_340_686_341_95e-08;
+pub(crate) const S6: f64 = 1.589_690_995_211_550_102_21e-10;
 
-const C1: f64 = 4.166_666_666_666_660_190_37e-02;
-const C2: f64 = -1.388_888_888_887_410_957_49e-03;
-const C3: f64 = 2.480_158_728_947_672_941_78e-05;
-const C4: f64 = -2.755_731_435_139_066_330_35e-07;
-const C5: f64 = 2.087_572_321_298_174_827_90e-09;
-const C6: f64 = -1.135_964_755_778_819_482_65e-11;
+pub(crate) const C1: f64 = 4.166_666_666_666_660_190_37e-02;
+pub(crate) const C2: f64 = -1.388_888_888_887_410_957_49e-03;
+pub(crate) const C3: f64 = 2.480_158_728_947_672_941_78e-05;
+pub(crate) const C4: f64 = -2.755_731_435_139_066_330_35e-07;
+pub(crate) const C5: f64 = 2.087_572_321_298_174_827_90e-09;
+pub(crate) const C6: f64 = -1.135_964_755_778_819_482_65e-11;
 
 /// 1.5 * 2^52: adding it rounds any |y| < 2^51 to an integer.
-const ROUNDER: f64 = 6_755_399_441_055_744.0;
+pub(crate) const ROUNDER: f64 = 6_755_399_441_055_744.0;
 
 /// Largest |x| reduced here; beyond it `std` (or `libm`) is used.
 pub(crate) const REDUCE_LIMIT: f64 = 1_647_099.0; // 2^20 * pi/2
@@ -196,45 +195,6 @@ fn reduced(x: f64) -> (u64, f64, f64) {
     let w = 1.0 - hz;
     let c = w + mul_add(z2, pc, (1.0 - w) - hz);
     (shifted.to_bits(), s, c)
-}
-
-/// [`reduced`] over lanes (the same operations in the same order, with
-/// the lane type's multiply-add): the rounded quotient's bits as a float
-/// (`shifted`, whose last two mantissa bits are the quadrant), sin r and
-/// cos r. The caller checks that every lane is below [`REDUCE_LIMIT`].
-#[inline(always)]
-pub(crate) fn reduced_lanes<L: Lanes>(x: L) -> (L, L, L) {
-    let k = L::splat;
-    let shifted = x.mul_add(k(FRAC_2_PI), k(ROUNDER));
-    let n = shifted - k(ROUNDER);
-    #[cfg(any(target_feature = "fma", target_arch = "aarch64"))]
-    let r = {
-        let r = (-n).mul_add(k(core::f64::consts::FRAC_PI_2), x);
-        (-n).mul_add(k(PIO2_TAIL), (-n).mul_add(k(PIO2_LO), r))
-    };
-    #[cfg(not(any(target_feature = "fma", target_arch = "aarch64")))]
-    let r = {
-        let t = x - n * k(PIO2_1);
-        let w = n * k(PIO2_2);
-        let r = t - w;
-        r - (n * k(PIO2_2T) - ((t - r) - w))
-    };
-    let z = r * r;
-    let z2 = z * z;
-    let z4 = z2 * z2;
-    let ps = z4.mul_add(
-        z.mul_add(k(S6), k(S5)),
-        z2.mul_add(z.mul_add(k(S4), k(S3)), z.mul_add(k(S2), k(S1))),
-    );
-    let pc = z4.mul_add(
-        z.mul_add(k(C6), k(C5)),
-        z2.mul_add(z.mul_add(k(C4), k(C3)), z.mul_add(k(C2), k(C1))),
-    );
-    let s = (r * z).mul_add(ps, r);
-    let hz = k(0.5) * z;
-    let w = k(1.0) - hz;
-    let c = w + z2.mul_add(pc, (k(1.0) - w) - hz);
-    (shifted, s, c)
 }
 
 /// Factors of s and c in sin x and cos x, by quadrant.

@@ -15,6 +15,7 @@
 
 #![no_std]
 
+use dynamics_runtime::batch::Batch;
 use dynamics_runtime::control::{ComputedTorque, Controller, Reference};
 use dynamics_runtime::nalgebra::{SMatrix, SVector};
 use dynamics_runtime::{

@@ -45,8 +45,11 @@ impl<'a> Spelling<'a> {
     ) -> (TokenStream, Vec<TokenStream>) {
         if self.lanes {
             (
-                super::lanes::over_lanes(lets),
-                roots.into_iter().map(super::lanes::over_lanes).collect(),
+                super::lane_tokens::over_lanes(lets),
+                roots
+                    .into_iter()
+                    .map(super::lane_tokens::over_lanes)
+                    .collect(),
             )
         } else {
             (lets, roots)

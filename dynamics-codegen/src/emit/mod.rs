@@ -5,6 +5,7 @@
 
 mod body;
 mod constraints;
+mod lane_tokens;
 mod lanes;
 mod params;
 mod regressor;

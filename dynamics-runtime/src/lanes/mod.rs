@@ -168,6 +168,49 @@ impl Lanes for f64 {
     }
 }
 
+/// The scalar sine/cosine kernel's reduction (`trig::reduced`) over lanes
+/// (the same operations in the same order, with
+/// the lane type's multiply-add): the rounded quotient's bits as a float
+/// (`shifted`, whose last two mantissa bits are the quadrant), sin r and
+/// cos r. The caller checks that every lane is below `trig::REDUCE_LIMIT`.
+#[inline(always)]
+#[cfg(target_arch = "x86_64")]
+fn reduced<L: Lanes>(x: L) -> (L, L, L) {
+    use core::f64::consts::FRAC_2_PI;
+    use trig::*;
+    let k = L::splat;
+    let shifted = x.mul_add(k(FRAC_2_PI), k(ROUNDER));
+    let n = shifted - k(ROUNDER);
+    #[cfg(any(target_feature = "fma", target_arch = "aarch64"))]
+    let r = {
+        let r = (-n).mul_add(k(core::f64::consts::FRAC_PI_2), x);
+        (-n).mul_add(k(PIO2_TAIL), (-n).mul_add(k(PIO2_LO), r))
+    };
+    #[cfg(not(any(target_feature = "fma", target_arch = "aarch64")))]
+    let r = {
+        let t = x - n * k(PIO2_1);
+        let w = n * k(PIO2_2);
+        let r = t - w;
+        r - (n * k(PIO2_2T) - ((t - r) - w))
+    };
+    let z = r * r;
+    let z2 = z * z;
+    let z4 = z2 * z2;
+    let ps = z4.mul_add(
+        z.mul_add(k(S6), k(S5)),
+        z2.mul_add(z.mul_add(k(S4), k(S3)), z.mul_add(k(S2), k(S1))),
+    );
+    let pc = z4.mul_add(
+        z.mul_add(k(C6), k(C5)),
+        z2.mul_add(z.mul_add(k(C4), k(C3)), z.mul_add(k(C2), k(C1))),
+    );
+    let s = (r * z).mul_add(ps, r);
+    let hz = k(0.5) * z;
+    let w = k(1.0) - hz;
+    let c = w + z2.mul_add(pc, (k(1.0) - w) - hz);
+    (shifted, s, c)
+}
+
 /// `a * b + c` lane-wise: over `f64` the scalar code's
 /// [`fma::mul_add`], over the lane types fused.
 ///

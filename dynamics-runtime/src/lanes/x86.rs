@@ -148,7 +148,7 @@ macro_rules! vector_lanes {
                 if !Self::all_below(self.abs(), limit) {
                     return Self::cold_sin_cos(self);
                 }
-                let (shifted, s, c) = trig::reduced_lanes(self);
+                let (shifted, s, c) = super::reduced(self);
                 Self::by_quadrant(shifted, s, c)
             }
             #[inline(always)]

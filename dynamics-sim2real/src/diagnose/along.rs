@@ -13,6 +13,7 @@ use std::ops::Range;
 use nalgebra::{SMatrix, SVector, Vector3};
 
 use crate::effects::Tip;
+use dynamics_runtime::batch::Batch;
 use dynamics_runtime::{DynamicsError, PerturbationJacobians, Robot};
 
 /// Samples a chunk takes unless told otherwise ([`crate::diagnose::Options::chunk`]

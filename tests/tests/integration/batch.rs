@@ -5,7 +5,7 @@
 //! else within 1e-14 of each output's scale; a tail of states that does
 //! not fill the lanes; errors naming the state.
 
-use dynamics_runtime::batch::{self, BatchError, Level};
+use dynamics_runtime::batch::{self, Batch, BatchError, Level};
 use dynamics_runtime::linearize::forward_dynamics_derivatives;
 use dynamics_runtime::{DynamicsError, Robot};
 use nalgebra::{SMatrix, SVector};
