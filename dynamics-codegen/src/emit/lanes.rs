@@ -26,7 +26,7 @@ fn zero() -> TokenStream {
 pub fn vector(g: &Graph, roots: &[Id], sp: &Spelling) -> TokenStream {
     let n = roots.len();
     let (lets, vals) = body::chain(g, roots, sp);
-    let sets = assign_vector(g, roots, &vals, quote!(out));
+    let sets = body::assign_vector(g, roots, &vals, quote!(out));
     let z = zero();
     quote! {
         #lets
@@ -34,22 +34,6 @@ pub fn vector(g: &Graph, roots: &[Id], sp: &Spelling) -> TokenStream {
         #sets
         out
     }
-}
-
-/// `target[i] = value;` for every non-zero root.
-pub fn assign_vector(
-    g: &Graph,
-    roots: &[Id],
-    vals: &[TokenStream],
-    target: TokenStream,
-) -> TokenStream {
-    let sets = roots
-        .iter()
-        .zip(vals)
-        .enumerate()
-        .filter(|(_, (id, _))| g.as_constant(**id) != Some(0.0))
-        .map(|(i, (_, v))| quote!(#target[#i] = #v;));
-    quote!(#(#sets)*)
 }
 
 /// `target[j][i] = value;` for every non-zero root `(i, j)` of row-major

@@ -307,8 +307,8 @@ fn lane_methods(model: &Model, d: &Derived, a_roots: &[dynamics_symbolic::Id]) -
             lanes::zero_vector("q0", n),
         ];
         let a_set = lanes::assign_matrix(g, a_roots, &vals[..nn], n, quote!(a));
-        let qqt_set = lanes::assign_vector(g, &d.qqt, &vals[nn..nn + n], quote!(qqt));
-        let q0_set = lanes::assign_vector(g, &d.q0, &vals[nn + n..], quote!(q0));
+        let qqt_set = body::assign_vector(g, &d.qqt, &vals[nn..nn + n], quote!(qqt));
+        let q0_set = body::assign_vector(g, &d.q0, &vals[nn + n..], quote!(q0));
         quote! { #lets #(#zeros)* #a_set #qqt_set #q0_set (a, qqt, q0) }
     };
 
@@ -342,8 +342,8 @@ fn lane_methods(model: &Model, d: &Derived, a_roots: &[dynamics_symbolic::Id]) -
         ];
         let zeros2 = [lanes::zero_matrix("k", n), lanes::zero_matrix("d", n)];
         let a_set = lanes::assign_matrix(g, &a_roots, &vals1[..nn], n, quote!(a));
-        let qqt_set = lanes::assign_vector(g, &d.qqt_fused, &vals1[nn..nn + n], quote!(qqt));
-        let q0_set = lanes::assign_vector(g, &d.q0, &vals1[nn + n..], quote!(q0));
+        let qqt_set = body::assign_vector(g, &d.qqt_fused, &vals1[nn..nn + n], quote!(qqt));
+        let q0_set = body::assign_vector(g, &d.q0, &vals1[nn + n..], quote!(q0));
         let k_set = lanes::assign_matrix(g, &second[..nn], &vals2[..nn], n, quote!(k));
         let d_set = lanes::assign_matrix(g, &second[nn..], &vals2[nn..], n, quote!(d));
         quote! {
