@@ -4,10 +4,12 @@
 //! calling thread (handing work to other threads costs some microseconds,
 //! the time of a few hundred states).
 
+use core::ops::Range;
+
 use nalgebra::{SMatrix, SVector};
 use rayon::prelude::*;
 
-use super::{BatchError, Level};
+use super::{length, BatchError, Level};
 use crate::linearize::ForwardDerivatives;
 use crate::{PerturbationJacobians, Robot};
 
@@ -17,13 +19,20 @@ pub const BLOCK: usize = 256;
 /// Fewest states worth spreading over threads.
 pub const PARALLEL_FROM: usize = 2048;
 
-/// Fails unless `x` has `expected` entries (checked before any work).
-fn length<T>(quantity: &'static str, x: &[T], expected: usize) -> Result<(), BatchError> {
-    super::length(quantity, x, expected)
-}
-
-/// The first error of the blocks, its state counted from the start.
-fn first_error(results: Vec<(usize, Result<(), BatchError>)>) -> Result<(), BatchError> {
+/// `f(states, out block)` for the blocks of [`BLOCK`] states of `out` on
+/// rayon's workers; the first error, its state counted from the start.
+fn in_blocks<T: Send>(
+    out: &mut [T],
+    f: impl Fn(Range<usize>, &mut [T]) -> Result<(), BatchError> + Sync,
+) -> Result<(), BatchError> {
+    let results: Vec<(usize, Result<(), BatchError>)> = out
+        .par_chunks_mut(BLOCK)
+        .enumerate()
+        .map(|(b, o)| {
+            let s = b * BLOCK;
+            (s, f(s..s + o.len(), o))
+        })
+        .collect();
     for (start, r) in results {
         match r {
             Ok(()) => {}
@@ -75,19 +84,16 @@ pub fn inverse_dynamics<R: Robot<N> + Sync, const N: usize>(
     if n < PARALLEL_FROM {
         return super::inverse_dynamics(robot, level, q, qd, qdd, out);
     }
-    let results = out
-        .par_chunks_mut(BLOCK)
-        .enumerate()
-        .map(|(b, o)| {
-            let s = b * BLOCK;
-            let e = s + o.len();
-            (
-                s,
-                super::inverse_dynamics(robot, level, &q[s..e], &qd[s..e], &qdd[s..e], o),
-            )
-        })
-        .collect();
-    first_error(results)
+    in_blocks(out, |r, o| {
+        super::inverse_dynamics(
+            robot,
+            level,
+            &q[r.clone()],
+            &qd[r.clone()],
+            &qdd[r.clone()],
+            o,
+        )
+    })
 }
 
 /// [`super::mass_matrix`] over all cores.
@@ -119,16 +125,9 @@ pub fn mass_matrix<R: Robot<N> + Sync, const N: usize>(
     if q.len() < PARALLEL_FROM {
         return super::mass_matrix(robot, level, q, out);
     }
-    let results = out
-        .par_chunks_mut(BLOCK)
-        .enumerate()
-        .map(|(b, o)| {
-            let s = b * BLOCK;
-            let e = s + o.len();
-            (s, super::mass_matrix(robot, level, &q[s..e], o))
-        })
-        .collect();
-    first_error(results)
+    in_blocks(out, |r, o| {
+        super::mass_matrix(robot, level, &q[r.clone()], o)
+    })
 }
 
 /// [`super::perturbation_jacobians`] over all cores.
@@ -166,19 +165,16 @@ pub fn perturbation_jacobians<R: Robot<N> + Sync, const N: usize>(
     if n < PARALLEL_FROM {
         return super::perturbation_jacobians(robot, level, q, qd, qdd, out);
     }
-    let results = out
-        .par_chunks_mut(BLOCK)
-        .enumerate()
-        .map(|(b, o)| {
-            let s = b * BLOCK;
-            let e = s + o.len();
-            (
-                s,
-                super::perturbation_jacobians(robot, level, &q[s..e], &qd[s..e], &qdd[s..e], o),
-            )
-        })
-        .collect();
-    first_error(results)
+    in_blocks(out, |r, o| {
+        super::perturbation_jacobians(
+            robot,
+            level,
+            &q[r.clone()],
+            &qd[r.clone()],
+            &qdd[r.clone()],
+            o,
+        )
+    })
 }
 
 /// [`super::forward_dynamics_derivatives`] over all cores; an error names
@@ -220,24 +216,7 @@ pub fn forward_dynamics_derivatives<R: Robot<N> + Sync, const N: usize>(
     if n < PARALLEL_FROM {
         return super::forward_dynamics_derivatives(robot, level, q, qd, tau, out);
     }
-    let results = out
-        .par_chunks_mut(BLOCK)
-        .enumerate()
-        .map(|(b, o)| {
-            let s = b * BLOCK;
-            let e = s + o.len();
-            (
-                s,
-                super::forward_dynamics_derivatives(
-                    robot,
-                    level,
-                    &q[s..e],
-                    &qd[s..e],
-                    &tau[s..e],
-                    o,
-                ),
-            )
-        })
-        .collect();
-    first_error(results)
+    in_blocks(out, |r, o| {
+        super::forward_dynamics_derivatives(robot, level, &q[r.clone()], &qd[r.clone()], &tau[r], o)
+    })
 }
