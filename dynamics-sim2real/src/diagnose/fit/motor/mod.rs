@@ -6,7 +6,7 @@
 mod refine;
 mod spread;
 
-use super::motor_sim::transmitted_each;
+use super::motor_sim::{transmitted_each, Stretches};
 use super::one::{whitened_nominal, Fit};
 use crate::diagnose::candidates::{
     motor_feasible, motor_grid, signature_limit, Candidate, MotorGuess, Prepared,
@@ -43,13 +43,15 @@ pub(super) fn stiff_rotor<const N: usize>(linear: Fit, j: usize, p: &Prepared<N>
             half_width: 0.0,
         }
     };
-    // Whitened SSE with each rotor of `gs` (simulated side by side).
-    let costs = |gs: &[MotorGuess]| -> Vec<f64> {
-        transmitted_each(&p.sig, j, gs, false, &p.basis.compliance, |t| {
+    // Whitened SSE with each rotor of `gs` (simulated side by side) on
+    // the search's stretches, and on the whole record.
+    let search = Stretches::search(&p.sig, &p.rows);
+    let whole = Stretches::whole(&p.sig, &p.rows);
+    let costs_on = |stretches: &Stretches, gs: &[MotorGuess]| -> Vec<f64> {
+        transmitted_each(&p.sig, j, gs, false, &p.basis.compliance, stretches, |t| {
             let sse: f64 = base - own
-                + p.rows
-                    .iter()
-                    .map(|&k| ((p.sig.sg.at(t, 0, k) - p.sig.model[k][j]) * w).powi(2))
+                + t.at_rows(&p.sig.sg)
+                    .map(|(k, e)| ((e - p.sig.model[k][j]) * w).powi(2))
                     .sum::<f64>();
             if sse.is_finite() {
                 sse
@@ -58,6 +60,7 @@ pub(super) fn stiff_rotor<const N: usize>(linear: Fit, j: usize, p: &Prepared<N>
             }
         })
     };
+    let costs = |gs: &[MotorGuess]| costs_on(&search, gs);
     let start = linear
         .theta
         .first()
@@ -100,6 +103,12 @@ pub(super) fn stiff_rotor<const N: usize>(linear: Fit, j: usize, p: &Prepared<N>
             step *= 0.5;
         }
     }
+    if !search.is_whole() {
+        c_best = costs_on(&whole, &[guess(jm, f)])
+            .first()
+            .copied()
+            .unwrap_or(f64::INFINITY);
+    }
     let best = c_best.is_finite().then(|| (guess(jm, f), c_best));
     match best {
         Some((g, sse)) if sse < linear.sse => Fit {
@@ -127,20 +136,30 @@ pub(super) fn fit_motor<R: Robot<N>, const N: usize>(c: Candidate, p: &Prepared<
     let limit = signature_limit(p.sig.dt);
     let feasible = |g: &MotorGuess| motor_feasible(g, backlash, inertia, revolute, limit);
     // Whitened rows of joint j with each guess of `gs` (simulated side by
-    // side).
-    let rows = |gs: &[MotorGuess]| -> Vec<Vec<f64>> {
-        transmitted_each(&p.sig, j, gs, backlash, &p.basis.compliance, |t| {
-            p.rows
-                .iter()
-                .map(|&k| (p.sig.sg.at(t, 0, k) - p.sig.model[k][j]) * w)
-                .collect()
-        })
+    // side) on the search's stretches, or on the whole record.
+    let search = Stretches::search(&p.sig, &p.rows);
+    let whole = Stretches::whole(&p.sig, &p.rows);
+    let rows_on = |stretches: &Stretches, gs: &[MotorGuess]| -> Vec<Vec<f64>> {
+        transmitted_each(
+            &p.sig,
+            j,
+            gs,
+            backlash,
+            &p.basis.compliance,
+            stretches,
+            |t| {
+                t.at_rows(&p.sig.sg)
+                    .map(|(k, e)| (e - p.sig.model[k][j]) * w)
+                    .collect()
+            },
+        )
     };
+    let rows = |gs: &[MotorGuess]| rows_on(&search, gs);
     // Whitened SSE of each guess (infinite outside the physical box,
     // which is not simulated).
-    let costs = |gs: &[MotorGuess]| -> Vec<f64> {
+    let costs_on = |stretches: &Stretches, gs: &[MotorGuess]| -> Vec<f64> {
         let inside: Vec<MotorGuess> = gs.iter().copied().filter(feasible).collect();
-        let mut simulated = rows(&inside).into_iter();
+        let mut simulated = rows_on(stretches, &inside).into_iter();
         gs.iter()
             .map(|g| {
                 if !feasible(g) {
@@ -158,6 +177,7 @@ pub(super) fn fit_motor<R: Robot<N>, const N: usize>(c: Candidate, p: &Prepared<
             })
             .collect()
     };
+    let costs = |gs: &[MotorGuess]| costs_on(&search, gs);
     let mut start: Option<(MotorGuess, f64)> = None;
     let grid = motor_grid(backlash, inertia, revolute, limit);
     for (g, sse) in grid.iter().zip(costs(&grid)) {
@@ -167,11 +187,18 @@ pub(super) fn fit_motor<R: Robot<N>, const N: usize>(c: Candidate, p: &Prepared<
     }
     let (motor, motor_std, sse) = match start {
         Some((g, sse)) => {
-            let (g, sse) = refine(g, sse, backlash, costs);
-            // Its spread. (The Gauss-Newton step `motor_std` also offers
-            // is not taken: from a searched optimum it can carry a wrong
-            // motor side further into data a plain rotor explains.)
+            let (g, mut sse) = refine(g, sse, backlash, costs);
+            // Its spread, from the data it was searched on. (The
+            // Gauss-Newton step `motor_std` also offers is not taken: from
+            // a searched optimum it can carry a wrong motor side further
+            // into data a plain rotor explains.)
             let sd = motor_std(&g, backlash, rows).0;
+            if !search.is_whole() {
+                sse = costs_on(&whole, &[g])
+                    .first()
+                    .copied()
+                    .unwrap_or(f64::INFINITY);
+            }
             (Some(g), Some(sd), sse)
         }
         None => (None, None, f64::INFINITY),

@@ -15,6 +15,7 @@
 //! - `tests.rs`: the one-at-a-time simulation each lane must reproduce.
 
 mod derivative;
+pub mod stretches;
 #[cfg(test)]
 mod tests;
 pub mod transmitted;
@@ -23,8 +24,10 @@ use std::f64::consts::PI;
 
 use crate::diagnose::candidates::MotorGuess;
 use crate::diagnose::signals::Signals;
+use crate::smoothing::SavitzkyGolay;
 use derivative::{add, force, Lanes};
 use nalgebra::SVector;
+pub use stretches::Stretches;
 
 /// Bandwidth with which the simulated link is pulled back to the measured
 /// motion, Hz.
@@ -34,9 +37,9 @@ pub const OBSERVER_HZ: f64 = 3.0;
 pub const LANES: usize = 4;
 
 /// The raw transmitted effort (see `transmitted::motor_transmitted_raw`) of
-/// every guess of `gs` at joint `j`, in their order; `compliance` per
-/// sample is the link's acceleration per unit of its own effort
-/// (`Basis::compliance`).
+/// every guess of `gs` at joint `j`, in their order, over the record's
+/// range (NaN outside it); `compliance` per sample is the link's
+/// acceleration per unit of its own effort (`Basis::compliance`).
 pub fn transmitted_raw_many<const N: usize>(
     sig: &Signals<N>,
     j: usize,
@@ -44,55 +47,115 @@ pub fn transmitted_raw_many<const N: usize>(
     backlash: bool,
     compliance: &[SVector<f64, N>],
 ) -> Vec<Vec<f64>> {
-    let mut out = Vec::with_capacity(gs.len());
-    let mut rest = gs;
-    while !rest.is_empty() {
-        let take = rest.len().min(LANES);
-        let (now, later) = rest.split_at(take);
-        match (take, backlash) {
-            (1, false) => out.extend(lanes::<N, 1, false>(sig, j, now, compliance)),
-            (1, true) => out.extend(lanes::<N, 1, true>(sig, j, now, compliance)),
-            (2, false) => out.extend(lanes::<N, 2, false>(sig, j, now, compliance)),
-            (2, true) => out.extend(lanes::<N, 2, true>(sig, j, now, compliance)),
-            (_, false) => out.extend(lanes::<N, LANES, false>(sig, j, now, compliance)),
-            (_, true) => out.extend(lanes::<N, LANES, true>(sig, j, now, compliance)),
-        }
-        rest = later;
-    }
-    out
+    let n = sig.t.len();
+    let (a, _) = sig.range;
+    in_lanes(sig, j, gs, backlash, compliance, sig.range)
+        .into_iter()
+        .map(|span| {
+            let mut whole = vec![f64::NAN; n];
+            let m = span.len().min(n.saturating_sub(a));
+            if let (Some(to), Some(from)) = (whole.get_mut(a..a + m), span.get(..m)) {
+                to.copy_from_slice(from);
+            }
+            whole
+        })
+        .collect()
 }
 
-/// [`transmitted_raw_many`] of every guess of `gs`, each raw transmitted
-/// effort handed to `reduce` as soon as its lanes are integrated and then
-/// dropped: at most [`LANES`] records' worth of simulation held at once,
-/// however many guesses (a grid holds dozens), the same results.
+/// One guess's simulation over the stretches of a search: the raw
+/// transmitted effort of each stretch (indexed from the stretch's first
+/// sample; NaN everywhere when the simulation diverged).
+pub struct Simulated<'a> {
+    stretches: &'a Stretches,
+    efforts: Vec<Vec<f64>>,
+}
+
+impl Simulated<'_> {
+    /// The smoothed transmitted effort at each scored row, in the rows'
+    /// order: `(sample, effort)`.
+    pub fn at_rows<'s>(&'s self, sg: &'s SavitzkyGolay) -> impl Iterator<Item = (usize, f64)> + 's {
+        self.stretches
+            .spans()
+            .zip(&self.efforts)
+            .flat_map(move |((first, _, rows), effort)| {
+                rows.iter().map(move |&k| (k, sg.at(effort, 0, k - first)))
+            })
+    }
+}
+
+/// The simulation of every guess of `gs` over the `stretches`, each
+/// handed to `reduce` as soon as its lanes are integrated and then
+/// dropped: at most [`LANES`] guesses' worth of simulation held at once,
+/// however many guesses (a grid holds dozens).
 pub fn transmitted_each<const N: usize, T>(
     sig: &Signals<N>,
     j: usize,
     gs: &[MotorGuess],
     backlash: bool,
     compliance: &[SVector<f64, N>],
-    mut reduce: impl FnMut(&[f64]) -> T,
+    stretches: &Stretches,
+    mut reduce: impl FnMut(&Simulated) -> T,
 ) -> Vec<T> {
-    gs.chunks(LANES)
-        .flat_map(|now| transmitted_raw_many(sig, j, now, backlash, compliance))
-        .map(|t| reduce(&t))
-        .collect()
+    let mut out = Vec::with_capacity(gs.len());
+    for now in gs.chunks(LANES) {
+        let mut each: Vec<Vec<Vec<f64>>> = vec![Vec::new(); now.len()];
+        for (first, end, _) in stretches.spans() {
+            let spans = in_lanes(sig, j, now, backlash, compliance, (first, end));
+            for (e, span) in each.iter_mut().zip(spans) {
+                e.push(span);
+            }
+        }
+        out.extend(
+            each.into_iter()
+                .map(|efforts| reduce(&Simulated { stretches, efforts })),
+        );
+    }
+    out
 }
 
-/// `L` lanes side by side, `B` backlash; `gs` has 1 to `L` guesses (the
-/// last repeated to fill the lanes, its copies dropped).
+/// The guesses of `gs` integrated [`LANES`] at a time over samples
+/// `span.0..span.1`, each result indexed from `span.0`.
+fn in_lanes<const N: usize>(
+    sig: &Signals<N>,
+    j: usize,
+    gs: &[MotorGuess],
+    backlash: bool,
+    compliance: &[SVector<f64, N>],
+    span: (usize, usize),
+) -> Vec<Vec<f64>> {
+    let mut out = Vec::with_capacity(gs.len());
+    let mut rest = gs;
+    while !rest.is_empty() {
+        let take = rest.len().min(LANES);
+        let (now, later) = rest.split_at(take);
+        let c = compliance;
+        match (take, backlash) {
+            (1, false) => out.extend(lanes::<N, 1, false>(sig, j, now, c, span)),
+            (1, true) => out.extend(lanes::<N, 1, true>(sig, j, now, c, span)),
+            (2, false) => out.extend(lanes::<N, 2, false>(sig, j, now, c, span)),
+            (2, true) => out.extend(lanes::<N, 2, true>(sig, j, now, c, span)),
+            (_, false) => out.extend(lanes::<N, LANES, false>(sig, j, now, c, span)),
+            (_, true) => out.extend(lanes::<N, LANES, true>(sig, j, now, c, span)),
+        }
+        rest = later;
+    }
+    out
+}
+
+/// `L` lanes side by side, `B` backlash, over samples `a..z`, each result
+/// indexed from `a`; `gs` has 1 to `L` guesses (the last repeated to fill
+/// the lanes, its copies dropped).
 fn lanes<const N: usize, const L: usize, const B: bool>(
     sig: &Signals<N>,
     j: usize,
     gs: &[MotorGuess],
     compliance: &[SVector<f64, N>],
+    (a, z): (usize, usize),
 ) -> Vec<Vec<f64>> {
-    let n = sig.t.len();
-    let (a, z) = sig.range;
+    let n = z.saturating_sub(a);
     let used = gs.len().min(L);
     let nan = || vec![vec![f64::NAN; n]; used];
-    if z <= a + 1 || used == 0 || compliance.len() < z {
+    if z <= a + 1 || used == 0 || compliance.len() < z || sig.t.len() < z {
         return nan();
     }
     let g: [MotorGuess; L] = std::array::from_fn(|l| gs[l.min(used - 1)]);
@@ -127,7 +190,7 @@ fn lanes<const N: usize, const L: usize, const B: bool>(
     let inv_jm = g.map(|g| 1.0 / g.jm);
     for k in a..z {
         for l in 0..L {
-            lane_out[l][k] =
+            lane_out[l][k - a] =
                 force::<L, B>(k_[l], c_[l], w_[l], x[0][l] - x[2][l], x[1][l] - x[3][l]);
         }
         if k + 1 >= z {

@@ -112,8 +112,13 @@ fn one_at_a_time<const N: usize>(
 /// A joint swinging with a slow drift, its efforts a noisy law of the
 /// motion, over 3 s at 1 kHz.
 fn signals() -> Signals<1> {
-    let n = 3000;
+    swinging(3.0)
+}
+
+/// The swinging joint of [`signals`] over `seconds` at 1 kHz.
+pub(super) fn swinging(seconds: f64) -> Signals<1> {
     let dt = 1e-3;
+    let n = (seconds / dt).round() as usize;
     let mut rng = crate::synth::Rng::new(11);
     let t: Vec<f64> = (0..n).map(|k| k as f64 * dt).collect();
     let v = |x: f64| SVector::<f64, 1>::new(x);
