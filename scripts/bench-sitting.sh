@@ -90,9 +90,9 @@ for r in robots:
     zoh = ours[(r, "zero_order_hold")]; ad = float(pin[r]["aba_derivs"])
     row([r, f(fd), f(ad), f"{fd/ad:.2f}", f(ss), f"{ss/ad:.2f}", f(zoh)])
 batch = {}
-for f in glob.glob(os.path.join(crit, "* x1000", "*", "new", "benchmark.json")):
-    b = json.load(open(f))
-    est = json.load(open(os.path.join(os.path.dirname(f), "estimates.json")))
+for path in glob.glob(os.path.join(crit, "* x1000", "*", "new", "benchmark.json")):
+    b = json.load(open(path))
+    est = json.load(open(os.path.join(os.path.dirname(path), "estimates.json")))
     batch[(b["group_id"].split(" ")[0], b["function_id"])] = est["median"]["point_estimate"] / 1000.0
 batched = [r for r in robots if (r, "inverse_dynamics: scalar calls") in batch]
 if batched:
