@@ -9,6 +9,12 @@ use crate::diagnose::fit::Fit;
 use crate::effects::EffectKind;
 use dynamics_runtime::JointKind;
 
+/// Below this, in any of the parameters' units (kg m^2, N m, s, rad, ...),
+/// a value without a spread is the zero a sign constraint holds it at
+/// plus rounding (a rotor inertia of 8e-16 kg m^2 came out of an hour's
+/// log with nothing at that joint).
+pub const HELD_AT_ZERO: f64 = 1e-12;
+
 /// Why the value `value` +- `std` of parameter `name` of an effect of
 /// `kind` at a joint of `joint` (its kind and the range its position covers
 /// on the data) cannot be acted on; `None` when it can.
@@ -34,6 +40,11 @@ pub fn why_not(
     }
     if !value.is_finite() {
         return Some("the fit could not make it".into());
+    }
+    // A value held at zero by its sign constraint (the fit's active bound:
+    // no spread, nothing left of the value but rounding) is no effect.
+    if std == 0.0 && value.abs() <= HELD_AT_ZERO {
+        return Some("zero, held at its bound: the data ask for none".into());
     }
     // Grid-searched values carry half a step as their spread by design.
     let grid = matches!(name, "vw" | "vs" | "alpha");
@@ -92,6 +103,14 @@ mod tests {
         assert!(why_not(EffectKind::Armature, "inertia", 0.1, f64::INFINITY, None).is_some());
         // A grid value's spread is half its step, by design.
         assert!(why_not(EffectKind::CoulombFriction, "vw", 0.01, 0.005, None).is_none());
+    }
+
+    #[test]
+    fn a_value_held_at_zero_is_no_effect() {
+        let why = why_not(EffectKind::Armature, "inertia", 8.4e-16, 0.0, None).unwrap();
+        assert!(why.contains("held at its bound"), "{why}");
+        // A small value the fit determines is still a value.
+        assert!(why_not(EffectKind::Armature, "inertia", 1e-9, 1e-10, None).is_none());
     }
 
     #[test]
