@@ -55,6 +55,32 @@ impl Tip {
         }
     }
 
+    /// The modelled mass of the body that carries the tip: the last link
+    /// of `Robot::LINK_NAMES` (the distal link of a serial chain, with
+    /// every body welded to it on fixed joints: a hand, a flange, a tool),
+    /// 0 when the robot lists no link. A payload relative to the model may
+    /// take away no more than this ([`crate::effects::Effect::within_tip_body`]):
+    /// beyond it the tip body would have negative mass.
+    ///
+    /// ```
+    /// use dynamics_sim2real::effects::Tip;
+    /// dynamics_macros::robot! {
+    ///     pub robot Pendulum;
+    ///     gravity = [0.0, -9.81, 0.0];
+    ///     link base;
+    ///     link rod { mass = 1.5; com = [1.0, 0.0, 0.0]; inertia = [1e-4, 0.1, 0.1]; }
+    ///     joint j = revolute(base -> rod) { transfer = [rot_z(q)]; }
+    /// }
+    /// assert!((Tip::body_mass::<Pendulum, 1>(&Pendulum::default()) - 1.5).abs() < 1e-12);
+    /// ```
+    pub fn body_mass<R: Robot<N>, const N: usize>(robot: &R) -> f64 {
+        let mut pi = vec![nalgebra::SVector::<f64, 10>::zeros(); R::LINK_NAMES.len()];
+        match (robot.inertial_parameters(&mut pi), pi.last()) {
+            (Ok(()), Some(p)) if p[0].is_finite() => p[0].max(0.0),
+            _ => 0.0,
+        }
+    }
+
     /// Its name (point or frame name).
     pub fn name<R: Robot<N>, const N: usize>(&self) -> &'static str {
         match *self {

@@ -38,6 +38,10 @@ pub struct Basis<const N: usize> {
     pub gravity: Vector3<f64>,
     /// The tip used.
     pub tip: Tip,
+    /// The modelled mass of the body that carries the tip
+    /// ([`Tip::body_mass`]): the most a payload relative to the model can
+    /// take away.
+    pub tip_mass: f64,
     /// Accelerations smoothed once more (the rotor-inertia column): the
     /// acceleration estimate's own noise, which the nominal model's
     /// residual already carries, is not added a second time by a column.
@@ -151,6 +155,7 @@ impl<const N: usize> Basis<N> {
             compliance: vec![SVector::zeros(); n],
             gravity: Vector3::from(R::GRAVITY),
             tip,
+            tip_mass: Tip::body_mass::<R, N>(robot),
             qdd: sig.qdd.to_vec(),
             sign: smoothed_column(sig, smooth_sign),
             coulomb: COULOMB_WIDTHS[1..]

@@ -82,7 +82,9 @@ pub enum Candidate {
     Stribeck(usize, f64),
     /// Rotor inertia at a joint.
     Armature(usize),
-    /// Point mass at the tip.
+    /// Point mass at the tip, relative to the model: negative when the
+    /// robot lacks mass the model carries there (a hand that is absent),
+    /// down to the modelled mass of the tip's body.
     Payload,
     /// Resistance at the tip with exponent alpha.
     Environment(f64),
@@ -285,7 +287,9 @@ impl Candidate {
             Candidate::Viscous(_) => &[("fv", true)],
             Candidate::Stribeck(..) => &[("fc", true), ("fs_minus_fc", true)],
             Candidate::Armature(_) => &[("inertia", true)],
-            Candidate::Payload => &[("mass", true)],
+            // Relative to the model: negative where the model carries mass
+            // at the tip that the robot does not (`columns::lower_bounds`).
+            Candidate::Payload => &[("mass", false)],
             Candidate::Environment(_) => &[("mu", true)],
             Candidate::EncoderOffset(_) => &[("offset", false)],
             Candidate::TimeDelay | Candidate::LatePositions | Candidate::LateEffort(_) => {

@@ -63,6 +63,16 @@ pub fn fit<R: Robot<N>, const N: usize>(c: Candidate, p: &Prepared<N>) -> Fit {
             f.std = vec![0.0];
         }
     }
+    // A payload that takes away more than the tip body's mass is held
+    // there (`columns::lower_bounds`).
+    if let (Candidate::Payload, [m]) = (c, f.theta.as_slice()) {
+        if *m < -p.basis.tip_mass {
+            let held = -p.basis.tip_mass;
+            f.sse = (&y - x.column(0) * held).norm_squared();
+            f.theta = vec![held];
+            f.std = vec![0.0];
+        }
+    }
     let linear = Fit {
         candidate: c,
         theta: f.theta,

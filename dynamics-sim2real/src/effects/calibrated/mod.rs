@@ -95,7 +95,9 @@ struct Extra<const N: usize> {
 impl<R: Robot<N>, const N: usize> Calibrated<R, N> {
     /// Folds `effects` into `robot`'s nominal model. A friction correction
     /// may take away friction the nominal model has (a URDF's `<dynamics
-    /// damping friction>`), no more ([`Effect::within_nominal_friction`]).
+    /// damping friction>`), no more ([`Effect::within_nominal_friction`]);
+    /// a payload may take away mass the model carries at the tip, no more
+    /// than the tip body's ([`Effect::within_tip_body`]).
     ///
     /// Effects on the sensors (encoder offsets, a delay, effort scales and
     /// offsets) are not part of the model: they are kept apart
@@ -104,6 +106,7 @@ impl<R: Robot<N>, const N: usize> Calibrated<R, N> {
     /// negative `time_delay` here.
     pub fn new(robot: R, effects: Vec<Effect>) -> Result<Self, CalibratedError> {
         let (coulomb, viscous) = super::nominal_friction(&robot, &SVector::zeros());
+        let tip_mass = Tip::body_mass::<R, N>(&robot);
         let (mut model, mut sensors) = (Vec::new(), Vec::new());
         for e in effects {
             let kind = e.kind().name();
@@ -136,6 +139,7 @@ impl<R: Robot<N>, const N: usize> Calibrated<R, N> {
                 Effect::TimeDelay { delay } if delay.is_finite() => {}
                 _ => e
                     .validate_beside_friction(coulomb.as_slice(), viscous.as_slice())
+                    .or_else(|reason| e.within_tip_body(tip_mass).then_some(()).ok_or(reason))
                     .map_err(|reason| CalibratedError::Invalid { kind, reason })?,
             }
             if sensor {
