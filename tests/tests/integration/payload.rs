@@ -15,7 +15,7 @@ use dynamics_sim2real::diagnose::{diagnose, Options, Report};
 use dynamics_sim2real::effects::{Effect, SIGN_SMOOTHING};
 use dynamics_sim2real::synth::{synthesize, ExcitationKind, Noise, SynthOptions};
 use nalgebra::SVector;
-use robots::Panda;
+use robots::{Panda, PandaArm};
 
 /// The hand and fingers of the Panda's URDF, kg.
 const HAND: f64 = 0.76;
@@ -102,7 +102,10 @@ fn named(report: &Report) -> (Vec<String>, Option<f64>) {
 #[test]
 fn a_hand_the_robot_lacks_is_named_as_a_negative_payload() {
     let mut effects = friction();
-    effects.push(Effect::PayloadMass { mass: -HAND });
+    effects.push(Effect::PayloadMass {
+        mass: -HAND,
+        com: [0.0; 3],
+    });
     let (train, holdout) = records(&Panda::rigid(), &effects);
     let report = diagnosed(&train, &holdout);
     let (others, mass) = named(&report);
@@ -120,6 +123,40 @@ fn a_hand_the_robot_lacks_is_named_as_a_negative_payload() {
         .find_map(|e| e.description.clone())
         .unwrap_or_default();
     assert!(words.contains("is not on the robot"), "{words}");
+}
+
+/// The arm logged without its hand (the `panda-arm` model: the hand's
+/// bodies, not a point mass) against the model with the hand.
+#[test]
+fn the_arm_without_its_hand_against_the_model_with_it() {
+    let (train, holdout) = records(&PandaArm::rigid(), &friction());
+    let report = diagnosed(&train, &holdout);
+    let (others, mass) = named(&report);
+    println!("named besides friction {others:?}, payload {mass:?}");
+    assert_eq!(others, ["payload_mass"], "{others:?}");
+    let mass = mass.expect("a payload mass");
+    assert!(
+        (mass + HAND).abs() <= 0.1 * HAND,
+        "payload {mass} kg, the hand {HAND} kg"
+    );
+    // Where the data place its centre: the hand and fingers' centre in
+    // the tool frame (panda_hand_tcp, 0.1034 m beyond the hand's frame
+    // along z): z = (0.73 x 0.03 + 0.03 x 0.0584) / 0.76 - 0.1034.
+    let com_z = (0.73 * 0.03 + 0.03 * 0.0584) / HAND - 0.1034;
+    let payload = report
+        .which
+        .effects
+        .iter()
+        .find(|e| e.kind.name() == "payload_mass");
+    let z = payload.and_then(|e| e.parameters.iter().find(|p| p.name == "com_z"));
+    println!("com_z {z:?} (the hand's {com_z:.4} m)");
+    if let Some(z) = z.filter(|z| z.note.is_none()) {
+        assert!(
+            (z.value - com_z).abs() < 0.02,
+            "com_z {} m, the hand's {com_z:.4} m",
+            z.value
+        );
+    }
 }
 
 /// The control: the model's own arm, with friction only, names nothing

@@ -203,20 +203,32 @@ pub fn payload_words(tip: &str, mass: f64) -> String {
 }
 
 /// Adds to each payload of `entries` whose mass is a number its words
-/// ([`payload_words`]) at its point.
+/// ([`payload_words`]) at its point, and where its centre of mass is
+/// reported, where that lies in the tip's frame (or that the data do not
+/// place it).
 pub fn add_payload_words(entries: &mut [Explained]) {
     for e in entries
         .iter_mut()
         .filter(|e| e.kind == EffectKind::PayloadMass && e.description.is_none())
     {
-        let mass = e
-            .parameters
+        let value = |name: &str| e.parameters.iter().find(|p| p.name == name);
+        let mass = value("mass").filter(|p| p.note.is_none()).map(|p| p.value);
+        let (Some(m), Some(tip)) = (mass.filter(|m| m.is_finite()), e.point.as_deref()) else {
+            continue;
+        };
+        let mut words = payload_words(tip, m);
+        let com: Vec<Option<f64>> = ["com_x", "com_y", "com_z"]
             .iter()
-            .find(|p| p.name == "mass" && p.note.is_none())
-            .map(|p| p.value);
-        if let (Some(m), Some(tip)) = (mass.filter(|m| m.is_finite()), e.point.as_deref()) {
-            e.description = Some(payload_words(tip, m));
+            .filter_map(|n| value(n))
+            .map(|p| p.note.is_none().then_some(p.value))
+            .collect();
+        if let [Some(x), Some(y), Some(z)] = com[..] {
+            words +=
+                &format!("; its centre of mass at ({x:.3}, {y:.3}, {z:.3}) m in {tip}'s frame");
+        } else if !com.is_empty() {
+            words += "; the data do not place its centre of mass";
         }
+        e.description = Some(words);
     }
 }
 

@@ -200,9 +200,10 @@ impl<R: Robot<N>, const N: usize> Calibrated<R, N> {
                     stiffness,
                     preload,
                 } => x.q0[joint] -= stiffness * q[joint] + preload,
-                Effect::PayloadMass { mass } => {
-                    let (_, jac) = self.tip.position_jacobian(&self.robot, q);
-                    let bias = self.tip.bias_acceleration(&self.robot, q, qd);
+                Effect::PayloadMass { mass, com } => {
+                    let c = Vector3::from(com);
+                    let (_, jac) = self.tip.position_jacobian_at(&self.robot, q, &c);
+                    let bias = self.tip.bias_acceleration_at(&self.robot, q, qd, &c);
                     x.a += jac.transpose() * jac * mass;
                     x.q0 += jac.transpose() * (Vector3::from(R::GRAVITY) * mass);
                     x.qqt -= jac.transpose() * (bias * mass);
@@ -284,14 +285,21 @@ impl<R: Robot<N>, const N: usize> Calibrated<R, N> {
         c
     }
 
-    /// A payload's share of the velocity terms (`-m J^T Jd qd`).
+    /// The payloads' share of the velocity terms (`-m J^T Jd qd` each, at
+    /// its centre of mass).
     fn payload_qqt(&self, q: &SVector<f64, N>, qd: &SVector<f64, N>) -> SVector<f64, N> {
-        let mass = self.payload();
-        if mass == 0.0 {
-            return SVector::zeros();
-        }
-        let (_, jac) = self.tip.position_jacobian(&self.robot, q);
-        -(jac.transpose() * (self.tip.bias_acceleration(&self.robot, q, qd) * mass))
+        self.effects
+            .iter()
+            .filter_map(|e| match *e {
+                Effect::PayloadMass { mass, com } if mass != 0.0 => {
+                    let c = Vector3::from(com);
+                    let (_, jac) = self.tip.position_jacobian_at(&self.robot, q, &c);
+                    let bias = self.tip.bias_acceleration_at(&self.robot, q, qd, &c);
+                    Some(-(jac.transpose() * (bias * mass)))
+                }
+                _ => None,
+            })
+            .sum()
     }
 
     /// The link corrections' potential energy, `-g . (dm p + R dmc)` of
@@ -316,13 +324,16 @@ impl<R: Robot<N>, const N: usize> Calibrated<R, N> {
             .sum()
     }
 
-    fn payload(&self) -> f64 {
+    /// Each payload's mass and centre of mass in the tip's frame.
+    fn payloads(&self) -> Vec<(f64, Vector3<f64>)> {
         self.effects
             .iter()
-            .map(|e| match *e {
-                Effect::PayloadMass { mass } => mass,
-                _ => 0.0,
+            .filter_map(|e| match *e {
+                Effect::PayloadMass { mass, com } if mass != 0.0 => {
+                    Some((mass, Vector3::from(com)))
+                }
+                _ => None,
             })
-            .sum()
+            .collect()
     }
 }

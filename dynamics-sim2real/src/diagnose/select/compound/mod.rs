@@ -294,7 +294,7 @@ pub fn effects<const N: usize>(
                 .is_ok()
                 || matches!(e, Effect::TimeDelay { delay } if delay.is_finite())
                 // Bounded by the tip body's mass in the fit (`lower_bounds`).
-                || matches!(e, Effect::PayloadMass { mass } if mass.is_finite())
+                || matches!(e, Effect::PayloadMass { mass, .. } if mass.is_finite())
         })
         .collect()
 }
