@@ -21,7 +21,7 @@ use super::{
     check, room, separation_angles, BaseColumns, Criterion, ExciteError, Figures, Fourier, Limits,
     Rival,
 };
-use crate::synth::Rng;
+use crate::rng::Rng;
 use dynamics_runtime::control::Reference;
 use dynamics_runtime::Robot;
 

@@ -10,6 +10,7 @@ mod effects;
 mod elastic_grip;
 mod environment;
 mod excite;
+mod excite_follow;
 mod identify;
 mod linearize;
 mod logs;
