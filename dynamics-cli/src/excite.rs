@@ -65,6 +65,18 @@ pub struct ExciteArgs {
     /// conditions the whole identification.
     #[arg(long, value_name = "REPORT.json")]
     pub separate: Option<PathBuf>,
+    /// Keep the link frames clear: every moving frame's origin above the ground (the plane
+    /// through the base's origin normal to gravity) by --ground-clearance, every two origins the
+    /// joints can bring together apart by --link-clearance. Only frame origins, not meshes.
+    #[arg(long)]
+    pub clearance: bool,
+    /// Least height of a moving link frame's origin above the ground, m (with --clearance).
+    #[arg(long, default_value_t = 0.05)]
+    pub ground_clearance: f64,
+    /// Least distance between the origins of two link frames the joints can bring together, m
+    /// (with --clearance).
+    #[arg(long, default_value_t = 0.05)]
+    pub link_clearance: f64,
     /// Plot the motion here (SVG): positions, velocities and efforts (inverse dynamics of the
     /// nominal model) of every joint over time, each joint's limits (margin applied) shaded.
     #[arg(long, value_name = "PLOT.svg")]
@@ -129,18 +141,12 @@ pub fn plot<R: Robot<N>, const N: usize>(robot: &R, d: &excite::Design<N>) -> St
         svg_shaded(title, "t [s]", unit, &series, &shades, false)
     };
     stack(&[
-        panel(
-            "positions",
-            "q [rad or m]",
-            &q,
-            &|j| (l.lower[j], l.upper[j]),
-        ),
-        panel(
-            "velocities",
-            "qd [rad/s or m/s]",
-            &qd,
-            &|j| (-l.velocity[j], l.velocity[j]),
-        ),
+        panel("positions", "q [rad or m]", &q, &|j| {
+            (l.lower[j], l.upper[j])
+        }),
+        panel("velocities", "qd [rad/s or m/s]", &qd, &|j| {
+            (-l.velocity[j], l.velocity[j])
+        }),
         panel(
             "efforts (inverse dynamics)",
             "effort [N m or N]",
@@ -313,6 +319,10 @@ pub fn excite_cmd<R: Robot<N> + Sync, const N: usize>(
     o.criterion = args.criterion.parse()?;
     o.evaluations = args.evaluations;
     o.seed = args.seed;
+    o.clearance = args.clearance.then_some(excite::Clearance {
+        ground: args.ground_clearance,
+        distance: args.link_clearance,
+    });
     let noise = args
         .noise_tau
         .as_deref()
@@ -404,6 +414,19 @@ pub fn excite_cmd<R: Robot<N> + Sync, const N: usize>(
             String::new()
         }
     );
+    if let Some(m) = &report.min_clearance {
+        let at = |v: Option<f64>, w: Option<String>| match (v, w) {
+            (Some(v), Some(w)) => format!("{v:.3} m ({w})"),
+            _ => "not checked".into(),
+        };
+        println!(
+            "clearance of the link frames' origins ({} frames, {} pairs checked; not meshes): lowest above the ground {}, closest pair {}",
+            m.frames,
+            m.pairs,
+            at(m.ground, m.lowest.clone()),
+            at(m.distance, m.closest.clone().map(|c| c.join(" - ")))
+        );
+    }
     let worst = report
         .identifiability
         .parameters
