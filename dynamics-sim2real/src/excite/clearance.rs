@@ -113,6 +113,9 @@ pub struct Minimum {
     pub exempt: Vec<String>,
 }
 
+/// A figure of the frames' origins in one state (`None`: a frame missing).
+type Figure<'a> = &'a dyn Fn(&[Option<Vector3<f64>>]) -> Option<f64>;
+
 fn origin<R: Robot<N>, const N: usize>(
     robot: &R,
     i: usize,
@@ -154,7 +157,7 @@ impl Clearances {
             .map(|q| (0..frames).map(|i| origin(robot, i, q)).collect())
             .collect();
         let start: Vec<Option<Vector3<f64>>> = (0..frames).map(|i| origin(robot, i, q0)).collect();
-        let spread = |f: &dyn Fn(&[Option<Vector3<f64>>]) -> Option<f64>| -> Option<f64> {
+        let spread = |f: Figure| -> Option<f64> {
             let (mut lo, mut hi) = (f64::INFINITY, f64::NEG_INFINITY);
             for p in &points {
                 let v = f(p)?;
