@@ -101,6 +101,65 @@ pub fn csv_as_parquet(text: &str) -> Result<Vec<u8>, Box<dyn std::error::Error>>
     Ok(out)
 }
 
+/// What `synth`'s training run follows: `excitation` (a kind drawn with
+/// the seed, or a design's JSON file, `*.json`) or a `motion` file (CSV),
+/// and the duration when it is drawn.
+#[derive(Debug, Clone, PartialEq)]
+pub struct Followed {
+    /// `sines`, `chirp`, `pick-place` or a design's JSON (`dynamics excite --json`).
+    pub excitation: String,
+    /// A motion CSV (`t, q_<joint>, qd_<joint>, qdd_<joint>`).
+    pub motion: Option<PathBuf>,
+    /// Duration of a drawn reference, s.
+    pub duration: f64,
+}
+
+impl Followed {
+    /// The kind drawn for the held-out run (and the training run when no
+    /// motion is given), the motion given with its duration, if any.
+    ///
+    /// ```
+    /// use dynamics_cli::commands::Followed;
+    /// let f = Followed { excitation: "chirp".into(), motion: None, duration: 3.0 };
+    /// let (kind, given) = f.resolve::<2>(&["a", "b"]).unwrap();
+    /// assert_eq!(format!("{kind:?}"), "Chirp");
+    /// assert!(given.is_none());
+    /// ```
+    #[allow(clippy::type_complexity)]
+    pub fn resolve<const N: usize>(
+        &self,
+        joints: &[&str; N],
+    ) -> Result<
+        (
+            dynamics_sim2real::synth::ExcitationKind,
+            Option<(dynamics_sim2real::synth::Excitation<N>, f64)>,
+        ),
+        String,
+    > {
+        use dynamics_sim2real::synth::{Excitation, ExcitationKind};
+        let read = |path: &std::path::Path| {
+            std::fs::read_to_string(path).map_err(|e| format!("{}: {e}", path.display()))
+        };
+        if let Some(path) = &self.motion {
+            let file = path.display().to_string();
+            let samples = crate::excite::read_samples::<N>(&read(path)?, joints, &file)?;
+            let end = samples.last().map(|s| s.0).unwrap_or(0.0);
+            let ex = Excitation::samples(samples).map_err(|e| format!("{file}: {e}"))?;
+            return Ok((ExcitationKind::Sines, Some((ex, end))));
+        }
+        if self.excitation.ends_with(".json") {
+            let path = std::path::Path::new(&self.excitation);
+            let (f, duration) =
+                crate::excite::read_design::<N>(&read(path)?, joints, &self.excitation)?;
+            return Ok((
+                ExcitationKind::Sines,
+                Some((Excitation::designed(f), duration)),
+            ));
+        }
+        Ok((self.excitation.parse()?, None))
+    }
+}
+
 /// `dynamics synth`: training and held-out CSVs (or Parquet files) of a robot with a withheld effect.
 #[allow(clippy::too_many_arguments)]
 pub fn synth_cmd<R: Robot<N> + Clone, const N: usize>(
@@ -111,8 +170,7 @@ pub fn synth_cmd<R: Robot<N> + Clone, const N: usize>(
     joint: Option<String>,
     magnitude: Option<f64>,
     seed: u64,
-    excitation: &str,
-    duration: f64,
+    followed: &Followed,
     noise: [f64; 3],
     out: &std::path::Path,
     truth: Option<PathBuf>,
@@ -120,13 +178,15 @@ pub fn synth_cmd<R: Robot<N> + Clone, const N: usize>(
 ) -> Res {
     use dynamics_sim2real::synth::Noise;
     let kind = effect.map(|e| e.parse()).transpose()?;
+    let (excitation, given) = followed.resolve::<N>(&R::JOINT_NAMES)?;
+    let duration = given.as_ref().map_or(followed.duration, |g| g.1);
     let req = crate::gap::SynthRequest {
         robot: name.into(),
         kind,
         joint,
         magnitude,
         seed,
-        excitation: excitation.parse()?,
+        excitation,
         duration,
         noise: Noise {
             q: noise[0],
@@ -134,7 +194,8 @@ pub fn synth_cmd<R: Robot<N> + Clone, const N: usize>(
             tau_relative: noise[2],
         },
     };
-    let data = crate::gap::synth_recorded(robot, motion, &req, recording)?;
+    let data =
+        crate::gap::synth_following(robot, motion, &req, recording, given.as_ref().map(|g| &g.0))?;
     let stem = out.file_stem().and_then(|s| s.to_str()).unwrap_or("data");
     let parquet = out.extension().and_then(|e| e.to_str()) == Some("parquet");
     let hold = out.with_file_name(format!(

@@ -65,9 +65,95 @@ pub struct ExciteArgs {
     /// conditions the whole identification.
     #[arg(long, value_name = "REPORT.json")]
     pub separate: Option<PathBuf>,
+    /// Keep the link frames clear: every moving frame's origin above the ground (the plane
+    /// through the base's origin normal to gravity) by --ground-clearance, every two origins the
+    /// joints can bring together apart by --link-clearance. Only frame origins, not meshes.
+    #[arg(long)]
+    pub clearance: bool,
+    /// Least height of a moving link frame's origin above the ground, m (with --clearance).
+    #[arg(long, default_value_t = 0.05)]
+    pub ground_clearance: f64,
+    /// Least distance between the origins of two link frames the joints can bring together, m
+    /// (with --clearance).
+    #[arg(long, default_value_t = 0.05)]
+    pub link_clearance: f64,
+    /// Plot the motion here (SVG): positions, velocities and efforts (inverse dynamics of the
+    /// nominal model) of every joint over time, each joint's limits (margin applied) shaded.
+    #[arg(long, value_name = "PLOT.svg")]
+    pub plot: Option<PathBuf>,
     /// The nominal model.
     #[command(flatten)]
     pub model: crate::tune::ModelArgs,
+}
+
+/// The plot of a designed motion: three panels (positions, velocities,
+/// efforts from the inverse dynamics of `robot`), one line per joint over
+/// time, each joint's limits of the design (margin applied) shaded behind;
+/// at most 2000 points a line.
+///
+/// ```
+/// use dynamics_sim2real::excite::{design, Limits, Options};
+/// dynamics_macros::robot! {
+///     pub robot Pendulum;
+///     gravity = [0.0, -9.81, 0.0];
+///     link base;
+///     link rod { mass = 1.0; com = [0.5, 0.0, 0.0]; inertia = [1e-3, 0.1, 0.1]; }
+///     joint j = revolute(base -> rod) { transfer = [rot_z(q)]; }
+/// }
+/// let p = Pendulum::default();
+/// let mut o = Options::new(4.0);
+/// o.evaluations = 20;
+/// let d = design(&p, &Limits::new([-1.0], [1.0], [3.0], [50.0]), &o).unwrap();
+/// let svg = dynamics_cli::excite::plot(&p, &d);
+/// assert_eq!(svg.matches("<polyline").count(), 3);
+/// ```
+pub fn plot<R: Robot<N>, const N: usize>(robot: &R, d: &excite::Design<N>) -> String {
+    use crate::plot::{stack, svg_shaded, Series, Shade};
+    let rate = (2000.0 / d.duration).min(1000.0);
+    let samples = d.samples(rate);
+    let effort: Vec<SVector<f64, N>> = samples
+        .iter()
+        .map(|(_, r)| robot.inverse_dynamics(&r.q, &r.qd, &r.qdd))
+        .collect();
+    let l = &d.limits;
+    let names: Vec<String> = R::JOINT_NAMES.iter().map(|s| s.to_string()).collect();
+    let labels: Vec<String> = names.iter().map(|n| format!("{n} limits")).collect();
+    type Pick<'a, const N: usize> = &'a dyn Fn(usize, usize) -> f64;
+    let q = |k: usize, j: usize| samples[k].1.q[j];
+    let qd = |k: usize, j: usize| samples[k].1.qd[j];
+    let tau = |k: usize, j: usize| effort[k][j];
+    let panel = |title: &str, unit: &str, pick: Pick<N>, band: &dyn Fn(usize) -> (f64, f64)| {
+        let series: Vec<Series> = (0..N)
+            .map(|j| Series {
+                name: &names[j],
+                points: (0..samples.len())
+                    .map(|k| (samples[k].0, pick(k, j)))
+                    .collect(),
+            })
+            .collect();
+        let shades: Vec<Shade> = (0..N)
+            .map(|j| Shade {
+                x: None,
+                y: Some(band(j)),
+                label: &labels[j],
+            })
+            .collect();
+        svg_shaded(title, "t [s]", unit, &series, &shades, false)
+    };
+    stack(&[
+        panel("positions", "q [rad or m]", &q, &|j| {
+            (l.lower[j], l.upper[j])
+        }),
+        panel("velocities", "qd [rad/s or m/s]", &qd, &|j| {
+            (-l.velocity[j], l.velocity[j])
+        }),
+        panel(
+            "efforts (inverse dynamics)",
+            "effort [N m or N]",
+            &tau,
+            &|j| (-l.effort[j], l.effort[j]),
+        ),
+    ])
 }
 
 /// The ambiguous pairs of a diagnosis report (`which.verdict` with its
@@ -233,6 +319,10 @@ pub fn excite_cmd<R: Robot<N> + Sync, const N: usize>(
     o.criterion = args.criterion.parse()?;
     o.evaluations = args.evaluations;
     o.seed = args.seed;
+    o.clearance = args.clearance.then_some(excite::Clearance {
+        ground: args.ground_clearance,
+        distance: args.link_clearance,
+    });
     let noise = args
         .noise_tau
         .as_deref()
@@ -324,6 +414,19 @@ pub fn excite_cmd<R: Robot<N> + Sync, const N: usize>(
             String::new()
         }
     );
+    if let Some(m) = &report.min_clearance {
+        let at = |v: Option<f64>, w: Option<String>| match (v, w) {
+            (Some(v), Some(w)) => format!("{v:.3} m ({w})"),
+            _ => "not checked".into(),
+        };
+        println!(
+            "clearance of the link frames' origins ({} frames, {} pairs checked; not meshes): lowest above the ground {}, closest pair {}",
+            m.frames,
+            m.pairs,
+            at(m.ground, m.lowest.clone()),
+            at(m.distance, m.closest.clone().map(|c| c.join(" - ")))
+        );
+    }
     let worst = report
         .identifiability
         .parameters
@@ -341,6 +444,10 @@ pub fn excite_cmd<R: Robot<N> + Sync, const N: usize>(
         );
     }
     println!("motion: {}", args.out.display());
+    if let Some(path) = &args.plot {
+        std::fs::write(path, plot(robot, &d)).map_err(|e| format!("{}: {e}", path.display()))?;
+        println!("plot: {}", path.display());
+    }
     if let Some(path) = &args.json {
         let mut value = serde_json::to_value(&report)?;
         if let (Some(rows), Some(map)) = (separation, value.as_object_mut()) {
@@ -451,6 +558,152 @@ pub fn read_motion<const N: usize>(
             .collect();
     }
     Ok((t, q, qd))
+}
+
+/// The samples of a motion file (`t, q_<joint>, qd_<joint>, qdd_<joint>`,
+/// as `excite --out` writes it; other columns skipped), named `file` in
+/// errors.
+///
+/// ```
+/// let s = dynamics_cli::excite::read_samples::<1>("t,q_j,qd_j,qdd_j\n0,1,0,0\n0.5,1.5,2,0\n", &["j"], "m.csv").unwrap();
+/// assert_eq!((s.len(), s[1].0, s[1].1.qd[0]), (2, 0.5, 2.0));
+/// assert!(dynamics_cli::excite::read_samples::<1>("t,q_j,qd_j\n0,1,0\n", &["j"], "m.csv").is_err());
+/// ```
+pub fn read_samples<const N: usize>(
+    text: &str,
+    joints: &[&str; N],
+    file: &str,
+) -> Result<Vec<(f64, Reference<N>)>, String> {
+    let mut lines = text
+        .lines()
+        .enumerate()
+        .filter(|(_, l)| !l.trim().is_empty());
+    let header: Vec<&str> = lines
+        .next()
+        .map(|(_, l)| l.split(',').map(str::trim).collect())
+        .ok_or(format!("{file}: empty"))?;
+    let find = |name: String| {
+        header
+            .iter()
+            .position(|h| *h == name)
+            .ok_or(format!("{file}: line 1: no column `{name}`"))
+    };
+    let t_col = find("t".into())?;
+    let cols = |p: &str| -> Result<Vec<usize>, String> {
+        joints.iter().map(|j| find(format!("{p}_{j}"))).collect()
+    };
+    let (qc, qdc, qddc) = (cols("q")?, cols("qd")?, cols("qdd")?);
+    let mut out = Vec::new();
+    for (i, line) in lines {
+        let cells: Vec<&str> = line.split(',').map(str::trim).collect();
+        let num = |c: usize| -> Result<f64, String> {
+            cells
+                .get(c)
+                .and_then(|v| v.parse::<f64>().ok())
+                .filter(|v| v.is_finite())
+                .ok_or(format!(
+                    "{file}: line {}: column {} is not a finite number",
+                    i + 1,
+                    c + 1
+                ))
+        };
+        let vec = |cs: &[usize]| -> Result<SVector<f64, N>, String> {
+            let mut v = SVector::<f64, N>::zeros();
+            for (j, &c) in cs.iter().enumerate() {
+                v[j] = num(c)?;
+            }
+            Ok(v)
+        };
+        out.push((
+            num(t_col)?,
+            Reference {
+                q: vec(&qc)?,
+                qd: vec(&qdc)?,
+                qdd: vec(&qddc)?,
+            },
+        ));
+    }
+    if out.len() < 2 {
+        return Err(format!("{file}: {} rows, need at least 2", out.len()));
+    }
+    Ok(out)
+}
+
+/// The designed motion and its duration from a design's JSON (what
+/// `excite --json` writes: `joints`, `q0`, `period`, `duration`, `sin`,
+/// `cos`), named `file` in errors; its joints must be `joints`.
+///
+/// ```
+/// let text = r#"{"joints": ["j"], "q0": [0.5], "period": 2.0, "duration": 4.0,
+///   "sin": [[0.1], [0.0], [0.0]], "cos": [[0.0], [0.0], [0.0]]}"#;
+/// let (f, d) = dynamics_cli::excite::read_design::<1>(text, &["j"], "run.json").unwrap();
+/// assert_eq!((f.harmonics(), f.q0[0], d), (3, 0.5, 4.0));
+/// assert!(dynamics_cli::excite::read_design::<1>(text, &["k"], "run.json").is_err());
+/// ```
+pub fn read_design<const N: usize>(
+    text: &str,
+    joints: &[&str; N],
+    file: &str,
+) -> Result<(excite::Fourier<N>, f64), String> {
+    let v: serde_json::Value = serde_json::from_str(text).map_err(|e| format!("{file}: {e}"))?;
+    let names: Vec<&str> = v["joints"]
+        .as_array()
+        .map(|a| a.iter().filter_map(|x| x.as_str()).collect())
+        .unwrap_or_default();
+    if names != joints.as_slice() {
+        return Err(format!(
+            "{file}: designed for joints [{}], the robot has [{}]",
+            names.join(", "),
+            joints.join(", ")
+        ));
+    }
+    let number = |key: &str| -> Result<f64, String> {
+        v[key]
+            .as_f64()
+            .filter(|x| x.is_finite() && *x > 0.0)
+            .ok_or(format!("{file}: `{key}` is not a positive number"))
+    };
+    let (period, duration) = (number("period")?, number("duration")?);
+    let row = |x: &serde_json::Value, key: &str, k: usize| -> Result<SVector<f64, N>, String> {
+        let a = x
+            .as_array()
+            .filter(|a| a.len() == N)
+            .ok_or(format!("{file}: `{key}`[{k}] is not a list of {N} numbers"))?;
+        let mut out = SVector::<f64, N>::zeros();
+        for (j, e) in a.iter().enumerate() {
+            out[j] = e
+                .as_f64()
+                .ok_or(format!("{file}: `{key}`[{k}][{j}] is not a number"))?;
+        }
+        Ok(out)
+    };
+    let q0 = row(&v["q0"], "q0", 0)?;
+    let rows = |key: &str| -> Result<Vec<SVector<f64, N>>, String> {
+        v[key]
+            .as_array()
+            .ok_or(format!("{file}: no list `{key}`"))?
+            .iter()
+            .enumerate()
+            .map(|(k, x)| row(x, key, k))
+            .collect()
+    };
+    let (sin, cos) = (rows("sin")?, rows("cos")?);
+    if sin.len() != cos.len() {
+        return Err(format!(
+            "{file}: {} sine and {} cosine harmonics",
+            sin.len(),
+            cos.len()
+        ));
+    }
+    Ok((
+        excite::Fourier {
+            q0,
+            period,
+            sin,
+            cos,
+        },
+        duration,
+    ))
 }
 
 /// `check-data` on `robot` (the nominal model): what the motion in

@@ -15,6 +15,7 @@
 //! | [`excite`] | exciting motions: a periodic motion within the robot's limits designed to identify its base parameters, friction, rotor inertia and offsets well conditioned |
 //! | [`identify`] | the plain least-squares identification baseline: friction, offsets, rotor inertia and link inertial parameters (base parameters), held-out shrink |
 //! | [`inertial`] | a link's ten inertial parameters: mass properties, corrections in words, physical consistency |
+//! | [`rng`] | the small fixed random generator synthetic data and designs are named by their seed with ([`rng::Rng`], also [`synth::Rng`]) |
 //!
 //! `dynamics-runtime` stays the small runtime the generated code needs.
 
@@ -26,6 +27,7 @@ pub mod excite;
 pub mod explained;
 pub mod identify;
 pub mod inertial;
+pub mod rng;
 pub mod smoothing;
 pub mod synth;
 mod warning;

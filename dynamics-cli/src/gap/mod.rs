@@ -12,8 +12,8 @@ pub use files::{
 };
 pub use source::{parse_window, DataFile};
 pub use synth::{
-    holdout_window, synth, synth_recorded, Motion, Recording, SynthOutput, SynthRequest, Truth,
-    TruthWindow,
+    holdout_window, synth, synth_following, synth_recorded, Motion, Recording, SynthOutput,
+    SynthRequest, Truth, TruthWindow,
 };
 
 use dynamics_sim2real::data::bag::BagError;

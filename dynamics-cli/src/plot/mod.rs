@@ -226,6 +226,33 @@ pub fn svg_shaded(
     out
 }
 
+/// Plots (each a whole SVG document of [`svg`] or [`svg_shaded`], 720 x
+/// 420) stacked one under the other in one SVG document.
+///
+/// ```
+/// use dynamics_cli::plot::{stack, svg, Series};
+/// let one = svg("a", "t", "y", &[Series { name: "y", points: vec![(0.0, 1.0), (1.0, 2.0)] }], false);
+/// let s = stack(&[one.clone(), one]);
+/// assert!(s.contains("height=\"840\"") && s.matches("<polyline").count() == 2);
+/// ```
+pub fn stack(plots: &[String]) -> String {
+    let (w, h) = (720.0, 420.0);
+    let mut out = String::new();
+    let _ = write!(
+        out,
+        "<svg xmlns=\"http://www.w3.org/2000/svg\" width=\"{w}\" height=\"{}\">",
+        h * plots.len() as f64
+    );
+    for (k, p) in plots.iter().enumerate() {
+        out.push_str(
+            &p.trim_end()
+                .replacen("<svg ", &format!("<svg y=\"{}\" ", h * k as f64), 1),
+        );
+    }
+    out.push_str("</svg>\n");
+    out
+}
+
 fn num(v: f64) -> String {
     if v.abs() >= 1e4 || (v != 0.0 && v.abs() < 1e-2) {
         format!("{v:.2e}")

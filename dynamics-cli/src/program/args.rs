@@ -132,10 +132,16 @@ pub struct SynthArgs {
     /// Random seed.
     #[arg(long, default_value_t = 1)]
     pub seed: u64,
-    /// Reference motion: sines, chirp or pick-place.
+    /// Reference motion: sines, chirp or pick-place (drawn with the seed), or a design's JSON
+    /// (`dynamics excite --json run.json`: the training run follows the designed motion over
+    /// its duration; the held-out run follows sines).
     #[arg(long, default_value = "sines")]
     pub excitation: String,
-    /// Duration, s.
+    /// The training run follows this motion (CSV: t, q_<joint>, qd_<joint>, qdd_<joint>, as
+    /// `dynamics excite --out` writes it) over its duration; the held-out run follows sines.
+    #[arg(long, value_name = "MOTION.csv", conflicts_with = "excitation")]
+    pub motion: Option<PathBuf>,
+    /// Duration, s (with a designed motion or a motion file: theirs).
     #[arg(long, default_value_t = 8.0)]
     pub duration: f64,
     /// Position noise (rad or m).

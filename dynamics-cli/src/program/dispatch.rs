@@ -76,8 +76,11 @@ pub fn run_on<R: Robot<N> + Clone + Sync, const N: usize>(
                 a.joint,
                 a.magnitude,
                 a.seed,
-                &a.excitation,
-                a.duration,
+                &crate::commands::Followed {
+                    excitation: a.excitation.clone(),
+                    motion: a.motion.clone(),
+                    duration: a.duration,
+                },
                 [a.noise_q, a.noise_qd, a.noise_tau],
                 &a.out,
                 a.truth,

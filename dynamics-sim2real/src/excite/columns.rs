@@ -13,7 +13,7 @@ use nalgebra::{DMatrix, SMatrix, SVector};
 use super::{ExciteError, Limits};
 use crate::effects::SIGN_SMOOTHING;
 use crate::identify::Column;
-use crate::synth::Rng;
+use crate::rng::Rng;
 use dynamics_runtime::control::Reference;
 use dynamics_runtime::Robot;
 

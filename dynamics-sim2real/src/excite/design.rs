@@ -5,8 +5,8 @@ use nalgebra::SVector;
 
 use super::search::{search, Problem};
 use super::{
-    check, identifiability, BaseColumns, Check, Criterion, ExciteError, Figures, Fourier,
-    Identifiability, Limits, Rival,
+    check, identifiability, BaseColumns, Check, Clearance, Clearances, Criterion, ExciteError,
+    Figures, Fourier, Identifiability, Limits, Minimum, Rival,
 };
 use dynamics_runtime::control::Reference;
 use dynamics_runtime::Robot;
@@ -44,6 +44,9 @@ pub struct Options<const N: usize> {
     /// each joint's peak effort along the motion (`synth --noise-tau`'s
     /// convention).
     pub noise_tau: f64,
+    /// The clearance of the link frames kept (see [`Clearances`]); `None`
+    /// (the default): not checked.
+    pub clearance: Option<Clearance>,
 }
 
 impl<const N: usize> Options<N> {
@@ -60,6 +63,7 @@ impl<const N: usize> Options<N> {
             points: 200,
             seed: 1,
             noise_tau: 2e-3,
+            clearance: None,
         }
     }
 
@@ -102,6 +106,17 @@ impl<const N: usize> Options<N> {
         if !(self.noise_tau.is_finite() && self.noise_tau > 0.0) {
             return bad("noise_tau", format!("{} is not positive", self.noise_tau));
         }
+        if let Some(c) = self.clearance {
+            if !(c.ground.is_finite() && c.distance.is_finite() && c.distance >= 0.0) {
+                return bad(
+                    "clearance",
+                    format!(
+                        "ground {} and distance {} must be finite, the distance not negative",
+                        c.ground, c.distance
+                    ),
+                );
+            }
+        }
         Ok(())
     }
 }
@@ -123,9 +138,19 @@ pub struct Design<const N: usize> {
     pub criterion: Criterion,
     /// Evaluations spent.
     pub evaluations: usize,
+    /// The clearance check the motion keeps (`None`: not checked).
+    pub clearances: Option<Clearances>,
 }
 
 impl<const N: usize> Design<N> {
+    /// The smallest clearances of the link frames along the samples at
+    /// `rate` (`None` when the design did not check them).
+    pub fn clearance<R: Robot<N>>(&self, robot: &R, rate: f64) -> Option<Minimum> {
+        let c = self.clearances.as_ref()?;
+        let states: Vec<Reference<N>> = self.samples(rate).into_iter().map(|s| s.1).collect();
+        Some(c.minimum(robot, &states))
+    }
+
     /// The samples `(t, reference)` at `rate` Hz from 0 to the duration,
     /// both ends included.
     ///
@@ -284,6 +309,9 @@ fn run<R: Robot<N> + Sync, const N: usize>(
         }
     }
     let columns = BaseColumns::of(robot, &tight, options.seed)?;
+    let clearances = options
+        .clearance
+        .map(|c| Clearances::of(robot, &tight, &q0, &c));
     let period = options.period();
     let grid: Vec<f64> = (0..options.points)
         .map(|k| k as f64 * period / options.points as f64)
@@ -298,6 +326,7 @@ fn run<R: Robot<N> + Sync, const N: usize>(
         grid,
         criterion: options.criterion,
         pairs,
+        clearances: clearances.as_ref(),
     };
     let found = search(&problem, options.evaluations, options.seed);
     let mut motion = problem.realise(&found.x).ok_or(ExciteError::Numeric {
@@ -315,11 +344,13 @@ fn run<R: Robot<N> + Sync, const N: usize>(
         columns: columns.clone(),
         criterion: options.criterion,
         evaluations: found.evaluations,
+        clearances: clearances.clone(),
     };
     for _ in 0..50 {
         let one = Design::sample(&motion, period, fine);
         let states: Vec<Reference<N>> = one.into_iter().map(|s| s.1).collect();
-        if check(robot, &states, &tight).all() {
+        let clear = clearances.as_ref().is_none_or(|c| c.keeps(robot, &states));
+        if check(robot, &states, &tight).all() && clear {
             break;
         }
         motion.scale(&SVector::repeat(0.99));

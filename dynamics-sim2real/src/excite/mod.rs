@@ -9,6 +9,7 @@
 //! | `limits.rs` | [`Limits`]: the URDF's limits, an acceleration limit, the margin |
 //! | `columns.rs` | [`BaseColumns`]: the weighted regressor's columns and the base parameters (rank reduction over random states) |
 //! | `criterion.rs` | [`Criterion`], [`Figures`]: condition number (and D-optimality) of the unit-column base regressor |
+//! | `clearance.rs` | [`Clearance`], [`Clearances`]: link frame origins above the ground and apart (not meshes) |
 //! | `constraints.rs` | [`check`]: positions, velocities, accelerations and efforts (inverse dynamics) against the limits; [`room`] |
 //! | `search.rs` | the optimiser (an evolution strategy with a fixed seed; why in its docs) |
 //! | `identifiability.rs` | [`identifiability`]: predicted standard deviation per base parameter at a stated effort noise; what stays unidentifiable |
@@ -19,6 +20,7 @@
 
 mod basis;
 mod check_data;
+mod clearance;
 mod columns;
 mod constraints;
 mod criterion;
@@ -32,6 +34,7 @@ mod separate;
 
 pub use basis::Fourier;
 pub use check_data::{check_data, DataCheck, JointCoverage, WeakDirection};
+pub use clearance::{Clearance, Clearances, Minimum};
 pub use columns::BaseColumns;
 pub use constraints::{check, room, Check};
 pub use criterion::{Criterion, Figures};

@@ -5,7 +5,7 @@
 use nalgebra::SVector;
 use serde::{Serialize, Serializer};
 
-use super::{Check, Criterion, Design, ExciteError, Figures, Identifiability};
+use super::{Check, Clearance, Criterion, Design, ExciteError, Figures, Identifiability, Minimum};
 use dynamics_runtime::Robot;
 
 /// Serialises a fixed-size vector as a JSON array.
@@ -70,6 +70,11 @@ pub struct DesignReport<const N: usize> {
     pub acceleration_limit: Option<Vec<f64>>,
     /// The check of the samples at the output rate.
     pub check: Check<N>,
+    /// The clearance asked of the link frames (`null`: not checked).
+    pub clearance: Option<Clearance>,
+    /// The smallest clearances along the samples at the output rate, and
+    /// where (`null`: not checked).
+    pub min_clearance: Option<Minimum>,
     /// Evaluations the search spent.
     pub evaluations: usize,
     /// Predicted identifiability over the whole duration.
@@ -104,6 +109,8 @@ impl<const N: usize> DesignReport<N> {
             limits: [v(&l.lower), v(&l.upper), v(&l.velocity), v(&l.effort)],
             acceleration_limit: l.acceleration.as_ref().map(v),
             check: design.check(robot, rate),
+            clearance: design.clearances.as_ref().map(|c| c.asked),
+            min_clearance: design.clearance(robot, rate),
             evaluations: design.evaluations,
             identifiability: design.identifiability(robot, rate, 2e-3, noise)?,
         })

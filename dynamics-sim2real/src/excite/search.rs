@@ -18,10 +18,10 @@ use nalgebra::SVector;
 use rayon::prelude::*;
 
 use super::{
-    check, room, separation_angles, BaseColumns, Criterion, ExciteError, Figures, Fourier, Limits,
-    Rival,
+    check, room, separation_angles, BaseColumns, Clearances, Criterion, ExciteError, Figures,
+    Fourier, Limits, Rival,
 };
-use crate::synth::Rng;
+use crate::rng::Rng;
 use dynamics_runtime::control::Reference;
 use dynamics_runtime::Robot;
 
@@ -41,6 +41,8 @@ pub(crate) struct Problem<'a, R, const N: usize> {
     /// Rival pairs to separate: when given, the cost is minus the
     /// smallest of their separation angles instead of the criterion.
     pub pairs: &'a [(Rival, Rival)],
+    /// The clearance of the link frames to keep, if any.
+    pub clearances: Option<&'a Clearances>,
 }
 
 /// Fraction of the room used, for peaks between grid points.
@@ -57,15 +59,19 @@ impl<R: Robot<N> + Sync, const N: usize> Problem<'_, R, N> {
             return None;
         }
         f.scale(&s);
+        // Efforts and clearances: not met by a per-joint scaling.
         let effort_ok = |g: f64| {
             let mut h = f.clone();
             h.scale(&SVector::repeat(g));
             let states: Vec<Reference<N>> = self.grid.iter().map(|&t| h.at(t)).collect();
             check(self.robot, &states, &self.limits).effort
+                && self.clearances.is_none_or(|c| c.keeps(self.robot, &states))
         };
         if !effort_ok(1.0) {
-            // The largest common factor that keeps the efforts (bisection;
-            // the start pose itself keeps them, checked before the search).
+            // The largest common factor that keeps the efforts and the
+            // clearances (bisection; the start pose itself keeps them,
+            // checked before the search, and its clearances are the
+            // thresholds where it is closer than the clearance asked).
             let (mut lo, mut hi) = (0.0, 1.0);
             for _ in 0..12 {
                 let mid = 0.5 * (lo + hi);

@@ -4,7 +4,7 @@
 
 use std::str::FromStr;
 
-use super::{draw_effect, Excitation, Rng, Scales, SynthOptions};
+use super::{draw_effect, Rng, Scales, SynthOptions};
 use crate::effects::{Effect, EffectKind, PlaceKind, Tip};
 use dynamics_runtime::{JointKind, Robot};
 
@@ -77,13 +77,7 @@ pub fn draw_compound<R: Robot<N>, const N: usize>(
     opts: &SynthOptions<N>,
     rng: &mut Rng,
 ) -> Vec<Effect> {
-    let reference = Excitation::new(
-        opts.excitation,
-        opts.home,
-        opts.amplitude,
-        opts.duration,
-        &mut Rng::new(opts.seed),
-    );
+    let reference = opts.reference();
     let scales = Scales::of(robot, &reference, opts.duration);
     let tip = Tip::of::<R, N>();
     let tip_speed = (0..=200)

@@ -17,15 +17,14 @@ mod damage;
 mod draw;
 mod excitation;
 mod phases;
-mod rng;
 mod run;
 mod sensors;
 
+pub use crate::rng::Rng;
 pub use compound::{draw_compound, CompoundCase, MOTOR_RATIO};
 pub use damage::Damage;
 pub use draw::{draw_effect, Scales};
 pub use excitation::{Excitation, ExcitationKind};
-pub use rng::Rng;
 
 use run::Run;
 
@@ -65,8 +64,14 @@ pub struct SynthOptions<const N: usize> {
     pub duration: f64,
     /// Sample rate, Hz.
     pub rate: f64,
-    /// Reference motion kind.
+    /// Reference motion kind (drawn with the seed; not used when `motion`
+    /// is given).
     pub excitation: ExcitationKind,
+    /// A reference given in full (a designed motion,
+    /// [`Excitation::designed`], or samples of one,
+    /// [`Excitation::samples`]): followed instead of one drawn of
+    /// `excitation` about `home`; `None` (the default): drawn.
+    pub motion: Option<Excitation<N>>,
     /// Pose the reference moves about.
     pub home: SVector<f64, N>,
     /// Amplitude of the reference per joint.
@@ -91,6 +96,7 @@ impl<const N: usize> Default for SynthOptions<N> {
             duration: 8.0,
             rate: 1000.0,
             excitation: ExcitationKind::Sines,
+            motion: None,
             home: SVector::zeros(),
             amplitude: SVector::repeat(0.6),
             bandwidth: 12.0,
@@ -98,6 +104,41 @@ impl<const N: usize> Default for SynthOptions<N> {
             seed: 1,
             damage: Damage::default(),
             windows: Vec::new(),
+        }
+    }
+}
+
+impl<const N: usize> SynthOptions<N> {
+    /// The reference the run follows: `motion` when given, else one drawn
+    /// of `excitation` about `home` with a generator seeded by `seed` (the
+    /// one [`synthesize`] draws: the same reference for the same options).
+    ///
+    /// ```
+    /// use dynamics_sim2real::excite::Fourier;
+    /// use dynamics_sim2real::synth::{Excitation, SynthOptions};
+    /// let o = SynthOptions::<2>::default();
+    /// assert_eq!(o.reference().at(1.3), o.reference().at(1.3));
+    /// let mut f = Fourier::<2>::new([0.1, 0.2].into(), 4.0, 3);
+    /// f.sin[1][0] = 0.2;
+    /// f.to_rest();
+    /// let o = SynthOptions { motion: Some(Excitation::designed(f.clone())), ..o };
+    /// assert_eq!(o.reference().at(1.3), f.at(1.3));
+    /// ```
+    pub fn reference(&self) -> Excitation<N> {
+        self.drawn_reference(&mut Rng::new(self.seed))
+    }
+
+    /// [`SynthOptions::reference`], drawing (when it draws) from `rng`.
+    pub(crate) fn drawn_reference(&self, rng: &mut Rng) -> Excitation<N> {
+        match &self.motion {
+            Some(m) => m.clone(),
+            None => Excitation::new(
+                self.excitation,
+                self.home,
+                self.amplitude,
+                self.duration,
+                rng,
+            ),
         }
     }
 }

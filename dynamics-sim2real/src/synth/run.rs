@@ -65,13 +65,7 @@ impl<'a, R: Robot<N> + Clone, const N: usize> Run<'a, R, N> {
         }
         let phases = Phases::new(robot, effects, &opts.windows)?;
         let mut rng = Rng::new(opts.seed);
-        let reference = Excitation::new(
-            opts.excitation,
-            opts.home,
-            opts.amplitude,
-            opts.duration,
-            &mut rng,
-        );
+        let reference = opts.drawn_reference(&mut rng);
         let scales = Scales::of(robot, &reference, opts.duration);
         let mut delay = 0.0;
         let mut motor = [false; N];

@@ -4,7 +4,7 @@
 
 use dynamics_runtime::Robot;
 use dynamics_sim2real::effects::{Effect, EffectKind, Tip};
-use dynamics_sim2real::synth::{draw_effect, Excitation, Rng, Scales, SynthOptions};
+use dynamics_sim2real::synth::{draw_effect, Rng, Scales, SynthOptions};
 
 use super::{GapError, SynthRequest};
 
@@ -25,13 +25,7 @@ pub(super) fn effect_for<R: Robot<N>, const N: usize>(
         Some(k) => k,
         None => EffectKind::ALL[1 + rng.below(EffectKind::ALL.len() - 1)],
     };
-    let reference = Excitation::new(
-        opts.excitation,
-        opts.home,
-        opts.amplitude,
-        opts.duration,
-        &mut Rng::new(opts.seed),
-    );
+    let reference = opts.reference();
     let scales = Scales::of(robot, &reference, opts.duration);
     let joint = match &req.joint {
         Some(name) => R::joint_index(name).ok_or_else(|| {

@@ -13,7 +13,7 @@ use dynamics_runtime::Robot;
 use dynamics_sim2real::data::{write_csv, Measured};
 use dynamics_sim2real::effects::{Effect, EffectKind, PlaceKind, Tip, Window};
 use dynamics_sim2real::synth::{
-    synthesize, synthesize_with_size, Damage, ExcitationKind, Noise, Rng, SynthOptions,
+    synthesize, synthesize_with_size, Damage, Excitation, ExcitationKind, Noise, Rng, SynthOptions,
 };
 use nalgebra::SVector;
 
@@ -153,6 +153,44 @@ pub fn synth_recorded<R: Robot<N> + Clone, const N: usize>(
     req: &SynthRequest,
     rec: &Recording,
 ) -> Result<SynthOutput, GapError> {
+    synth_following(robot, motion, req, rec, None)
+}
+
+/// [`synth_recorded`] with the training run following `reference` when
+/// given (a designed motion, [`Excitation::designed`], or a motion file's
+/// samples): the drawn effect's size is measured against that motion. The
+/// held-out run follows a motion drawn of `req.excitation` with the next
+/// seed, as without it: the fit is checked on a motion it was not made on.
+///
+/// ```
+/// use dynamics_cli::gap::{synth_following, Motion, Recording, SynthRequest};
+/// use dynamics_sim2real::{excite::Fourier, synth::Excitation};
+/// dynamics_macros::robot! {
+///     robot Arm; gravity = [0.0, -9.81, 0.0];
+///     link base; link a { mass = 1.0; com = [0.2, 0.0, 0.0]; inertia = [1e-3, 1e-2, 1e-2]; }
+///     joint j1 = revolute(base -> a) { transfer = [rot_z(q)]; }
+/// }
+/// let mut f = Fourier::<1>::new([0.3].into(), 1.0, 3);
+/// f.sin[0][0] = 0.2;
+/// f.to_rest();
+/// let req = SynthRequest {
+///     robot: "arm".into(), kind: None, joint: None, magnitude: None, seed: 3,
+///     excitation: "sines".parse().unwrap(), duration: 1.0, noise: Default::default(),
+/// };
+/// let out = synth_following(&Arm::default(), &Motion::default(), &req, &Recording::default(),
+///     Some(&Excitation::designed(f))).unwrap();
+/// let second = out.train.lines().nth(1).unwrap(); // t = 0: at rest at q0 (+ noise)
+/// let q: f64 = second.split(',').nth(1).unwrap().parse().unwrap();
+/// assert!((q - 0.3).abs() < 1e-3);
+/// assert_eq!(out.truth.excitation, "designed");
+/// ```
+pub fn synth_following<R: Robot<N> + Clone, const N: usize>(
+    robot: &R,
+    motion: &Motion,
+    req: &SynthRequest,
+    rec: &Recording,
+    reference: Option<&Excitation<N>>,
+) -> Result<SynthOutput, GapError> {
     if !(rec.rate.is_finite() && rec.rate >= 50.0) {
         return Err(GapError::Request(format!(
             "rate must be at least 50 Hz, got {}",
@@ -178,6 +216,7 @@ pub fn synth_recorded<R: Robot<N> + Clone, const N: usize>(
     }
     let mut rng = Rng::new(req.seed.wrapping_mul(0x9E37_79B9).wrapping_add(17));
     let mut train_opts = options::<N>(motion, req, req.seed, rec);
+    train_opts.motion = reference.cloned();
     let effect = effect_for(robot, req, &train_opts, &mut rng)?;
     let effects: Vec<Effect> = effect.into_iter().collect();
     let mut hold_opts = options::<N>(motion, req, req.seed.wrapping_add(1_000_003), rec);
@@ -222,7 +261,10 @@ pub fn synth_recorded<R: Robot<N> + Clone, const N: usize>(
                 .map(|e| format!("{e:?}"))
                 .unwrap_or_else(|| "none".into()),
             seed: req.seed,
-            excitation: format!("{:?}", req.excitation),
+            excitation: match reference {
+                Some(_) => "designed".into(),
+                None => format!("{:?}", req.excitation),
+            },
             snr,
             distinct_snr,
             noise_tau,

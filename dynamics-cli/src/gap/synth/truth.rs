@@ -20,7 +20,8 @@ pub struct Truth {
     pub effect: String,
     /// Random seed.
     pub seed: u64,
-    /// Excitation.
+    /// Excitation of the training run: its kind (`Sines`, `Chirp`,
+    /// `PickPlace`), or `designed` when it followed a given motion.
     pub excitation: String,
     /// How large the withheld effect is against the effort noise, from the
     /// truth side (computed by the generator, never by the diagnoser): the
