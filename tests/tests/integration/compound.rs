@@ -118,7 +118,7 @@ fn main_parameter(e: &Effect) -> Option<(&'static str, f64)> {
         Effect::ViscousFriction { fv, .. } => ("fv", fv),
         Effect::StribeckFriction { fc, .. } => ("fc", fc),
         Effect::Armature { inertia, .. } => ("inertia", inertia),
-        Effect::PayloadMass { mass } => ("mass", mass),
+        Effect::PayloadMass { mass, .. } => ("mass", mass),
         Effect::EnvironmentResistance { mu, .. } => ("mu", mu),
         Effect::EncoderOffset { offset, .. } => ("offset", offset),
         Effect::TimeDelay { delay } => ("delay", delay),
