@@ -22,7 +22,6 @@ mod mimic;
 mod module_graph;
 mod mujoco;
 mod oracle;
-mod payload;
 mod properties;
 mod regressor;
 mod simulate;

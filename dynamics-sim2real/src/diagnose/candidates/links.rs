@@ -29,10 +29,6 @@ pub struct LinkBasis {
     pub link: usize,
     /// 10 x r: the combinations (orthonormal columns).
     pub v: DMatrix<f64>,
-    /// Whether the link carries the tip (the last of `Robot::LINK_NAMES`):
-    /// its correction and a payload at the tip are one place
-    /// (`Term::family`).
-    pub tip: bool,
 }
 
 impl LinkBasis {
@@ -176,11 +172,7 @@ pub fn link_basis(link: usize, cols: &[Vec<f64>]) -> Option<LinkBasis> {
         return None;
     }
     let v = eig.eigenvectors.select_columns(&keep);
-    Some(LinkBasis {
-        link,
-        v,
-        tip: false,
-    })
+    Some(LinkBasis { link, v })
 }
 
 /// The link's combinations as columns: `X v`.
