@@ -65,8 +65,8 @@ impl Default for Clearance {
 ///     link base;
 ///     link l1 { mass = 1.0; com = [0.5, 0.0, 0.0]; }
 ///     link l2 { mass = 1.0; com = [0.5, 0.0, 0.0]; }
-///     joint j1 = revolute(base -> l1) { transfer = [tu(0.3), rot_y(q)]; }
-///     joint j2 = revolute(l1 -> l2) { transfer = [tu(0.5), rot_y(q)]; }
+///     joint j1 = revolute(base -> l1) { transfer = [trans_z(0.3), rot_y(q)]; }
+///     joint j2 = revolute(l1 -> l2) { transfer = [trans_z(0.5), rot_y(q)]; }
 /// }
 /// let arm = TwoLink::default();
 /// let limits = Limits::<2>::new([-1.0, -1.0], [1.0, 1.0], [2.0, 2.0], [60.0, 30.0]);
