@@ -95,7 +95,7 @@ pub fn parameter_names(kind: EffectKind) -> &'static [&'static str] {
         EffectKind::ViscousFriction => &["fv"],
         EffectKind::StribeckFriction => &["fc", "fs_minus_fc", "vs"],
         EffectKind::Armature => &["inertia"],
-        EffectKind::PayloadMass => &["mass"],
+        EffectKind::PayloadMass => &["mass", "com_x", "com_y", "com_z"],
         EffectKind::EnvironmentResistance => &["mu", "alpha"],
         EffectKind::EncoderOffset => &["offset"],
         EffectKind::TimeDelay => &["delay"],
@@ -212,12 +212,16 @@ pub fn effect<R: Robot<N>, const N: usize>(entry: &Entry) -> Result<Effect, Base
         _ => {}
     }
     // The report gives an effort scale as the scale; it is fitted as the
-    // scale less one.
+    // scale less one. A payload's centre of mass is fitted as its first
+    // moments (mass times the centre).
     let theta = candidate
         .linear_parameters()
         .iter()
         .map(|(name, _)| match *name {
             "scale_minus_one" => get("scale").map(|s| s - 1.0),
+            "mass_com_x" => Ok(get("mass")? * get("com_x")?),
+            "mass_com_y" => Ok(get("mass")? * get("com_y")?),
+            "mass_com_z" => Ok(get("mass")? * get("com_z")?),
             _ => get(name),
         })
         .collect::<Result<Vec<f64>, _>>()?;

@@ -11,6 +11,7 @@
 //! | [`smoothing`] | the Savitzky-Golay smoothing of the diagnosis, shared with the generator's measure of what it can see |
 //! | [`diagnose`] | the gap diagnosis: where the model misses, which effects explain it, how far the gap shrinks on held-out data |
 //! | [`baseline`] | a diagnosis report's effects read back as effects on the robot (a calibrated baseline; with [`effects::Calibrated`]) |
+//! | [`explained`] | the report's figures' model: the whole explanation read back as the baseline reads it, as time series |
 //! | [`excite`] | exciting motions: a periodic motion within the robot's limits designed to identify its base parameters, friction, rotor inertia and offsets well conditioned |
 //! | [`identify`] | the plain least-squares identification baseline: friction, offsets, rotor inertia and link inertial parameters (base parameters), held-out shrink |
 //! | [`inertial`] | a link's ten inertial parameters: mass properties, corrections in words, physical consistency |
@@ -23,6 +24,7 @@ pub mod data;
 pub mod diagnose;
 pub mod effects;
 pub mod excite;
+pub mod explained;
 pub mod identify;
 pub mod inertial;
 pub mod rng;

@@ -91,7 +91,10 @@ fn a_tool_in_a_medium_meets_resistance_only_inside() {
 
 #[test]
 fn a_payload_picked_up_and_put_down_is_carried_in_between() {
-    let load = Effect::PayloadMass { mass: 0.4 };
+    let load = Effect::PayloadMass {
+        mass: 0.4,
+        com: [0.0; 3],
+    };
     let r = diagnosed(load, window(2.0, 4.5), window(1.5, 4.0));
     check(&r, "payload_mass", 2.0, 4.5);
 }
@@ -101,7 +104,10 @@ fn an_effect_on_all_the_time_gets_no_window() {
     // (An offset at the last joint is exactly a turned centre of mass of
     // the last link, an inertial correction: the first joint's is not.)
     for effect in [
-        Effect::PayloadMass { mass: 0.4 },
+        Effect::PayloadMass {
+            mass: 0.4,
+            com: [0.0; 3],
+        },
         Effect::EncoderOffset {
             joint: 0,
             offset: 0.03,
@@ -132,7 +138,10 @@ fn an_effect_on_all_the_time_gets_no_window() {
 #[test]
 fn the_generator_switches_an_effect_at_its_window_edges() {
     let arm = Arm2::default();
-    let load = Effect::PayloadMass { mass: 0.4 };
+    let load = Effect::PayloadMass {
+        mass: 0.4,
+        com: [0.0; 3],
+    };
     let quiet = |w| SynthOptions {
         noise: dynamics_sim2real::synth::Noise {
             q: 0.0,

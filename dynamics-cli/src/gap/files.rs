@@ -8,6 +8,7 @@ use dynamics_sim2real::data::Measured;
 use dynamics_sim2real::diagnose::traces::{traces, Traces};
 use dynamics_sim2real::diagnose::{diagnose, Options, Report};
 use dynamics_sim2real::effects::{undo_sensors, Effect};
+use dynamics_sim2real::explained;
 
 use super::{DataFile, GapError};
 
@@ -93,7 +94,9 @@ pub fn diagnose_calibrated<R: Robot<N> + Clone + Sync, const N: usize>(
 }
 
 /// The time series behind `report` (the readable report's plots), from the
-/// same CSV files: the chosen effect (none when the verdict is `none`)
+/// same CSV files: the model with the whole explanation
+/// ([`dynamics_sim2real::explained::traces`]); where the explanation names
+/// nothing, the chosen single effect (none when the verdict is `none`)
 /// refitted on `train` and applied to `holdout`. Example: with
 /// [`crate::report::write`].
 pub fn traces_files<R: Robot<N> + Clone, const N: usize>(
@@ -120,6 +123,11 @@ pub fn traces_data<R: Robot<N> + Clone, const N: usize>(
     report: &Report,
     options: &Options,
 ) -> Result<Traces, GapError> {
+    if !report.which.effects.is_empty() {
+        let a = train.read(&R::JOINT_NAMES)?;
+        let b = holdout.read(&R::JOINT_NAMES)?;
+        return Ok(explained::traces(robot, &a, &b, report, options)?);
+    }
     let chosen = report
         .which
         .verdict

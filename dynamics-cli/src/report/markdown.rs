@@ -246,6 +246,23 @@ pub fn markdown(
         );
     }
     let corrected = match chosen {
+        // The figures show the whole explanation (`explained::traces`).
+        _ if !traces.explained.is_empty() => {
+            let left = if traces.left_out.is_empty() {
+                String::new()
+            } else {
+                format!(
+                    "; not in the figures (the calibrated model cannot take them): {}",
+                    traces.left_out.join(", ")
+                )
+            };
+            format!(
+                "\"corrected\" = the model with the whole explanation ({} effect{}, fitted on the \
+                 training data, applied unchanged to the held-out data){left}",
+                traces.explained.len(),
+                if traces.explained.len() == 1 { "" } else { "s" }
+            )
+        }
         Some(r) => format!(
             "\"corrected\" = the model with {} (fitted on the training data, applied unchanged \
              to the held-out data)",

@@ -80,7 +80,7 @@ fn joint_files(joint: &str) -> [String; 3] {
 /// # Ok::<(), dynamics_cli::gap::GapError>(())
 /// ```
 pub fn render(report: &Report, traces: &Traces, options: &Options) -> Vec<(String, String)> {
-    let corrected = report.which.verdict.names_effect();
+    let corrected = !traces.explained.is_empty() || report.which.verdict.names_effect();
     let mut out = vec![(
         "report.md".to_string(),
         markdown::markdown(report, traces, options, &joint_files),

@@ -10,7 +10,7 @@
 
 use std::ops::Range;
 
-use nalgebra::{SMatrix, SVector, Vector3};
+use nalgebra::{Matrix3, SMatrix, SVector, Vector3};
 
 use crate::effects::Tip;
 use dynamics_runtime::batch::Batch;
@@ -93,6 +93,29 @@ pub fn tip_motion<R: Robot<N>, const N: usize>(
             let (_, j) = tip.position_jacobian(robot, &q[k]);
             jac[k] = j;
             acc[k] = j * qdd[k] + tip.bias_acceleration(robot, &q[k], &qd[k]);
+        }
+    }
+}
+
+/// The tip frame's orientation, angular-velocity Jacobian J_w and angular
+/// acceleration `J_w qdd + Jd_w qd` at the samples of `range` into `rot`,
+/// `jac` and `alpha` (left as they are for a point tip, which has no
+/// frame).
+#[allow(clippy::too_many_arguments)]
+pub fn tip_rotation<R: Robot<N>, const N: usize>(
+    robot: &R,
+    tip: &Tip,
+    [q, qd, qdd]: [&[SVector<f64, N>]; 3],
+    range: Range<usize>,
+    rot: &mut [Matrix3<f64>],
+    jac: &mut [SMatrix<f64, 3, N>],
+    alpha: &mut [Vector3<f64>],
+) {
+    for k in range {
+        if let Some((r, j)) = tip.angular_jacobian(robot, &q[k]) {
+            rot[k] = r;
+            jac[k] = j;
+            alpha[k] = j * qdd[k] + tip.angular_bias(robot, &q[k], &qd[k]);
         }
     }
 }

@@ -66,7 +66,7 @@ pub mod traces;
 
 pub use crate::smoothing::SavitzkyGolay;
 pub use candidates::MotorGuess;
-pub use candidates::{Candidate, Channel, Prepared, Unnamed};
+pub use candidates::{payload_com, Candidate, Channel, Prepared, Unnamed};
 pub use error::DiagnoseError;
 pub use evaluate::GapWindow;
 pub use explain::report::*;

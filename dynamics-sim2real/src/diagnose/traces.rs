@@ -1,6 +1,10 @@
 //! The time series behind a diagnosis, for plots: per joint the smoothed
 //! measured effort, the nominal model's effort along the measured motion,
-//! the effort with the chosen effect added, and the two residuals.
+//! the effort with the explanation added, and the two residuals.
+//!
+//! The report's figures show the model with the whole explanation
+//! ([`crate::explained::traces`]); [`traces`] gives the same with one
+//! effect, the best single one, as supporting detail:
 //!
 //! The chosen effect is refitted on the training data from its entry in
 //! the ranking (kind, place and grid value, [`Candidate::named`]) as
@@ -10,6 +14,8 @@
 //! there).
 
 use thiserror::Error;
+
+use nalgebra::SVector;
 
 use crate::data::Measured;
 use crate::diagnose::candidates::{Candidate, Prepared};
@@ -79,6 +85,13 @@ pub struct Traces {
     pub effect: Option<Effect>,
     /// Its window on the training data, when it starts and stops.
     pub window: Option<Window>,
+    /// The explanation's effects in the corrected series
+    /// ([`crate::explained::traces`];
+    /// empty for one chosen effect, [`traces`]).
+    pub explained: Vec<Effect>,
+    /// The explanation's effects left out of them, as "kind at place"
+    /// (what the baseline cannot take back).
+    pub left_out: Vec<String>,
 }
 
 /// Series of `train` and `holdout` for `robot`, with `chosen` (normally
@@ -123,42 +136,7 @@ pub fn traces<R: Robot<N> + Clone, const N: usize>(
             None => f,
         }
     });
-    let series = |p: &Prepared<N>, after: Option<Vec<nalgebra::SVector<f64, N>>>| -> DataTraces {
-        let (a, z) = p.sig.range;
-        let joints = (0..N)
-            .map(|j| {
-                let col = |v: &[nalgebra::SVector<f64, N>]| -> Vec<f64> {
-                    v[a..z].iter().map(|x| x[j]).collect()
-                };
-                let measured = col(&p.sig.tau);
-                let nominal = col(&p.sig.model);
-                let residual = col(&p.sig.residual);
-                let residual_after = after.as_deref().map(col).unwrap_or(residual.clone());
-                let corrected = measured
-                    .iter()
-                    .zip(&residual_after)
-                    .map(|(m, r)| m - r)
-                    .collect();
-                JointTraces {
-                    joint: R::JOINT_NAMES[j].to_string(),
-                    unit: match R::JOINT_KINDS[j] {
-                        JointKind::Prismatic => "N",
-                        _ => "N·m",
-                    },
-                    floor: p.sig.floor[j],
-                    measured,
-                    nominal,
-                    corrected,
-                    residual,
-                    residual_after,
-                }
-            })
-            .collect();
-        DataTraces {
-            t: p.sig.t[a..z].to_vec(),
-            joints,
-        }
-    };
+    let series = |p: &Prepared<N>, after| data_series::<R, N>(p, after);
     // The training record's window is the one fitted there.
     let train = {
         let after = fitted.as_ref().map(|f| match windows.first() {
@@ -173,6 +151,8 @@ pub fn traces<R: Robot<N> + Clone, const N: usize>(
         holdout,
         effect: fitted.as_ref().and_then(|f| f.effect()),
         window: windows.first().map(|w| w.1),
+        explained: Vec::new(),
+        left_out: Vec::new(),
     })
 }
 
@@ -201,4 +181,46 @@ fn candidate<R: Robot<N>, const N: usize>(r: &Ranked) -> Result<Candidate, Trace
             .map(|p| p.value)
     };
     Candidate::named(r.kind, joint, r.channel, &value).map_err(|e| err(e.to_string()))
+}
+
+/// One record's series: measured, nominal and corrected effort and the two
+/// residuals per joint over the samples with a full smoothing window;
+/// `after` the corrected residual per sample (`None`: none, the nominal).
+pub(crate) fn data_series<R: Robot<N>, const N: usize>(
+    p: &Prepared<N>,
+    after: Option<Vec<SVector<f64, N>>>,
+) -> DataTraces {
+    let (a, z) = p.sig.range;
+    let joints = (0..N)
+        .map(|j| {
+            let col =
+                |v: &[SVector<f64, N>]| -> Vec<f64> { v[a..z].iter().map(|x| x[j]).collect() };
+            let measured = col(&p.sig.tau);
+            let nominal = col(&p.sig.model);
+            let residual = col(&p.sig.residual);
+            let residual_after = after.as_deref().map(col).unwrap_or(residual.clone());
+            let corrected = measured
+                .iter()
+                .zip(&residual_after)
+                .map(|(m, r)| m - r)
+                .collect();
+            JointTraces {
+                joint: R::JOINT_NAMES[j].to_string(),
+                unit: match R::JOINT_KINDS[j] {
+                    JointKind::Prismatic => "N",
+                    _ => "N·m",
+                },
+                floor: p.sig.floor[j],
+                measured,
+                nominal,
+                corrected,
+                residual,
+                residual_after,
+            }
+        })
+        .collect();
+    DataTraces {
+        t: p.sig.t[a..z].to_vec(),
+        joints,
+    }
 }

@@ -1,6 +1,6 @@
 //! The robot's tip: where payload and environment effects act.
 
-use nalgebra::{SMatrix, SVector, Vector3};
+use nalgebra::{Matrix3, SMatrix, SVector, Vector3};
 
 use dynamics_runtime::Robot;
 
@@ -55,6 +55,32 @@ impl Tip {
         }
     }
 
+    /// The modelled mass of the body that carries the tip: the last link
+    /// of `Robot::LINK_NAMES` (the distal link of a serial chain, with
+    /// every body welded to it on fixed joints: a hand, a flange, a tool),
+    /// 0 when the robot lists no link. A payload relative to the model may
+    /// take away no more than this ([`crate::effects::Effect::within_tip_body`]):
+    /// beyond it the tip body would have negative mass.
+    ///
+    /// ```
+    /// use dynamics_sim2real::effects::Tip;
+    /// dynamics_macros::robot! {
+    ///     pub robot Pendulum;
+    ///     gravity = [0.0, -9.81, 0.0];
+    ///     link base;
+    ///     link rod { mass = 1.5; com = [1.0, 0.0, 0.0]; inertia = [1e-4, 0.1, 0.1]; }
+    ///     joint j = revolute(base -> rod) { transfer = [rot_z(q)]; }
+    /// }
+    /// assert!((Tip::body_mass::<Pendulum, 1>(&Pendulum::default()) - 1.5).abs() < 1e-12);
+    /// ```
+    pub fn body_mass<R: Robot<N>, const N: usize>(robot: &R) -> f64 {
+        let mut pi = vec![nalgebra::SVector::<f64, 10>::zeros(); R::LINK_NAMES.len()];
+        match (robot.inertial_parameters(&mut pi), pi.last()) {
+            (Ok(()), Some(p)) if p[0].is_finite() => p[0].max(0.0),
+            _ => 0.0,
+        }
+    }
+
     /// Its name (point or frame name).
     pub fn name<R: Robot<N>, const N: usize>(&self) -> &'static str {
         match *self {
@@ -69,11 +95,22 @@ impl Tip {
         robot: &R,
         q: &SVector<f64, N>,
     ) -> Vector3<f64> {
+        self.position_at(robot, q, &Vector3::zeros())
+    }
+
+    /// World position of the point at `offset` in the tip's frame (a
+    /// frame tip; a point tip has no frame, and the offset is ignored).
+    pub fn position_at<R: Robot<N>, const N: usize>(
+        &self,
+        robot: &R,
+        q: &SVector<f64, N>,
+        offset: &Vector3<f64>,
+    ) -> Vector3<f64> {
         match *self {
             Tip::Point(i) => robot.point_position(i, q),
-            Tip::Frame(i) => robot
-                .frame_pose(i, q)
-                .map(|m| Vector3::new(m[(0, 3)], m[(1, 3)], m[(2, 3)])),
+            Tip::Frame(i) => robot.frame_pose(i, q).map(|m| {
+                Vector3::new(m[(0, 3)], m[(1, 3)], m[(2, 3)]) + m.fixed_view::<3, 3>(0, 0) * offset
+            }),
         }
         .unwrap_or_else(Vector3::zeros)
     }
@@ -84,7 +121,18 @@ impl Tip {
         robot: &R,
         q: &SVector<f64, N>,
     ) -> (Vector3<f64>, SMatrix<f64, 3, N>) {
-        let x = self.position(robot, q);
+        self.position_jacobian_at(robot, q, &Vector3::zeros())
+    }
+
+    /// [`Tip::position_at`] and its Jacobian d(position)/dq (by central
+    /// differences, except at a point tip whose Jacobian the robot gives).
+    pub fn position_jacobian_at<R: Robot<N>, const N: usize>(
+        &self,
+        robot: &R,
+        q: &SVector<f64, N>,
+        offset: &Vector3<f64>,
+    ) -> (Vector3<f64>, SMatrix<f64, 3, N>) {
+        let x = self.position_at(robot, q, offset);
         if let Tip::Point(i) = *self {
             if let Some(j) = robot.point_jacobian(i, q) {
                 return (x, j);
@@ -97,7 +145,8 @@ impl Tip {
             let mut qm = *q;
             qp[k] += h;
             qm[k] -= h;
-            let d = (self.position(robot, &qp) - self.position(robot, &qm)) / (2.0 * h);
+            let d = (self.position_at(robot, &qp, offset) - self.position_at(robot, &qm, offset))
+                / (2.0 * h);
             jac.set_column(k, &d);
         }
         (x, jac)
@@ -111,13 +160,95 @@ impl Tip {
         q: &SVector<f64, N>,
         qd: &SVector<f64, N>,
     ) -> Vector3<f64> {
+        self.bias_acceleration_at(robot, q, qd, &Vector3::zeros())
+    }
+
+    /// [`Tip::bias_acceleration`] of the point at `offset` in the tip's
+    /// frame.
+    pub fn bias_acceleration_at<R: Robot<N>, const N: usize>(
+        &self,
+        robot: &R,
+        q: &SVector<f64, N>,
+        qd: &SVector<f64, N>,
+        offset: &Vector3<f64>,
+    ) -> Vector3<f64> {
         let norm = qd.norm();
         if norm == 0.0 {
             return Vector3::zeros();
         }
         let h = 1e-5 / norm;
-        let (_, jp) = self.position_jacobian(robot, &(q + qd * h));
-        let (_, jm) = self.position_jacobian(robot, &(q - qd * h));
+        let (_, jp) = self.position_jacobian_at(robot, &(q + qd * h), offset);
+        let (_, jm) = self.position_jacobian_at(robot, &(q - qd * h), offset);
         (jp - jm) * qd / (2.0 * h)
+    }
+
+    /// The tip frame's orientation R (world from tip) and its angular
+    /// velocity Jacobian (world axes, `omega = J_w qd`), by central
+    /// differences of R: `dR/dq_k R^T` is the skew matrix of column k.
+    /// `None` for a point tip (no frame).
+    ///
+    /// ```
+    /// use dynamics_sim2real::effects::Tip;
+    /// dynamics_macros::robot! {
+    ///     pub robot Pendulum;
+    ///     gravity = [0.0, -9.81, 0.0];
+    ///     link base;
+    ///     link rod { mass = 1.0; com = [1.0, 0.0, 0.0]; }
+    ///     joint j = revolute(base -> rod) { transfer = [rot_z(q)]; }
+    /// }
+    /// let p = Pendulum::default();
+    /// let q = nalgebra::Vector1::new(0.3);
+    /// let (_, jw) = Tip::Frame(Pendulum::FRAME_NAMES.len() - 1)
+    ///     .angular_jacobian(&p, &q)
+    ///     .unwrap();
+    /// assert!((jw[(2, 0)] - 1.0).abs() < 1e-8 && jw[(0, 0)].abs() < 1e-8);
+    /// # use dynamics_runtime::Robot;
+    /// ```
+    pub fn angular_jacobian<R: Robot<N>, const N: usize>(
+        &self,
+        robot: &R,
+        q: &SVector<f64, N>,
+    ) -> Option<(Matrix3<f64>, SMatrix<f64, 3, N>)> {
+        let Tip::Frame(i) = *self else { return None };
+        let rot = |q: &SVector<f64, N>| -> Option<Matrix3<f64>> {
+            robot
+                .frame_pose(i, q)
+                .map(|m| m.fixed_view::<3, 3>(0, 0).into_owned())
+        };
+        let r = rot(q)?;
+        let mut jac = SMatrix::<f64, 3, N>::zeros();
+        for k in 0..N {
+            let h = 1e-6 * (1.0 + q[k].abs());
+            let (mut qp, mut qm) = (*q, *q);
+            qp[k] += h;
+            qm[k] -= h;
+            let w = (rot(&qp)? - rot(&qm)?) / (2.0 * h) * r.transpose();
+            let w = 0.5 * (w - w.transpose());
+            jac.set_column(k, &Vector3::new(w[(2, 1)], w[(0, 2)], w[(1, 0)]));
+        }
+        Some((r, jac))
+    }
+
+    /// `Jd_w qd`, the velocity-product part of the tip frame's angular
+    /// acceleration, by a central difference of `J_w qd` along qd (zero
+    /// for a point tip).
+    pub fn angular_bias<R: Robot<N>, const N: usize>(
+        &self,
+        robot: &R,
+        q: &SVector<f64, N>,
+        qd: &SVector<f64, N>,
+    ) -> Vector3<f64> {
+        let norm = qd.norm();
+        if norm == 0.0 {
+            return Vector3::zeros();
+        }
+        let h = 1e-5 / norm;
+        match (
+            self.angular_jacobian(robot, &(q + qd * h)),
+            self.angular_jacobian(robot, &(q - qd * h)),
+        ) {
+            (Some((_, jp)), Some((_, jm))) => (jp - jm) * qd / (2.0 * h),
+            _ => Vector3::zeros(),
+        }
     }
 }

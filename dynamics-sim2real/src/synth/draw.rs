@@ -140,6 +140,7 @@ pub fn draw_effect<const N: usize>(
         },
         EffectKind::PayloadMass => Effect::PayloadMass {
             mass: scales.tip_mass * rng.uniform(0.05, 0.5),
+            com: [0.0; 3],
         },
         EffectKind::JointElasticity => {
             let jm = 0.2 * locked;

@@ -36,7 +36,10 @@ fn conservative_add_ons_conserve_energy() {
             joint: 1,
             inertia: 0.01,
         },
-        Effect::PayloadMass { mass: 0.7 },
+        Effect::PayloadMass {
+            mass: 0.7,
+            com: [0.0; 3],
+        },
         Effect::JointElasticity {
             joint: 2,
             stiffness: 200.0,

@@ -22,6 +22,7 @@ mod mimic;
 mod module_graph;
 mod mujoco;
 mod oracle;
+mod payload;
 mod properties;
 mod regressor;
 mod simulate;

@@ -100,7 +100,7 @@ pub(super) fn effect_for<R: Robot<N>, const N: usize>(
             delta[0] = m;
             Effect::InertialParameters { link, delta }
         }
-        Effect::PayloadMass { .. } => Effect::PayloadMass { mass: m },
+        Effect::PayloadMass { com, .. } => Effect::PayloadMass { mass: m, com },
         Effect::JointElasticity {
             joint,
             motor_inertia,

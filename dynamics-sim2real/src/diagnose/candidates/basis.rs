@@ -3,7 +3,7 @@
 //! velocity and bias acceleration (payload, environment), the joints' own
 //! inertia.
 
-use nalgebra::{SMatrix, SVector, Vector3};
+use nalgebra::{Matrix3, SMatrix, SVector, Vector3};
 
 use super::grids::{COULOMB_WIDTHS, STRIBECK_GRID};
 use crate::diagnose::along;
@@ -27,6 +27,15 @@ pub struct Basis<const N: usize> {
     pub jac: Vec<SMatrix<f64, 3, N>>,
     /// Tip acceleration J qdd + Jd qd per sample.
     pub tip_acc: Vec<Vector3<f64>>,
+    /// The tip frame's orientation per sample (world from tip; empty for a
+    /// point tip, which has no frame).
+    pub tip_rot: Vec<Matrix3<f64>>,
+    /// The tip frame's angular-velocity Jacobian per sample (empty for a
+    /// point tip).
+    pub jac_w: Vec<SMatrix<f64, 3, N>>,
+    /// The tip frame's angular acceleration `J_w qdd + Jd_w qd` per sample
+    /// (empty for a point tip).
+    pub tip_alpha: Vec<Vector3<f64>>,
     /// Mean A[j][j] over the data.
     pub inertia: SVector<f64, N>,
     /// Per sample, a joint's acceleration per unit of its own effort: what
@@ -38,6 +47,10 @@ pub struct Basis<const N: usize> {
     pub gravity: Vector3<f64>,
     /// The tip used.
     pub tip: Tip,
+    /// The modelled mass of the body that carries the tip
+    /// ([`Tip::body_mass`]): the most a payload relative to the model can
+    /// take away.
+    pub tip_mass: f64,
     /// Accelerations smoothed once more (the rotor-inertia column): the
     /// acceleration estimate's own noise, which the nominal model's
     /// residual already carries, is not added a second time by a column.
@@ -147,10 +160,14 @@ impl<const N: usize> Basis<N> {
             k: vec![SMatrix::zeros(); n],
             jac: vec![SMatrix::zeros(); n],
             tip_acc: vec![Vector3::zeros(); n],
+            tip_rot: Vec::new(),
+            jac_w: Vec::new(),
+            tip_alpha: Vec::new(),
             inertia: SVector::zeros(),
             compliance: vec![SVector::zeros(); n],
             gravity: Vector3::from(R::GRAVITY),
             tip,
+            tip_mass: Tip::body_mass::<R, N>(robot),
             qdd: sig.qdd.to_vec(),
             sign: smoothed_column(sig, smooth_sign),
             coulomb: COULOMB_WIDTHS[1..]
@@ -170,6 +187,13 @@ impl<const N: usize> Basis<N> {
         let motion = [&sig.q[..], &sig.qd[..], &sig.qdd[..]];
         along::perturbation_k(robot, motion, a..z, chunk, &mut b.k);
         along::tip_motion(robot, &tip, motion, a..z, chunk, &mut b.jac, &mut b.tip_acc);
+        if let Tip::Frame(_) = tip {
+            b.tip_rot = vec![Matrix3::identity(); n];
+            b.jac_w = vec![SMatrix::zeros(); n];
+            b.tip_alpha = vec![Vector3::zeros(); n];
+            let (rot, jac, alpha) = (&mut b.tip_rot, &mut b.jac_w, &mut b.tip_alpha);
+            along::tip_rotation(robot, &tip, motion, a..z, rot, jac, alpha);
+        }
         b.inertia = along::mass_diagonal_sum(robot, &sig.q, a..z, chunk);
         b.inertia /= (z - a).max(1) as f64;
         // The link's response to its own effort, as one over its mean own
@@ -188,6 +212,9 @@ impl<const N: usize> Basis<N> {
         // more, like the acceleration itself.
         smooth_in_place(&sig.sg, &mut b.qdd, (a, z));
         smooth_in_place(&sig.sg, &mut b.tip_acc, (a, z));
+        if !b.tip_alpha.is_empty() {
+            smooth_in_place(&sig.sg, &mut b.tip_alpha, (a, z));
+        }
         smooth_in_place(&sig.sg, &mut b.k, (a, z));
         b
     }

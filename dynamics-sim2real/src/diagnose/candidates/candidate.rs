@@ -82,8 +82,17 @@ pub enum Candidate {
     Stribeck(usize, f64),
     /// Rotor inertia at a joint.
     Armature(usize),
-    /// Point mass at the tip.
+    /// Point mass at the tip, relative to the model: negative when the
+    /// robot lacks mass the model carries there (a hand that is absent),
+    /// down to the modelled mass of the tip's body.
     Payload,
+    /// The same with its centre of mass away from the tip frame's origin:
+    /// the mass and its first moments about that origin (mass times the
+    /// offset, in the tip's frame), linear to first order in the offset
+    /// (the second moments of a point mass off the origin, `m |c|^2`, left
+    /// out of the columns; the effect is the exact point mass). Offered
+    /// where the tip is a frame.
+    PayloadCom,
     /// Resistance at the tip with exponent alpha.
     Environment(f64),
     /// Encoder offset at a joint.
@@ -156,7 +165,11 @@ impl Candidate {
             EffectKind::ViscousFriction => Candidate::Viscous(j()?),
             EffectKind::StribeckFriction => Candidate::Stribeck(j()?, grid("vs")?),
             EffectKind::Armature => Candidate::Armature(j()?),
-            EffectKind::PayloadMass => Candidate::Payload,
+            // A centre of mass reported as a number: the payload with it.
+            EffectKind::PayloadMass => match value("com_x").filter(|v| v.is_finite()) {
+                Some(_) => Candidate::PayloadCom,
+                None => Candidate::Payload,
+            },
             EffectKind::EnvironmentResistance => Candidate::Environment(grid("alpha")?),
             EffectKind::EncoderOffset => Candidate::EncoderOffset(j()?),
             EffectKind::TimeDelay => match channel {
@@ -222,6 +235,7 @@ impl Candidate {
         }
         if want(EffectKind::PayloadMass) {
             out.push(Candidate::Payload);
+            out.push(Candidate::PayloadCom);
         }
         if want(EffectKind::EnvironmentResistance) {
             out.extend(ALPHA_GRID.iter().map(|&a| Candidate::Environment(a)));
@@ -239,7 +253,7 @@ impl Candidate {
             Candidate::Viscous(_) => EffectKind::ViscousFriction,
             Candidate::Stribeck(..) => EffectKind::StribeckFriction,
             Candidate::Armature(_) => EffectKind::Armature,
-            Candidate::Payload => EffectKind::PayloadMass,
+            Candidate::Payload | Candidate::PayloadCom => EffectKind::PayloadMass,
             Candidate::Environment(_) => EffectKind::EnvironmentResistance,
             Candidate::EncoderOffset(_) => EffectKind::EncoderOffset,
             Candidate::TimeDelay | Candidate::LatePositions | Candidate::LateEffort(_) => {
@@ -285,7 +299,16 @@ impl Candidate {
             Candidate::Viscous(_) => &[("fv", true)],
             Candidate::Stribeck(..) => &[("fc", true), ("fs_minus_fc", true)],
             Candidate::Armature(_) => &[("inertia", true)],
-            Candidate::Payload => &[("mass", true)],
+            // Relative to the model: negative where the model carries mass
+            // at the tip that the robot does not (`columns::lower_bounds`).
+            Candidate::Payload => &[("mass", false)],
+            // The report gives the centre of mass (`Fit::parameters`).
+            Candidate::PayloadCom => &[
+                ("mass", false),
+                ("mass_com_x", false),
+                ("mass_com_y", false),
+                ("mass_com_z", false),
+            ],
             Candidate::Environment(_) => &[("mu", true)],
             Candidate::EncoderOffset(_) => &[("offset", false)],
             Candidate::TimeDelay | Candidate::LatePositions | Candidate::LateEffort(_) => {
@@ -305,8 +328,8 @@ impl Candidate {
         sig: &Signals<N>,
         basis: &Basis<N>,
         k: usize,
-    ) -> [SVector<f64, N>; 2] {
-        let mut c = [SVector::zeros(); 2];
+    ) -> [SVector<f64, N>; 4] {
+        let mut c = [SVector::zeros(); 4];
         let qd = &sig.qd[k];
         match *self {
             Candidate::Coulomb(j, w) => {
@@ -325,6 +348,28 @@ impl Candidate {
             Candidate::Armature(j) => c[0][j] = basis.qdd[k][j],
             Candidate::Payload => {
                 c[0] = basis.jac[k].transpose() * (basis.tip_acc[k] - basis.gravity)
+            }
+            // A point at r = R c off the tip's origin o moves with
+            // a = a_o + alpha x r + w x (w x r), and its Jacobian is
+            // J_o - [r]x J_w: the effort m J^T (a - g), to first order in
+            // the first moment m c, adds J_o^T (alpha x r + w x (w x r))
+            // + J_w^T (r x (a_o - g)) per unit of it.
+            Candidate::PayloadCom => {
+                let f = basis.tip_acc[k] - basis.gravity;
+                c[0] = basis.jac[k].transpose() * f;
+                let frame = (
+                    basis.tip_rot.get(k),
+                    basis.jac_w.get(k),
+                    basis.tip_alpha.get(k),
+                );
+                if let (Some(r), Some(jw), Some(alpha)) = frame {
+                    let w = jw * qd;
+                    for i in 0..3 {
+                        let u = r.column(i).into_owned();
+                        let lin = alpha.cross(&u) + w.cross(&w.cross(&u));
+                        c[i + 1] = basis.jac[k].transpose() * lin + jw.transpose() * u.cross(&f);
+                    }
+                }
             }
             Candidate::Environment(alpha) => {
                 let v = basis.jac[k] * qd;
@@ -374,7 +419,14 @@ impl Candidate {
                 joint,
                 inertia: p(0),
             },
-            Candidate::Payload => Effect::PayloadMass { mass: p(0) },
+            Candidate::Payload => Effect::PayloadMass {
+                mass: p(0),
+                com: [0.0; 3],
+            },
+            Candidate::PayloadCom => Effect::PayloadMass {
+                mass: p(0),
+                com: payload_com(theta),
+            },
             Candidate::Environment(alpha) => Effect::EnvironmentResistance { mu: p(0), alpha },
             Candidate::EncoderOffset(joint) => Effect::EncoderOffset {
                 joint,
@@ -402,4 +454,22 @@ impl Candidate {
             }
         })
     }
+}
+
+/// The centre of mass of a payload fitted as mass and first moments
+/// (`theta = [m, m c_x, m c_y, m c_z]`): the first moments over the mass,
+/// zero where the mass is zero.
+///
+/// ```
+/// use dynamics_sim2real::diagnose::payload_com;
+/// assert_eq!(payload_com(&[-0.5, 0.01, 0.0, 0.035]), [-0.02, -0.0, -0.07]);
+/// assert_eq!(payload_com(&[0.0, 0.01, 0.0, 0.0]), [0.0; 3]);
+/// ```
+pub fn payload_com(theta: &[f64]) -> [f64; 3] {
+    let p = |i: usize| theta.get(i).copied().unwrap_or(0.0);
+    let m = p(0);
+    if m == 0.0 || !m.is_finite() {
+        return [0.0; 3];
+    }
+    [p(1) / m, p(2) / m, p(3) / m]
 }

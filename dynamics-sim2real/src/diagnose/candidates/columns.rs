@@ -30,13 +30,15 @@ pub fn linear_columns<const N: usize>(c: Candidate, p: &Prepared<N>) -> Vec<Vec<
 /// The least values of a linear candidate's parameters: none, or 0 for a
 /// sign-constrained one, except that a friction correction may take away
 /// the friction the nominal model carries at its joint (its Coulomb level
-/// for Coulomb and Stribeck's `fc`, its viscous coefficient for viscous).
+/// for Coulomb and Stribeck's `fc`, its viscous coefficient for viscous),
+/// and a payload the mass of the body that carries the tip (`Basis::tip_mass`).
 pub fn lower_bounds<const N: usize>(c: Candidate, p: &Prepared<N>) -> Vec<f64> {
     let (coulomb, viscous) = &p.basis.friction;
     c.linear_parameters()
         .iter()
         .enumerate()
         .map(|(i, &(_, nonneg))| match (c, i) {
+            (Candidate::Payload | Candidate::PayloadCom, 0) => -p.basis.tip_mass,
             _ if !nonneg => f64::NEG_INFINITY,
             (Candidate::Coulomb(j, _) | Candidate::Stribeck(j, _), 0) => -coulomb[j],
             (Candidate::Viscous(j), 0) => -viscous[j],

@@ -29,6 +29,10 @@ pub struct LinkBasis {
     pub link: usize,
     /// 10 x r: the combinations (orthonormal columns).
     pub v: DMatrix<f64>,
+    /// Whether the link carries the tip (the last of `Robot::LINK_NAMES`):
+    /// its correction and a payload at the tip are one place
+    /// (`Term::family`).
+    pub tip: bool,
 }
 
 impl LinkBasis {
@@ -172,7 +176,11 @@ pub fn link_basis(link: usize, cols: &[Vec<f64>]) -> Option<LinkBasis> {
         return None;
     }
     let v = eig.eigenvectors.select_columns(&keep);
-    Some(LinkBasis { link, v })
+    Some(LinkBasis {
+        link,
+        v,
+        tip: false,
+    })
 }
 
 /// The link's combinations as columns: `X v`.

@@ -33,7 +33,7 @@ mod shift;
 mod visibility;
 
 pub use basis::Friction;
-pub use candidate::{Candidate, Channel, Unnamed};
+pub use candidate::{payload_com, Candidate, Channel, Unnamed};
 pub use columns::{linear_columns, lower_bounds, whitened};
 pub use grids::EFFORT_SCALE_LIMIT;
 pub use late::offer_delays;
@@ -49,8 +49,21 @@ use crate::diagnose::Options;
 /// identify, with the late channels it shows (what is left out, and why,
 /// goes to the records' warnings).
 pub fn offer<const N: usize>(records: &mut Records<N>, options: &Options) -> Vec<Candidate> {
+    // A payload is its mass and centre of mass: at a frame tip both are
+    // fitted (the centre a note where the data do not place it), as a
+    // mass held at the frame's origin is biased by the ratio of the lever
+    // arms; a point tip has no frame to place a centre in.
+    let frame = !records.p.basis.tip_rot.is_empty();
+    let all = Candidate::all::<N>(&options.kinds)
+        .into_iter()
+        .filter(|c| match c {
+            Candidate::PayloadCom => frame,
+            Candidate::Payload => !frame,
+            _ => true,
+        })
+        .collect();
     let mut candidates = identifiable(
-        Candidate::all::<N>(&options.kinds),
+        all,
         &records.excitation,
         records.p.sig.dt,
         &mut records.warnings,

@@ -15,6 +15,10 @@ use dynamics_runtime::JointKind;
 /// log with nothing at that joint).
 pub const HELD_AT_ZERO: f64 = 1e-12;
 
+/// The spread (m) below which a payload's centre-of-mass coordinate near
+/// the tip frame's origin is still reported as a number.
+pub const COM_SPREAD: f64 = 0.02;
+
 /// Why the value `value` +- `std` of parameter `name` of an effect of
 /// `kind` at a joint of `joint` (its kind and the range its position covers
 /// on the data) cannot be acted on; `None` when it can.
@@ -40,6 +44,13 @@ pub fn why_not(
     }
     if !value.is_finite() {
         return Some("the fit could not make it".into());
+    }
+    // A payload's centre of mass: a coordinate is a number when its spread
+    // is below its own size or below [`COM_SPREAD`] (a centre at the
+    // origin is a statement too).
+    if matches!(name, "com_x" | "com_y" | "com_z") {
+        return (!(std.is_finite() && std <= value.abs().max(COM_SPREAD)))
+            .then(|| format!("not placed by these data (spread {std:.3} m)"));
     }
     // A value held at zero by its sign constraint (the fit's active bound:
     // no spread, nothing left of the value but rounding) is no effect.
@@ -73,11 +84,14 @@ pub fn why_not(
 }
 
 /// The first parameter of fit `f` (at a joint of `joint`, as for
-/// [`why_not`]) that cannot be acted on, with the reason.
+/// [`why_not`]) that cannot be acted on, with the reason. A payload stands
+/// on its mass: a centre of mass the data do not place is a note on its
+/// coordinates in the report, not a reason to leave the payload out.
 pub fn undetermined(f: &Fit, joint: Option<(JointKind, f64)>) -> Option<String> {
     let kind = f.candidate.kind();
     f.parameters()
         .into_iter()
+        .filter(|(name, _, _)| !name.starts_with("com_"))
         .find_map(|(name, v, s)| why_not(kind, name, v, s, joint).map(|w| format!("`{name}`: {w}")))
 }
 
@@ -94,6 +108,17 @@ mod tests {
             "{why}"
         );
         assert!(why_not(EffectKind::EncoderOffset, "offset", 0.02, 0.001, j).is_none());
+    }
+
+    /// A centre-of-mass coordinate is a number when its spread is below
+    /// 2 cm or below its size; otherwise the note says it is not placed.
+    #[test]
+    fn a_payloads_centre_of_mass_is_a_number_only_where_the_data_place_it() {
+        let k = EffectKind::PayloadMass;
+        assert!(why_not(k, "com_z", 0.0, 0.01, None).is_none());
+        assert!(why_not(k, "com_z", -0.07, 0.05, None).is_none());
+        let why = why_not(k, "com_x", 0.01, 0.08, None).unwrap();
+        assert!(why.starts_with("not placed"), "{why}");
     }
 
     #[test]

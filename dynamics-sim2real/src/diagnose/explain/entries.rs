@@ -267,6 +267,13 @@ fn link_parameters(
     let text = match (nominal, &made) {
         (Some(nom), Some(c)) => {
             let mut t = describe(link, nom, &d);
+            if b.tip && d[0] < 0.0 {
+                t = format!(
+                    "about {:.2} kg of the tip body {link} that the model carries is not on the \
+                     robot (e.g. the hand or tool of the model is absent): {t}",
+                    -d[0]
+                );
+            }
             if c.moved && !c.projected {
                 t += &format!(
                     "; the data determine {} of the 10 combinations, the others are set to keep the link physical",

@@ -29,7 +29,7 @@ pub use late::warn_delays;
 pub use ranked::ranked_entry;
 pub use reversal::mark_reversals;
 pub use verdict::verdict;
-pub use words::{add_encoder_words, add_spring_words};
+pub use words::{add_encoder_words, add_payload_words, add_spring_words};
 
 use crate::diagnose::candidates::Records;
 use crate::diagnose::evaluate::Evaluation;
@@ -119,6 +119,7 @@ pub fn report<R: Robot<N>, const N: usize>(
     determinacy::mark_suggested(&mut suggested, &joint_at);
     add_spring_words(&mut effects, &R::JOINT_NAMES, &records.excitation.range);
     add_encoder_words(&mut effects, &R::JOINT_NAMES, &R::JOINT_KINDS);
+    add_payload_words(&mut effects);
     annotate(&mut effects, pool, e, &selection.windows);
     let mut warnings = records.warnings.clone();
     warnings.extend(evaluation.training_warnings.iter().cloned());

@@ -33,7 +33,11 @@ pub fn ranked_entry<R: Robot<N>, const N: usize>(
         channel: c.channel(),
         kind: c.kind(),
         joint: c.joint().map(|j| R::JOINT_NAMES[j].to_string()),
-        point: matches!(c, Candidate::Payload | Candidate::Environment(_)).then(|| tip.to_string()),
+        point: matches!(
+            c,
+            Candidate::Payload | Candidate::PayloadCom | Candidate::Environment(_)
+        )
+        .then(|| tip.to_string()),
         parameters,
         share,
         aicc: a,

@@ -187,6 +187,51 @@ pub fn add_encoder_words<const N: usize>(
     }
 }
 
+/// A payload relative to the model in words: mass `mass` (kg) at the
+/// tip named `tip`; a negative mass is mass the model carries there that
+/// the robot does not (a hand or tool in the model that is absent).
+pub fn payload_words(tip: &str, mass: f64) -> String {
+    if mass < 0.0 {
+        format!(
+            "about {:.2} kg at {tip} that the model carries is not on the robot \
+             (e.g. the hand or tool of the model is absent)",
+            -mass
+        )
+    } else {
+        format!("about {mass:.2} kg at {tip} that the model does not carry (a payload or tool)")
+    }
+}
+
+/// Adds to each payload of `entries` whose mass is a number its words
+/// ([`payload_words`]) at its point, and where its centre of mass is
+/// reported, where that lies in the tip's frame (or that the data do not
+/// place it).
+pub fn add_payload_words(entries: &mut [Explained]) {
+    for e in entries
+        .iter_mut()
+        .filter(|e| e.kind == EffectKind::PayloadMass && e.description.is_none())
+    {
+        let value = |name: &str| e.parameters.iter().find(|p| p.name == name);
+        let mass = value("mass").filter(|p| p.note.is_none()).map(|p| p.value);
+        let (Some(m), Some(tip)) = (mass.filter(|m| m.is_finite()), e.point.as_deref()) else {
+            continue;
+        };
+        let mut words = payload_words(tip, m);
+        let com: Vec<Option<f64>> = ["com_x", "com_y", "com_z"]
+            .iter()
+            .filter_map(|n| value(n))
+            .map(|p| p.note.is_none().then_some(p.value))
+            .collect();
+        if let [Some(x), Some(y), Some(z)] = com[..] {
+            words +=
+                &format!("; its centre of mass at ({x:.3}, {y:.3}, {z:.3}) m in {tip}'s frame");
+        } else if !com.is_empty() {
+            words += "; the data do not place its centre of mass";
+        }
+        e.description = Some(words);
+    }
+}
+
 /// A link correction in words: mass, first moments and inertia about the
 /// link frame's origin, as changed.
 pub fn link_words(link: &str, d: &SVector<f64, 10>) -> String {
@@ -208,6 +253,24 @@ pub fn link_words(link: &str, d: &SVector<f64, 10>) -> String {
 mod tests {
     use super::*;
     use crate::diagnose::explain::report::{test_entry as entry, Parameter};
+
+    /// A negative payload reads as mass the robot lacks, a positive one as
+    /// mass it carries; the figure is the mass to two decimals.
+    #[test]
+    fn a_negative_payload_reads_as_the_models_mass_that_is_absent() {
+        let absent = payload_words("panda_hand_tcp", -0.734);
+        assert!(
+            absent.starts_with(
+                "about 0.73 kg at panda_hand_tcp that the model carries is not on the robot"
+            ),
+            "{absent}"
+        );
+        let carried = payload_words("tool0", 1.25);
+        assert!(
+            carried.starts_with("about 1.25 kg at tool0 that the model does not carry"),
+            "{carried}"
+        );
+    }
 
     /// A Coulomb correction of +0.2 on a nominal level of 0.1 with an
     /// effort offset of +0.05: 0.35 forward, 0.25 backward (by hand); a

@@ -43,6 +43,26 @@ impl Fit {
                 _ => (*name, v, s),
             })
             .collect();
+        // A payload's first moments as its centre of mass, c = (m c) / m,
+        // its spread by the first-order propagation of both spreads.
+        if let (Candidate::PayloadCom, [(_, m, sm), moments @ ..]) = (c, out.as_slice()) {
+            let (m, sm) = (*m, *sm);
+            let com = ["com_x", "com_y", "com_z"];
+            let centre: Vec<(&'static str, f64, f64)> = com
+                .iter()
+                .zip(moments)
+                .map(|(name, &(_, h, sh))| match m != 0.0 {
+                    true => (
+                        *name,
+                        h / m,
+                        ((sh / m).powi(2) + (h * sm / (m * m)).powi(2)).sqrt(),
+                    ),
+                    false => (*name, 0.0, f64::INFINITY),
+                })
+                .collect();
+            out.truncate(1);
+            out.extend(centre);
+        }
         match c {
             Candidate::Coulomb(_, vw) => out.push(("vw", vw, vw * 0.5)),
             Candidate::Stribeck(_, vs) => out.push(("vs", vs, vs * 0.5)),

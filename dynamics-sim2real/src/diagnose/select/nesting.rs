@@ -2,7 +2,7 @@
 //! same place (Stribeck friction contains Coulomb friction, a wider
 //! Coulomb friction the sharp one, elasticity and backlash a rigid rotor,
 //! a spring an effort offset, a link's inertial correction a point mass at
-//! the tip), and the margin by which the richer must win. The ranking and
+//! the tip, a payload with its centre of mass one at the tip's origin), and the margin by which the richer must win. The ranking and
 //! the compound explanation both decide parsimony by these rules.
 
 use crate::diagnose::candidates::Candidate;
@@ -20,8 +20,11 @@ pub fn simpler(c: Candidate) -> Option<fn(&Candidate) -> bool> {
         // A spring is an effort offset that grows with the position.
         Candidate::Spring(_) => Some(|s| matches!(s, Candidate::EffortOffset(_))),
         // A point mass at the tip is an inertial change of the tip's link
-        // with one parameter instead of up to ten.
-        Candidate::Inertial(_) => Some(|s| matches!(s, Candidate::Payload)),
+        // with one parameter (four with its centre of mass) instead of up
+        // to ten.
+        Candidate::Inertial(_) => Some(|s| matches!(s, Candidate::Payload | Candidate::PayloadCom)),
+        // A centre of mass off the tip's origin is three more parameters.
+        Candidate::PayloadCom => Some(|s| matches!(s, Candidate::Payload)),
         _ => None,
     }
 }

@@ -47,9 +47,7 @@ impl SensorNoise {
     /// The three levels per joint, checked: one value or `N`, each finite
     /// and not negative.
     #[allow(clippy::type_complexity)]
-    pub(in crate::diagnose) fn per_joint<const N: usize>(
-        &self,
-    ) -> Result<[SVector<f64, N>; 3], DiagnoseError> {
+    pub(crate) fn per_joint<const N: usize>(&self) -> Result<[SVector<f64, N>; 3], DiagnoseError> {
         let one = |name: &'static str, v: &[f64]| -> Result<SVector<f64, N>, DiagnoseError> {
             let bad = |reason: String| DiagnoseError::Noise {
                 sensor: name,

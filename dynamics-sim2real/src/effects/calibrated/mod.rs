@@ -95,7 +95,9 @@ struct Extra<const N: usize> {
 impl<R: Robot<N>, const N: usize> Calibrated<R, N> {
     /// Folds `effects` into `robot`'s nominal model. A friction correction
     /// may take away friction the nominal model has (a URDF's `<dynamics
-    /// damping friction>`), no more ([`Effect::within_nominal_friction`]).
+    /// damping friction>`), no more ([`Effect::within_nominal_friction`]);
+    /// a payload may take away mass the model carries at the tip, no more
+    /// than the tip body's ([`Effect::within_tip_body`]).
     ///
     /// Effects on the sensors (encoder offsets, a delay, effort scales and
     /// offsets) are not part of the model: they are kept apart
@@ -104,6 +106,7 @@ impl<R: Robot<N>, const N: usize> Calibrated<R, N> {
     /// negative `time_delay` here.
     pub fn new(robot: R, effects: Vec<Effect>) -> Result<Self, CalibratedError> {
         let (coulomb, viscous) = super::nominal_friction(&robot, &SVector::zeros());
+        let tip_mass = Tip::body_mass::<R, N>(&robot);
         let (mut model, mut sensors) = (Vec::new(), Vec::new());
         for e in effects {
             let kind = e.kind().name();
@@ -136,6 +139,7 @@ impl<R: Robot<N>, const N: usize> Calibrated<R, N> {
                 Effect::TimeDelay { delay } if delay.is_finite() => {}
                 _ => e
                     .validate_beside_friction(coulomb.as_slice(), viscous.as_slice())
+                    .or_else(|reason| e.within_tip_body(tip_mass).then_some(()).ok_or(reason))
                     .map_err(|reason| CalibratedError::Invalid { kind, reason })?,
             }
             if sensor {
@@ -196,9 +200,10 @@ impl<R: Robot<N>, const N: usize> Calibrated<R, N> {
                     stiffness,
                     preload,
                 } => x.q0[joint] -= stiffness * q[joint] + preload,
-                Effect::PayloadMass { mass } => {
-                    let (_, jac) = self.tip.position_jacobian(&self.robot, q);
-                    let bias = self.tip.bias_acceleration(&self.robot, q, qd);
+                Effect::PayloadMass { mass, com } => {
+                    let c = Vector3::from(com);
+                    let (_, jac) = self.tip.position_jacobian_at(&self.robot, q, &c);
+                    let bias = self.tip.bias_acceleration_at(&self.robot, q, qd, &c);
                     x.a += jac.transpose() * jac * mass;
                     x.q0 += jac.transpose() * (Vector3::from(R::GRAVITY) * mass);
                     x.qqt -= jac.transpose() * (bias * mass);
@@ -280,14 +285,21 @@ impl<R: Robot<N>, const N: usize> Calibrated<R, N> {
         c
     }
 
-    /// A payload's share of the velocity terms (`-m J^T Jd qd`).
+    /// The payloads' share of the velocity terms (`-m J^T Jd qd` each, at
+    /// its centre of mass).
     fn payload_qqt(&self, q: &SVector<f64, N>, qd: &SVector<f64, N>) -> SVector<f64, N> {
-        let mass = self.payload();
-        if mass == 0.0 {
-            return SVector::zeros();
-        }
-        let (_, jac) = self.tip.position_jacobian(&self.robot, q);
-        -(jac.transpose() * (self.tip.bias_acceleration(&self.robot, q, qd) * mass))
+        self.effects
+            .iter()
+            .filter_map(|e| match *e {
+                Effect::PayloadMass { mass, com } if mass != 0.0 => {
+                    let c = Vector3::from(com);
+                    let (_, jac) = self.tip.position_jacobian_at(&self.robot, q, &c);
+                    let bias = self.tip.bias_acceleration_at(&self.robot, q, qd, &c);
+                    Some(-(jac.transpose() * (bias * mass)))
+                }
+                _ => None,
+            })
+            .sum()
     }
 
     /// The link corrections' potential energy, `-g . (dm p + R dmc)` of
@@ -312,13 +324,16 @@ impl<R: Robot<N>, const N: usize> Calibrated<R, N> {
             .sum()
     }
 
-    fn payload(&self) -> f64 {
+    /// Each payload's mass and centre of mass in the tip's frame.
+    fn payloads(&self) -> Vec<(f64, Vector3<f64>)> {
         self.effects
             .iter()
-            .map(|e| match *e {
-                Effect::PayloadMass { mass } => mass,
-                _ => 0.0,
+            .filter_map(|e| match *e {
+                Effect::PayloadMass { mass, com } if mass != 0.0 => {
+                    Some((mass, Vector3::from(com)))
+                }
+                _ => None,
             })
-            .sum()
+            .collect()
     }
 }

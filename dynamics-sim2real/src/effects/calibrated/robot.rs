@@ -43,22 +43,24 @@ impl<R: Robot<N>, const N: usize> Robot<N> for Calibrated<R, N> {
     /// difference of the tip Jacobian along `qd`).
     fn coriolis_matrix(&self, q: &SVector<f64, N>, qd: &SVector<f64, N>) -> SMatrix<f64, N, N> {
         let mut c = self.robot.coriolis_matrix(q, qd);
-        let mass = self.payload();
         let norm = qd.norm();
-        if mass != 0.0 && norm > 0.0 {
+        for (mass, com) in self.payloads().into_iter().filter(|_| norm > 0.0) {
             let h = 1e-5 / norm;
-            let (_, jac) = self.tip.position_jacobian(&self.robot, q);
-            let (_, jp) = self.tip.position_jacobian(&self.robot, &(q + qd * h));
-            let (_, jm) = self.tip.position_jacobian(&self.robot, &(q - qd * h));
+            let (_, jac) = self.tip.position_jacobian_at(&self.robot, q, &com);
+            let (_, jp) = self
+                .tip
+                .position_jacobian_at(&self.robot, &(q + qd * h), &com);
+            let (_, jm) = self
+                .tip
+                .position_jacobian_at(&self.robot, &(q - qd * h), &com);
             c += jac.transpose() * ((jp - jm) / (2.0 * h)) * mass;
         }
         c + self.links_coriolis(q, qd)
     }
     fn gravity(&self, q: &SVector<f64, N>) -> SVector<f64, N> {
         let mut g = self.robot.gravity(q) - self.links_at_rest(q);
-        let mass = self.payload();
-        if mass != 0.0 {
-            let (_, jac) = self.tip.position_jacobian(&self.robot, q);
+        for (mass, com) in self.payloads() {
+            let (_, jac) = self.tip.position_jacobian_at(&self.robot, q, &com);
             g -= jac.transpose() * (Vector3::from(R::GRAVITY) * mass);
         }
         g
@@ -142,10 +144,10 @@ impl<R: Robot<N>, const N: usize> Robot<N> for Calibrated<R, N> {
         self.robot.kinetic_energy(q, qd) + 0.5 * qd.dot(&(a * qd))
     }
     fn potential_energy(&self, q: &SVector<f64, N>) -> f64 {
-        let mass = self.payload();
         let mut v = self.robot.potential_energy(q) + self.links_potential(q);
-        if mass != 0.0 {
-            v -= mass * Vector3::from(R::GRAVITY).dot(&self.tip.position(&self.robot, q));
+        for (mass, com) in self.payloads() {
+            let p = self.tip.position_at(&self.robot, q, &com);
+            v -= mass * Vector3::from(R::GRAVITY).dot(&p);
         }
         v
     }

@@ -28,8 +28,14 @@ dynamics_macros::robot! {
 fn a_payload_folded_in_matches_the_model_with_the_mass_written_in() {
     let mut truth = Arm::default();
     truth.params_mut().set("load", 1.7).expect("param");
-    let folded =
-        Calibrated::new(Arm::default(), vec![Effect::PayloadMass { mass: 1.7 }]).expect("nominal");
+    let folded = Calibrated::new(
+        Arm::default(),
+        vec![Effect::PayloadMass {
+            mass: 1.7,
+            com: [0.0; 3],
+        }],
+    )
+    .expect("nominal");
     assert_eq!(Tip::of::<Arm, 3>().name::<Arm, 3>(), "tool");
     let q = V3::new(0.3, -0.7, 1.1);
     let qd = V3::new(0.8, -1.2, 0.5);

@@ -71,10 +71,15 @@ pub enum Effect {
         /// Change of `[m, m c_x, m c_y, m c_z, I_xx, I_xy, I_yy, I_xz, I_yz, I_zz]`.
         delta: [f64; 10],
     },
-    /// A point mass at the tip.
+    /// A point mass at the tip, relative to the model: negative where the
+    /// robot lacks mass the model carries there (down to the tip body's
+    /// modelled mass, [`Effect::within_tip_body`]).
     PayloadMass {
         /// Mass, kg.
         mass: f64,
+        /// Its position in the tip's frame (centre of mass), m; zero at
+        /// the tip's origin (a point tip has no frame: zero there).
+        com: [f64; 3],
     },
     /// Two-mass joint: the drive effort acts on a motor of inertia
     /// `motor_inertia`, joined to the link by `stiffness` and `damping`.

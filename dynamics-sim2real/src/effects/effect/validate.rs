@@ -41,7 +41,13 @@ impl Effect {
                     None => Ok(()),
                 }
             }
-            Effect::PayloadMass { mass } => check("mass", mass, false),
+            Effect::PayloadMass { mass, com } => {
+                check("mass", mass, false)?;
+                match com.iter().all(|c| c.is_finite()) {
+                    true => Ok(()),
+                    false => Err("payload_mass: com must be finite".into()),
+                }
+            }
             Effect::JointElasticity {
                 stiffness,
                 damping,
@@ -122,6 +128,25 @@ impl Effect {
                 .then_some(())
                 .ok_or(reason)
         })
+    }
+
+    /// Whether this is a payload relative to the model that takes away
+    /// mass the model carries at the tip: a `payload_mass` whose mass is
+    /// negative down to minus `body_mass`, the modelled mass of the body
+    /// that carries the tip ([`crate::effects::Tip::body_mass`]). A robot
+    /// logged without the hand its model has is such a payload.
+    ///
+    /// ```
+    /// use dynamics_sim2real::effects::Effect;
+    /// let hand_absent = Effect::PayloadMass { mass: -0.7, com: [0.0, 0.0, -0.07] };
+    /// assert!(hand_absent.validate().is_err());
+    /// assert!(hand_absent.within_tip_body(1.5));
+    /// assert!(!hand_absent.within_tip_body(0.5));
+    /// ```
+    pub fn within_tip_body(&self, body_mass: f64) -> bool {
+        matches!(*self, Effect::PayloadMass { mass, com }
+            if mass.is_finite() && mass >= -body_mass * (1.0 + 1e-9)
+                && com.iter().all(|c| c.is_finite()))
     }
 
     /// Whether this is a friction correction that takes away no more

@@ -17,8 +17,10 @@ impl<R: Robot<N>, const N: usize> Plant<R, N> {
                 Effect::InertialParameters { link, ref delta } => {
                     e += crate::effects::inertial::energy(&self.robot, link, delta, &x.q, &x.qd)
                 }
-                Effect::PayloadMass { mass } => {
-                    let (p, jac) = self.tip.position_jacobian(&self.robot, &x.q);
+                Effect::PayloadMass { mass, com } => {
+                    let (p, jac) =
+                        self.tip
+                            .position_jacobian_at(&self.robot, &x.q, &Vector3::from(com));
                     let g = Vector3::from(R::GRAVITY);
                     e += 0.5 * mass * (jac * x.qd).norm_squared() - mass * g.dot(&p);
                 }

@@ -75,9 +75,10 @@ impl<R: Robot<N>, const N: usize> Plant<R, N> {
                     stiffness,
                     preload,
                 } => f[joint] -= stiffness * q[joint] + preload,
-                Effect::PayloadMass { mass } => {
-                    let (_, jac) = self.tip.position_jacobian(&self.robot, q);
-                    let bias = self.tip.bias_acceleration(&self.robot, q, qd);
+                Effect::PayloadMass { mass, com } => {
+                    let c = Vector3::from(com);
+                    let (_, jac) = self.tip.position_jacobian_at(&self.robot, q, &c);
+                    let bias = self.tip.bias_acceleration_at(&self.robot, q, qd, &c);
                     let g = Vector3::from(R::GRAVITY);
                     a += jac.transpose() * jac * mass;
                     f += jac.transpose() * ((g - bias) * mass);

@@ -112,9 +112,12 @@ impl<R: Robot<N>, const N: usize> Plant<R, N> {
     /// Attaches `effects` to `robot`, checking joints and parameters.
     /// A friction correction may take away friction the robot's own model
     /// has (a URDF's `<dynamics damping friction>`), no more
-    /// ([`Effect::within_nominal_friction`]).
+    /// ([`Effect::within_nominal_friction`]); a payload may take away mass
+    /// the model carries at the tip, no more than the tip body's
+    /// ([`Effect::within_tip_body`]).
     pub fn new(robot: R, effects: Vec<Effect>) -> Result<Self, PlantError> {
         let (coulomb, viscous) = super::nominal_friction(&robot, &SVector::zeros());
+        let tip_mass = Tip::body_mass::<R, N>(&robot);
         let mut motor = [None; N];
         for (index, e) in effects.iter().enumerate() {
             if let Some(joint) = e.joint() {
@@ -134,6 +137,7 @@ impl<R: Robot<N>, const N: usize> Plant<R, N> {
                 }
             }
             e.validate_beside_friction(coulomb.as_slice(), viscous.as_slice())
+                .or_else(|reason| e.within_tip_body(tip_mass).then_some(()).ok_or(reason))
                 .map_err(|reason| PlantError::BadParameter { index, reason })?;
             if let Effect::InertialParameters { link, delta } = *e {
                 super::inertial::physical(&robot, link, &delta).map_err(|err| match err {

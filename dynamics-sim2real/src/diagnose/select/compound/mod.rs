@@ -293,6 +293,8 @@ pub fn effects<const N: usize>(
             e.validate_beside_friction(friction.0.as_slice(), friction.1.as_slice())
                 .is_ok()
                 || matches!(e, Effect::TimeDelay { delay } if delay.is_finite())
+                // Bounded by the tip body's mass in the fit (`lower_bounds`).
+                || matches!(e, Effect::PayloadMass { mass, .. } if mass.is_finite())
         })
         .collect()
 }

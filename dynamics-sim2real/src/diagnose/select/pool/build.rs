@@ -74,9 +74,10 @@ impl Pool {
         }
         // Link inertial corrections: the combinations the data determine.
         for (l, lc) in links.iter().enumerate() {
-            let Some(basis) = link_basis(l, lc) else {
+            let Some(mut basis) = link_basis(l, lc) else {
                 continue;
             };
+            basis.tip = l + 1 == links.len();
             let new = combined(lc, &basis);
             let at = cols.len();
             let r = new.len();

@@ -49,20 +49,23 @@ pub struct Term {
 impl Term {
     /// Exclusive family: at most one term of a family per place (Coulomb
     /// and Stribeck; armature, elasticity and backlash; effort offset and
-    /// joint spring; the grid variants of one kind).
+    /// joint spring; the grid variants of one kind; a payload at the tip
+    /// and a correction of the link that carries the tip, which is the same
+    /// body: one statement about it, the richer nesting the simpler).
     pub fn family(&self) -> (u8, Option<usize>) {
         let c = self.fit.candidate;
         let f = match c {
             Candidate::Coulomb(..) | Candidate::Stribeck(..) => 0,
             Candidate::Armature(_) | Candidate::Elasticity(_) | Candidate::Backlash(_) => 1,
             Candidate::Viscous(_) => 2,
-            Candidate::Payload => 3,
+            Candidate::Payload | Candidate::PayloadCom => 3,
             Candidate::Environment(_) => 4,
             Candidate::EncoderOffset(_) => 5,
             Candidate::TimeDelay | Candidate::LatePositions | Candidate::LateEffort(_) => 6,
             Candidate::EffortScale(_) => 7,
             // A spring nests the offset (stiffness 0).
             Candidate::EffortOffset(_) | Candidate::Spring(_) => 8,
+            Candidate::Inertial(_) if self.link.as_ref().is_some_and(|b| b.tip) => 3,
             Candidate::Inertial(l) => return (9, Some(l)),
         };
         (f, c.joint())
