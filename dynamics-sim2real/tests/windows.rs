@@ -99,6 +99,37 @@ fn a_payload_picked_up_and_put_down_is_carried_in_between() {
     check(&r, "payload_mass", 2.0, 4.5);
 }
 
+/// A payload whose centre of mass is away from the tip frame's origin
+/// (along the forearm of this arm, whose tip frame is at the elbow):
+/// its window is found on the mass's column and its mass and centre are
+/// fitted together inside it.
+#[test]
+fn a_payload_off_the_tip_frame_keeps_its_centre_inside_its_window() {
+    let load = Effect::PayloadMass {
+        mass: 0.4,
+        com: [0.2, 0.0, 0.0],
+    };
+    let r = diagnosed(load, window(2.0, 4.5), window(1.5, 4.0));
+    check(&r, "payload_mass", 2.0, 4.5);
+    let value = |name: &str| {
+        r.which.effects[0]
+            .parameters
+            .iter()
+            .find(|p| p.name == name)
+            .map(|p| p.value)
+    };
+    let (mass, com_x) = (value("mass"), value("com_x"));
+    eprintln!("mass {mass:?}, com_x {com_x:?}");
+    assert!(
+        mass.is_some_and(|m| (m - 0.4).abs() < 0.04),
+        "mass {mass:?}"
+    );
+    assert!(
+        com_x.is_some_and(|c| (c - 0.2).abs() < 0.02),
+        "com_x {com_x:?}"
+    );
+}
+
 #[test]
 fn an_effect_on_all_the_time_gets_no_window() {
     // (An offset at the last joint is exactly a turned centre of mass of

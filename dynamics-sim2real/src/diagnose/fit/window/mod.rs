@@ -1,13 +1,16 @@
 //! Effects that start and stop: an encoder that slips at t0 and keeps the
 //! offset, a tool inside a medium for a while, a payload picked up at t1
-//! and put down at t2. Such an effect is its ordinary column times the
+//! and put down at t2. Such an effect is its ordinary columns times the
 //! indicator of a window `[a, b)`.
 //!
 //! The window is found from the gap's time structure: a change-point
 //! search over every pair of fit rows (`search`: the one-column fit of the
-//! column on `[a, b)` from prefix sums, so all pairs cost little), then
-//! refined at the full sample rate (`refine`: each edge where the residual
-//! crosses the fitted step, within a row spacing). The windowed fit is
+//! candidate's first column, a payload's mass, on `[a, b)` from prefix
+//! sums, so all pairs cost little), then refined at the full sample rate
+//! (`refine`: each edge where the residual crosses the fitted step, within
+//! a row spacing); every column of the candidate is then refitted on the
+//! window's rows (a payload's first moments go in and out with its
+//! mass). The windowed fit is
 //! judged by the same information criterion as the ordinary one with the
 //! window's two bounds counted as parameters, and must beat it by
 //! [`Options::nesting_margin`]; besides, the effect outside the window
@@ -21,11 +24,11 @@ mod search;
 
 use search::{refine, search};
 
-use nalgebra::SVector;
+use nalgebra::{DMatrix, DVector, SVector};
 
 use super::one::Fit;
 use crate::diagnose::candidates::{linear_columns, whitened, Candidate, Prepared};
-use crate::diagnose::numeric::aicc;
+use crate::diagnose::numeric::{aicc, constrained_least_squares};
 use crate::diagnose::Options;
 use crate::effects::Window;
 use search::outside_absent;
@@ -34,12 +37,39 @@ use search::outside_absent;
 pub type Windows = Vec<(Candidate, Window)>;
 
 /// Whether a candidate may be limited in time: the effects that start and
-/// stop in practice (an encoder slip, a medium, a payload).
+/// stop in practice (an encoder slip, a medium, a payload with or without
+/// its centre of mass).
 pub fn windowable(c: Candidate) -> bool {
     matches!(
         c,
-        Candidate::EncoderOffset(_) | Candidate::Payload | Candidate::Environment(_)
+        Candidate::EncoderOffset(_)
+            | Candidate::Payload
+            | Candidate::PayloadCom
+            | Candidate::Environment(_)
     )
+}
+
+/// The sign the first parameter of windowed candidate `c` keeps in the
+/// window search (`Some(1.0)`: >= 0). A payload picked up adds mass: a
+/// window of negative mass (part of the robot absent for a while) is not
+/// a thing that happens, although a payload on all the time may be
+/// negative relative to the model (`columns::lower_bounds`). Others keep
+/// their parameter's own constraint.
+fn window_sign(c: Candidate) -> Option<f64> {
+    match c {
+        Candidate::Payload | Candidate::PayloadCom => Some(1.0),
+        _ => c
+            .linear_parameters()
+            .first()
+            .and_then(|q| q.1.then_some(1.0)),
+    }
+}
+
+/// The whitened column of a candidate's first parameter on the rows of
+/// `p`: the column the window is searched on (a payload's mass; its first
+/// moments follow the mass in and out of the window).
+fn main_column<const N: usize>(c: Candidate, p: &Prepared<N>) -> Vec<f64> {
+    whitened(p, |k| c.columns(&p.sig, &p.basis, k)[0])
 }
 
 /// The rows of `p` inside `w`, as a 0/1 mask over the whitened values.
@@ -50,8 +80,11 @@ pub fn inside<const N: usize>(p: &Prepared<N>, w: &Window) -> Vec<f64> {
         .collect()
 }
 
-/// The windowed fit of a one-column candidate on `p`, if it beats the
-/// ordinary fit `f` (see the module's rule); the window in seconds.
+/// The windowed fit of a linear candidate on `p`, if it beats the
+/// ordinary fit `f` (see the module's rule); the window in seconds. The
+/// window is searched on the candidate's first column; every column of
+/// the candidate is then refitted on the window's rows (a payload's mass
+/// and first moments together).
 pub fn fit_windowed<const N: usize>(
     f: &Fit,
     p: &Prepared<N>,
@@ -59,44 +92,44 @@ pub fn fit_windowed<const N: usize>(
 ) -> Option<(Fit, Window)> {
     let c = f.candidate;
     let params = c.linear_parameters();
-    if !windowable(c) || params.len() != 1 || !f.sse.is_finite() {
+    if !windowable(c) || params.is_empty() || !f.sse.is_finite() {
         return None;
     }
-    let x = linear_columns(c, p).pop()?;
+    let x = main_column(c, p);
     let y = whitened(p, |k| p.sig.residual[k]);
-    let sign = params[0].1.then_some(1.0);
+    let sign = window_sign(c);
     let found = search::<N>(&x, &y, sign)?;
     if !outside_absent(&found, margin) {
         return None;
     }
     let w = refine(c, p, &found);
-    // Refit on the refined window's rows.
+    // Refit every column on the refined window's rows.
     let m = inside(p, &w);
-    let (mut s, mut cc) = (0.0, 0.0);
-    for i in 0..x.len() {
-        s += m[i] * x[i] * y[i];
-        cc += m[i] * x[i] * x[i];
-    }
-    if cc <= 0.0 {
-        return None;
-    }
-    let theta = s / cc;
-    if sign.is_some_and(|g| theta * g < 0.0) {
-        return None;
-    }
-    let yy: f64 = y.iter().map(|v| v * v).sum();
-    let sse = (yy - s * s / cc).max(0.0);
+    let cols = if params.len() == 1 {
+        vec![x]
+    } else {
+        linear_columns(c, p)
+    };
     let n = p.n();
-    let k = f.k + 2;
-    if aicc(sse, n, k) > aicc(f.sse, n, f.k) - margin {
+    let xm = DMatrix::from_fn(n, cols.len(), |r, i| m[r] * cols[i][r]);
+    if xm.column(0).norm_squared() <= 0.0 {
         return None;
     }
-    let dof = (n as f64 - k as f64).max(1.0);
+    let nonneg: Vec<bool> = params.iter().map(|q| q.1).collect();
+    let g = constrained_least_squares(&xm, &DVector::from_vec(y), &nonneg);
+    let theta = g.theta.first().copied().unwrap_or(0.0);
+    if theta == 0.0 || sign.is_some_and(|s| theta * s < 0.0) {
+        return None;
+    }
+    let k = f.k + 2;
+    if aicc(g.sse, n, k) > aicc(f.sse, n, f.k) - margin {
+        return None;
+    }
     Some((
         Fit {
-            theta: vec![theta],
-            std: vec![(sse / dof / cc).sqrt()],
-            sse,
+            theta: g.theta,
+            std: g.std,
+            sse: g.sse,
             k,
             ..f.clone()
         },
@@ -134,7 +167,10 @@ pub fn window_of(windows: &Windows, c: Candidate) -> Option<Window> {
 /// `theta`): the same search on the held-out rows, the sign of the
 /// training fit kept.
 pub fn holdout_window<const N: usize>(c: Candidate, h: &Prepared<N>, theta: f64) -> Option<Window> {
-    let x = linear_columns(c, h).pop()?;
+    if c.linear_parameters().is_empty() {
+        return None;
+    }
+    let x = main_column(c, h);
     let y = whitened(h, |k| h.sig.residual[k]);
     let sign = if theta >= 0.0 { 1.0 } else { -1.0 };
     let found = search::<N>(&x, &y, Some(sign))?;
@@ -163,13 +199,15 @@ pub fn corrected_in<const N: usize>(
     p: &Prepared<N>,
     w: Option<Window>,
 ) -> Vec<SVector<f64, N>> {
-    let theta = f.theta.first().copied().unwrap_or(0.0);
     let mut r = p.sig.residual.clone();
     let Some(w) = w else { return r };
     let (a, z) = p.sig.range;
     for (k, rk) in r.iter_mut().enumerate().take(z).skip(a) {
         if w.contains(p.sig.t[k]) {
-            *rk -= f.candidate.columns(&p.sig, &p.basis, k)[0] * theta;
+            let cols = f.candidate.columns(&p.sig, &p.basis, k);
+            for (col, th) in cols.iter().zip(&f.theta) {
+                *rk -= col * *th;
+            }
         }
     }
     r
