@@ -29,7 +29,7 @@ pub use late::warn_delays;
 pub use ranked::ranked_entry;
 pub use reversal::mark_reversals;
 pub use verdict::verdict;
-pub use words::{add_encoder_words, add_payload_words, add_spring_words};
+pub use words::{add_encoder_words, add_payload_words, add_placement_words, add_spring_words};
 
 use crate::diagnose::candidates::Records;
 use crate::diagnose::evaluate::Evaluation;
@@ -120,6 +120,7 @@ pub fn report<R: Robot<N>, const N: usize>(
     add_spring_words(&mut effects, &R::JOINT_NAMES, &records.excitation.range);
     add_encoder_words(&mut effects, &R::JOINT_NAMES, &R::JOINT_KINDS);
     add_payload_words(&mut effects);
+    add_placement_words(&mut effects, &R::LINK_NAMES);
     annotate(&mut effects, pool, e, &selection.windows);
     let mut warnings = records.warnings.clone();
     warnings.extend(evaluation.training_warnings.iter().cloned());

@@ -232,6 +232,64 @@ pub fn add_payload_words(entries: &mut [Explained]) {
     }
 }
 
+/// Link corrections on adjacent links (`links`: `Robot::LINK_NAMES`,
+/// depth-first from the root, so that on a serial chain a link's next is
+/// its child) whose masses change with opposite
+/// signs: one change, said once. Where the joint between two links moves
+/// little, the data see the two bodies nearly as one, and mass taken from
+/// one and added to the other is how a least-squares fit places mass it
+/// cannot place; the words give the mass moved (the smaller of the two
+/// changes), which way along the chain, and the net change of the pair,
+/// on the distal link's entry; the proximal one's words point to it.
+pub fn add_placement_words(entries: &mut [Explained], links: &[&str]) {
+    let mass = |e: &Explained| {
+        e.parameters
+            .iter()
+            .find(|p| p.name == "d_m" && p.note.is_none())
+            .map(|p| p.value)
+            .filter(|m| m.is_finite() && *m != 0.0)
+    };
+    let at = |e: &Explained| {
+        (e.kind == EffectKind::InertialParameters)
+            .then(|| e.point.as_deref())
+            .flatten()
+            .and_then(|name| links.iter().position(|l| *l == name))
+    };
+    let placed: Vec<(usize, usize, f64)> = entries
+        .iter()
+        .enumerate()
+        .filter_map(|(i, e)| Some((i, at(e)?, mass(e)?)))
+        .collect();
+    for &(i, l, m) in &placed {
+        let Some(&(j, _, md)) = placed
+            .iter()
+            .find(|&&(_, k, md)| k == l + 1 && md * m < 0.0)
+        else {
+            continue;
+        };
+        let (near, far) = (links[l], links[l + 1]);
+        let moved = m.abs().min(md.abs());
+        let way = if md > 0.0 {
+            format!("that the model has at {near} is at {far} or further out (the wrist or tool)")
+        } else {
+            format!("that the model has at {far} or further out is at {near}")
+        };
+        let words = format!(
+            "one change of {near} and {far}, which these data cannot divide between the two \
+             links: about {moved:.2} kg {way}; net {:+.2} kg over both ({near} {m:+.2} kg, \
+             {far} {md:+.2} kg)",
+            m + md
+        );
+        let with = |d: &Option<String>, w: &str| match d {
+            Some(d) => format!("{w}. {d}"),
+            None => w.to_string(),
+        };
+        entries[j].description = Some(with(&entries[j].description, &words));
+        let pointer = format!("part of one change with {far}: see there");
+        entries[i].description = Some(with(&entries[i].description, &pointer));
+    }
+}
+
 /// A link correction in words: mass, first moments and inertia about the
 /// link frame's origin, as changed.
 pub fn link_words(link: &str, d: &SVector<f64, 10>) -> String {
@@ -270,6 +328,37 @@ mod tests {
             carried.starts_with("about 1.25 kg at tool0 that the model does not carry"),
             "{carried}"
         );
+    }
+
+    /// +3.0 kg at the wrist and -2.6 kg at the forearm before it: one
+    /// statement, 2.6 kg moved out to the wrist, net +0.4 kg (by hand);
+    /// a link correction on a link that is not adjacent gets no words.
+    #[test]
+    fn opposite_masses_on_adjacent_links_are_one_statement() {
+        let link = |name: &str, m: f64| Explained {
+            kind: EffectKind::InertialParameters,
+            joint: None,
+            point: Some(name.to_string()),
+            ..entry(EffectKind::InertialParameters, "-", "d_m", m)
+        };
+        let mut entries = vec![link("wrist", 3.0), link("forearm", -2.6), link("base", 1.0)];
+        add_placement_words(&mut entries, &["base", "upper", "forearm", "wrist"]);
+        let words = entries[0].description.as_deref().unwrap_or("");
+        assert!(
+            words.starts_with("one change of forearm and wrist"),
+            "{words}"
+        );
+        assert!(
+            words.contains("about 2.60 kg that the model has at forearm is at wrist"),
+            "{words}"
+        );
+        assert!(words.contains("net +0.40 kg"), "{words}");
+        let pointer = entries[1].description.as_deref().unwrap_or("");
+        assert!(
+            pointer.starts_with("part of one change with wrist"),
+            "{pointer}"
+        );
+        assert!(entries[2].description.is_none());
     }
 
     /// A Coulomb correction of +0.2 on a nominal level of 0.1 with an
