@@ -25,5 +25,6 @@ mod oracle;
 mod payload;
 mod properties;
 mod regressor;
+mod round_trip;
 mod simulate;
 mod urdf;
