@@ -120,7 +120,7 @@ pub fn report<R: Robot<N>, const N: usize>(
     add_spring_words(&mut effects, &R::JOINT_NAMES, &records.excitation.range);
     add_encoder_words(&mut effects, &R::JOINT_NAMES, &R::JOINT_KINDS);
     add_payload_words(&mut effects);
-    add_placement_words(&mut effects, &R::LINK_NAMES);
+    add_placement_words(&mut effects, R::LINK_NAMES);
     annotate(&mut effects, pool, e, &selection.windows);
     let mut warnings = records.warnings.clone();
     warnings.extend(evaluation.training_warnings.iter().cloned());

@@ -251,7 +251,7 @@ pub fn add_placement_words(entries: &mut [Explained], links: &[&str]) {
     };
     let at = |e: &Explained| {
         (e.kind == EffectKind::InertialParameters)
-            .then(|| e.point.as_deref())
+            .then_some(e.point.as_deref())
             .flatten()
             .and_then(|name| links.iter().position(|l| *l == name))
     };
@@ -270,7 +270,7 @@ pub fn add_placement_words(entries: &mut [Explained], links: &[&str]) {
         let (near, far) = (links[l], links[l + 1]);
         let moved = m.abs().min(md.abs());
         let way = if md > 0.0 {
-            format!("that the model has at {near} is at {far} or further out (the wrist or tool)")
+            format!("that the model has at {near} is at {far} or further out, toward the tool")
         } else {
             format!("that the model has at {far} or further out is at {near}")
         };
