@@ -24,5 +24,6 @@ mod mujoco;
 mod oracle;
 mod properties;
 mod regressor;
+mod separate;
 mod simulate;
 mod urdf;
