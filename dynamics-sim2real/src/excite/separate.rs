@@ -316,3 +316,85 @@ fn orthonormal(m: &DMatrix<f64>) -> Option<DMatrix<f64>> {
         Some(DMatrix::from_columns(&basis))
     }
 }
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::excite::Limits;
+
+    dynamics_macros::robot! {
+        pub robot Flat;
+        gravity = [0.0, 0.0, -9.81];
+        link base;
+        link rod { mass = 1.0; com = [0.5, 0.0, 0.0]; inertia = [1e-3, 0.1, 0.1]; }
+        joint j = revolute(base -> rod) { transfer = [rot_z(q)]; }
+    }
+
+    dynamics_macros::robot! {
+        pub robot Hanging;
+        gravity = [0.0, -9.81, 0.0];
+        link base;
+        link rod { mass = 1.0; com = [0.5, 0.0, 0.0]; inertia = [1e-3, 0.1, 0.1]; }
+        joint j = revolute(base -> rod) { transfer = [rot_z(q)]; }
+    }
+
+    /// One harmonic `q = a sin(w t)` over a whole period, equally spaced.
+    fn sine(n: usize) -> Vec<Reference<1>> {
+        let (a, w) = (0.5, std::f64::consts::TAU / 4.0);
+        (0..n)
+            .map(|k| {
+                let t = 4.0 * k as f64 / n as f64;
+                Reference {
+                    q: [a * (w * t).sin()].into(),
+                    qd: [a * w * (w * t).cos()].into(),
+                    qdd: [-a * w * w * (w * t).sin()].into(),
+                }
+            })
+            .collect()
+    }
+
+    #[test]
+    fn a_spring_on_one_harmonic_without_gravity_is_a_rotor() {
+        // Hand derivation: a joint turning about the vertical feels no
+        // gravity, its effort is I qdd, a sine; the second difference of a
+        // sampled sine is the sine times 2 (cos(w h) - 1), so the spring's
+        // signature lies in the rotor column (projected out): nothing tells
+        // elasticity from any other column there (but at the two ends,
+        // which repeat their neighbour's difference: one row in 200 off).
+        // With gravity the effort holds cos q terms whose second
+        // difference is not a multiple of qdd: the angle opens.
+        let limits = Limits::new([-1.0], [1.0], [3.0], [50.0]);
+        let pair = [(Rival::Elasticity(0), Rival::Offset(0))];
+        let flat = Flat::default();
+        let cols = BaseColumns::of(&flat, &limits, 1).unwrap();
+        let a = separation_angles(&flat, &cols, &pair, &sine(400)).unwrap();
+        assert!(a[0] < 0.01, "{}", a[0]);
+        let hanging = Hanging::default();
+        let cols = BaseColumns::of(&hanging, &limits, 1).unwrap();
+        let b = separation_angles(&hanging, &cols, &pair, &sine(400)).unwrap();
+        assert!(b[0] > 10.0 * a[0] && b[0] > 0.01, "{} vs {}", b[0], a[0]);
+    }
+
+    #[test]
+    fn a_delay_is_the_efforts_time_derivative() {
+        // The delay's column at an inner state is tau(i+1) - tau(i-1),
+        // weighted: compared with the efforts computed here independently.
+        let hanging = Hanging::default();
+        let limits = Limits::new([-1.0], [1.0], [3.0], [50.0]);
+        let cols = BaseColumns::of(&hanging, &limits, 1).unwrap();
+        let states = sine(40);
+        let x = cols.stack(&hanging, &states).unwrap();
+        let tau: Vec<_> = states
+            .iter()
+            .map(|s| hanging.inverse_dynamics(&s.q, &s.qd, &s.qdd))
+            .collect();
+        let c = rival_columns(Rival::Delay, &cols, &states, &x, &tau);
+        for i in 1..39 {
+            let want = (tau[i + 1][0] - tau[i - 1][0]) * cols.weights[0];
+            assert!((c[0][i] - want).abs() < 1e-12);
+        }
+        // The ends repeat their neighbour's difference.
+        assert_eq!(c[0][0], c[0][1]);
+        assert_eq!(c[0][39], c[0][38]);
+    }
+}
