@@ -201,6 +201,51 @@ pub fn ambiguous_pairs(
     out
 }
 
+/// The rival pairs of a diagnosis report that `excite --separate`
+/// separates (see [`ambiguous_pairs`]), with a label each (`kind place vs
+/// kind place`); the error names a pair it cannot separate and why.
+///
+/// ```
+/// use dynamics_cli::excite::rivals;
+/// use dynamics_sim2real::excite::Rival;
+/// dynamics_macros::robot! {
+///     pub robot Pendulum;
+///     gravity = [0.0, -9.81, 0.0];
+///     link base;
+///     link rod { mass = 1.0; com = [0.5, 0.0, 0.0]; inertia = [1e-3, 0.1, 0.1]; }
+///     joint j = revolute(base -> rod) { transfer = [rot_z(q)]; }
+/// }
+/// let report: serde_json::Value = serde_json::from_str(r#"{"which": {"verdict":
+///   {"kind": "time_delay", "status": "ambiguous",
+///    "rival": {"kind": "armature", "joint": "j"}}, "effects": []}}"#).unwrap();
+/// let (pairs, labels) = rivals::<Pendulum, 1>(&report).unwrap();
+/// assert_eq!(pairs, vec![(Rival::Delay, Rival::Armature(0))]);
+/// assert_eq!(labels[0], "time_delay  vs armature j");
+/// ```
+#[allow(clippy::type_complexity)]
+pub fn rivals<R: Robot<N>, const N: usize>(
+    report: &serde_json::Value,
+) -> Result<(Vec<(excite::Rival, excite::Rival)>, Vec<String>), String> {
+    let named = ambiguous_pairs(report);
+    if named.is_empty() {
+        return Err("the report names no ambiguous pair".into());
+    }
+    let mut pairs = Vec::new();
+    let mut labels = Vec::new();
+    for ((ka, pa), (kb, pb)) in &named {
+        let rival = |k: &str, p: &Option<String>| {
+            excite::Rival::named(k, p.as_deref(), &R::JOINT_NAMES, R::LINK_NAMES)
+        };
+        pairs.push((rival(ka, pa)?, rival(kb, pb)?));
+        labels.push(format!(
+            "{ka} {} vs {kb} {}",
+            pa.clone().unwrap_or_default(),
+            pb.clone().unwrap_or_default()
+        ));
+    }
+    Ok((pairs, labels))
+}
+
 /// One value per joint from a list of one or `N` values.
 fn per_joint<const N: usize>(v: &[f64], what: &str) -> Result<SVector<f64, N>, String> {
     match v.len() {
@@ -343,24 +388,7 @@ pub fn excite_cmd<R: Robot<N> + Sync, const N: usize>(
             let text = std::fs::read_to_string(path).map_err(|e| format!("{file}: {e}"))?;
             let json: serde_json::Value =
                 serde_json::from_str(&text).map_err(|e| format!("{file}: {e}"))?;
-            let named = ambiguous_pairs(&json);
-            if named.is_empty() {
-                return Err(format!("{file}: the report names no ambiguous pair").into());
-            }
-            let mut pairs = Vec::new();
-            let mut labels = Vec::new();
-            for ((ka, pa), (kb, pb)) in &named {
-                let rival = |k: &str, p: &Option<String>| {
-                    excite::Rival::named(k, p.as_deref(), &R::JOINT_NAMES, R::LINK_NAMES)
-                        .map_err(|e| format!("{file}: {e}"))
-                };
-                pairs.push((rival(ka, pa)?, rival(kb, pb)?));
-                labels.push(format!(
-                    "{ka} {} vs {kb} {}",
-                    pa.clone().unwrap_or_default(),
-                    pb.clone().unwrap_or_default()
-                ));
-            }
+            let (pairs, labels) = rivals::<R, N>(&json).map_err(|e| format!("{file}: {e}"))?;
             let (d, angles) = excite::design_separating(robot, &lim, &o, &pairs)?;
             let rate = 200.0 / d.motion.period;
             let before = excite::separation_angles(

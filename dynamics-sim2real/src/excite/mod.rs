@@ -13,7 +13,7 @@
 //! | `constraints.rs` | [`check`]: positions, velocities, accelerations and efforts (inverse dynamics) against the limits; [`room`] |
 //! | `search.rs` | the optimiser (an evolution strategy with a fixed seed; why in its docs) |
 //! | `identifiability.rs` | [`identifiability`]: predicted standard deviation per base parameter at a stated effort noise; what stays unidentifiable |
-//! | `separate.rs` | [`Rival`], [`separation_angles`]: the smallest principal angle between two rival effects' columns, the others projected out |
+//! | `separate.rs` | [`Rival`], [`separation_angles`]: the smallest principal angle between two rival effects' columns (or first-order signatures: delay, elasticity, backlash), the others projected out |
 //! | `design.rs` | [`design`], [`design_separating`], [`Options`], [`Design`]: the whole design |
 //! | `check_data.rs` | [`check_data`]: what a recorded motion can and cannot identify, in words |
 //! | `report.rs` | [`DesignReport`]: the design as JSON |
@@ -43,4 +43,4 @@ pub use error::ExciteError;
 pub use identifiability::{identifiability, Identifiability, Parameter};
 pub use limits::Limits;
 pub use report::DesignReport;
-pub use separate::{separation_angles, Rival, STRIBECK_VS};
+pub use separate::{separation_angles, Rival, BACKLASH_ZONE, STRIBECK_VS};

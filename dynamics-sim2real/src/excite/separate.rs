@@ -5,15 +5,35 @@
 //! other's; 90 degrees: they cannot be mistaken. The design maximises the
 //! smallest such angle over the pairs.
 //!
-//! The effects handled are those whose columns the motion alone gives:
-//! Coulomb, Stribeck and viscous friction, an effort offset, rotor inertia
-//! and a link's inertial parameters. A payload at the tip is a change of
-//! the distal link's inertial parameters (its column lies in their span:
-//! no motion separates them), and elasticity, backlash, delays and motor
-//! sides are fitted by simulation, not by columns: those pairs are refused
-//! with that reason.
+//! Linear effects have their regressor columns: Coulomb, Stribeck and
+//! viscous friction, an effort offset, rotor inertia and a link's inertial
+//! parameters. The effects the diagnosis fits by simulation have a
+//! first-order signature on the efforts along the motion instead, used as
+//! their column (the same criterion then applies):
+//!
+//! - a time delay `d` of positions and velocities against the effort: the
+//!   model evaluated `d` late misses `d dtau/dt`, so its column is the time
+//!   derivative of the nominal efforts (every joint);
+//! - joint elasticity at joint j (motor and link joined by a spring of
+//!   stiffness k): the motor leads the link by `tau_j / k`, so beyond a
+//!   rigid rotor (`qdd_j`, projected out with the others) the motor effort
+//!   carries `J_m / k d^2 tau_j / dt^2`: the second derivative of the
+//!   joint's nominal effort;
+//! - backlash at joint j (a gap of half-width delta): the motor leads the
+//!   link by `delta sign(tau_j)`, so beyond the rigid rotor the effort
+//!   carries `J_m delta d^2 sign(tau_j) / dt^2`, the sign smoothed over 5 %
+//!   of the joint's typical effort.
+//!
+//! Derivatives along the motion are differences between neighbouring
+//! states: the states must be equally spaced in time (their spacing does
+//! not matter: an angle does not depend on a column's scale).
+//!
+//! A payload at the tip is refused: it is a change of the distal link's
+//! inertial parameters (its column lies in their span: no motion separates
+//! them); the diagnosis can prefer it only by parsimony (one parameter
+//! against ten), which is not a question of the motion.
 
-use nalgebra::{DMatrix, SMatrix, SVector};
+use nalgebra::{DMatrix, SVector};
 
 use super::{BaseColumns, ExciteError};
 use crate::identify::Column;
@@ -23,7 +43,12 @@ use dynamics_runtime::Robot;
 /// The velocity scale of the Stribeck column, rad/s or m/s.
 pub const STRIBECK_VS: f64 = 0.1;
 
-/// An effect whose regressor columns follow from the motion alone.
+/// The effort scale of the smoothed sign in the backlash signature, as a
+/// fraction of the joint's typical effort (the inverse of its row weight).
+pub const BACKLASH_ZONE: f64 = 0.05;
+
+/// An effect whose columns (or first-order signature) follow from the
+/// motion alone.
 ///
 /// ```
 /// use dynamics_sim2real::excite::Rival;
@@ -31,7 +56,9 @@ pub const STRIBECK_VS: f64 = 0.1;
 /// let links = ["l1", "l2"];
 /// assert_eq!(Rival::named("coulomb_friction", Some("j2"), &names, &links), Ok(Rival::Coulomb(1)));
 /// assert_eq!(Rival::named("inertial_parameters", Some("l1"), &names, &links), Ok(Rival::Link(0)));
-/// assert!(Rival::named("backlash", Some("j1"), &names, &links).is_err());
+/// assert_eq!(Rival::named("backlash", Some("j1"), &names, &links), Ok(Rival::Backlash(0)));
+/// assert_eq!(Rival::named("time_delay", None, &names, &links), Ok(Rival::Delay));
+/// assert!(Rival::named("payload_mass", Some("l2"), &names, &links).is_err());
 /// ```
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
 pub enum Rival {
@@ -51,6 +78,16 @@ pub enum Rival {
     Armature(usize),
     /// The inertial parameters of link l (its base columns).
     Link(usize),
+    /// Positions and velocities recorded late against the effort: the time
+    /// derivative of the nominal efforts.
+    Delay,
+    /// Joint elasticity at joint j beyond its rigid rotor: the second time
+    /// derivative of the joint's nominal effort.
+    Elasticity(usize),
+    /// Backlash at joint j beyond its rigid rotor: the second time
+    /// derivative of the smoothed sign of the joint's nominal effort
+    /// (see [`BACKLASH_ZONE`]).
+    Backlash(usize),
 }
 
 impl Rival {
@@ -79,12 +116,15 @@ impl Rival {
                     .and_then(|p| links.iter().position(|l| *l == p))
                     .ok_or_else(|| format!("{kind}: no link of the robot named {place:?}"))?,
             ),
+            "time_delay" => Rival::Delay,
+            "joint_elasticity" => Rival::Elasticity(joint()?),
+            "backlash" => Rival::Backlash(joint()?),
             "payload_mass" => {
-                return Err("payload_mass: a payload at the tip is a change of the distal link's inertial parameters; no motion separates the two".into())
+                return Err("payload_mass: a payload at the tip is a change of the distal link's inertial parameters (its columns lie in theirs); no motion separates the two, only a preference for the simpler explanation".into())
             }
             other => {
                 return Err(format!(
-                    "{other}: fitted by simulation, not by regressor columns; `excite --separate` separates friction, offsets, rotor inertia and link inertia"
+                    "{other}: no columns or signature here; `excite --separate` separates friction, offsets, rotor and link inertia, a time delay, elasticity and backlash"
                 ))
             }
         })
@@ -104,36 +144,70 @@ impl Rival {
     }
 }
 
-/// The weighted columns of `rival` at state `s` (one `SVector` a column),
-/// with `kept` the base columns' values there.
+/// The weighted columns of `rival` over the motion `states` (one
+/// `Vec` of `states.len() * N` rows a column), with `x` the weighted base
+/// columns stacked over the states and `tau` the nominal efforts there.
 fn rival_columns<const N: usize>(
     rival: Rival,
     columns: &BaseColumns<N>,
-    s: &Reference<N>,
-    kept: &[SVector<f64, N>],
-) -> Vec<SVector<f64, N>> {
+    states: &[Reference<N>],
+    x: &DMatrix<f64>,
+    tau: &[SVector<f64, N>],
+) -> Vec<Vec<f64>> {
     let w = &columns.weights;
-    let unit = |j: usize, v: f64| {
-        let mut c = SVector::zeros();
-        c[j] = v * w[j];
-        c
+    let n = states.len();
+    let rows = n * N;
+    // A column acting on joint j only, of value f(i) at state i.
+    let at_joint = |j: usize, f: &dyn Fn(usize) -> f64| {
+        let mut c = vec![0.0; rows];
+        for i in 0..n {
+            c[i * N + j] = f(i) * w[j];
+        }
+        vec![c]
+    };
+    // Neighbours of state i for differences (the ends repeat their
+    // neighbour's difference).
+    let mid = |i: usize| i.clamp(1, n.saturating_sub(2).max(1));
+    let second = |v: &dyn Fn(usize) -> f64, i: usize| {
+        if n < 3 {
+            return 0.0;
+        }
+        let m = mid(i);
+        v(m + 1) - 2.0 * v(m) + v(m - 1)
     };
     match rival {
-        Rival::Coulomb(j) => vec![unit(j, (s.qd[j] / columns.sign_zone).tanh())],
-        Rival::Stribeck(j) => vec![unit(
-            j,
-            (s.qd[j] / columns.sign_zone).tanh() * (-(s.qd[j] / STRIBECK_VS).powi(2)).exp(),
-        )],
-        Rival::Viscous(j) => vec![unit(j, s.qd[j])],
-        Rival::Offset(j) => vec![unit(j, 1.0)],
-        Rival::Armature(j) => vec![unit(j, s.qdd[j])],
+        Rival::Coulomb(j) => at_joint(j, &|i| (states[i].qd[j] / columns.sign_zone).tanh()),
+        Rival::Stribeck(j) => at_joint(j, &|i| {
+            let v = states[i].qd[j];
+            (v / columns.sign_zone).tanh() * (-(v / STRIBECK_VS).powi(2)).exp()
+        }),
+        Rival::Viscous(j) => at_joint(j, &|i| states[i].qd[j]),
+        Rival::Offset(j) => at_joint(j, &|_| 1.0),
+        Rival::Armature(j) => at_joint(j, &|i| states[i].qdd[j]),
         Rival::Link(l) => columns
             .kept
             .iter()
-            .zip(kept)
-            .filter(|(&k, _)| matches!(columns.all[k], Column::Link(m, _) if m == l))
-            .map(|(_, v)| *v)
+            .enumerate()
+            .filter(|(_, &k)| matches!(columns.all[k], Column::Link(m, _) if m == l))
+            .map(|(c, _)| x.column(c).iter().copied().collect())
             .collect(),
+        Rival::Delay => {
+            let mut c = vec![0.0; rows];
+            if n >= 3 {
+                for i in 0..n {
+                    let m = mid(i);
+                    for j in 0..N {
+                        c[i * N + j] = (tau[m + 1][j] - tau[m - 1][j]) * w[j];
+                    }
+                }
+            }
+            vec![c]
+        }
+        Rival::Elasticity(j) => at_joint(j, &|i| second(&|k| tau[k][j], i)),
+        Rival::Backlash(j) => {
+            let zone = BACKLASH_ZONE / w[j].max(f64::MIN_POSITIVE);
+            at_joint(j, &|i| second(&|k| (tau[k][j] / zone).tanh(), i))
+        }
     }
 }
 
@@ -159,6 +233,10 @@ fn rival_columns<const N: usize>(
 /// let pairs = [(Rival::Coulomb(0), Rival::Offset(0))];
 /// let a = separation_angles(&p, &cols, &pairs, &states).unwrap();
 /// assert!(a[0] > 0.1); // a swinging joint tells a friction level from an offset
+/// // Elasticity and backlash: a spring's lead follows the effort, a gap's
+/// // its sign; a swing that keeps the effort of one sign hardly shows a gap.
+/// let b = separation_angles(&p, &cols, &[(Rival::Elasticity(0), Rival::Backlash(0))], &states).unwrap();
+/// assert!(b[0] > 0.0);
 /// ```
 pub fn separation_angles<R: Robot<N>, const N: usize>(
     robot: &R,
@@ -167,10 +245,12 @@ pub fn separation_angles<R: Robot<N>, const N: usize>(
     states: &[Reference<N>],
 ) -> Result<Vec<f64>, ExciteError> {
     let k = columns.kept.len();
-    let links = R::LINK_NAMES.len();
-    let mut y = vec![SMatrix::<f64, N, 10>::zeros(); links];
-    // Per state, the weighted base columns (one SVector each).
+    // The weighted base columns, stacked state by state.
     let x = columns.stack(robot, states)?;
+    let tau: Vec<SVector<f64, N>> = states
+        .iter()
+        .map(|s| robot.inverse_dynamics(&s.q, &s.qd, &s.qdd))
+        .collect();
     let mut out = Vec::new();
     for &(a, b) in pairs {
         let others: Vec<usize> = (0..k)
@@ -179,30 +259,8 @@ pub fn separation_angles<R: Robot<N>, const N: usize>(
             })
             .collect();
         let rows = states.len() * N;
-        let mut xa: Vec<Vec<f64>> = Vec::new();
-        let mut xb: Vec<Vec<f64>> = Vec::new();
-        for (si, s) in states.iter().enumerate() {
-            robot
-                .inertial_regressor(&s.q, &s.qd, &s.qdd, &mut y)
-                .map_err(|e| ExciteError::Regressor {
-                    robot: R::NAME,
-                    cause: e.to_string(),
-                })?;
-            let kept: Vec<SVector<f64, N>> = (0..k)
-                .map(|c| SVector::from_fn(|j, _| x[(si * N + j, c)]))
-                .collect();
-            for (cols, target) in [(a, &mut xa), (b, &mut xb)] {
-                let cs = rival_columns(cols, columns, s, &kept);
-                if target.is_empty() {
-                    target.resize(cs.len(), vec![0.0; rows]);
-                }
-                for (c, v) in cs.iter().enumerate() {
-                    for j in 0..N {
-                        target[c][si * N + j] = v[j];
-                    }
-                }
-            }
-        }
+        let xa = rival_columns(a, columns, states, &x, &tau);
+        let xb = rival_columns(b, columns, states, &x, &tau);
         let to_matrix = |cols: &[Vec<f64>]| DMatrix::from_fn(rows, cols.len(), |r, c| cols[c][r]);
         let xo = DMatrix::from_fn(rows, others.len(), |r, c| x[(r, others[c])]);
         let qo = orthonormal(&xo);
@@ -256,5 +314,94 @@ fn orthonormal(m: &DMatrix<f64>) -> Option<DMatrix<f64>> {
         None
     } else {
         Some(DMatrix::from_columns(&basis))
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::excite::Limits;
+
+    dynamics_macros::robot! {
+        pub robot Flat;
+        gravity = [0.0, 0.0, -9.81];
+        link base;
+        link rod { mass = 1.0; com = [0.5, 0.0, 0.0]; inertia = [1e-3, 0.1, 0.1]; }
+        joint j = revolute(base -> rod) { transfer = [rot_z(q)]; }
+    }
+
+    dynamics_macros::robot! {
+        pub robot Hanging;
+        gravity = [0.0, -9.81, 0.0];
+        link base;
+        link rod { mass = 1.0; com = [0.5, 0.0, 0.0]; inertia = [1e-3, 0.1, 0.1]; }
+        joint j = revolute(base -> rod) { transfer = [rot_z(q)]; }
+    }
+
+    /// One harmonic `q = a sin(w t)` over a whole period, equally spaced.
+    fn sine(n: usize) -> Vec<Reference<1>> {
+        let (a, w) = (0.5, std::f64::consts::TAU / 4.0);
+        (0..n)
+            .map(|k| {
+                let t = 4.0 * k as f64 / n as f64;
+                Reference {
+                    q: [a * (w * t).sin()].into(),
+                    qd: [a * w * (w * t).cos()].into(),
+                    qdd: [-a * w * w * (w * t).sin()].into(),
+                }
+            })
+            .collect()
+    }
+
+    #[test]
+    fn a_spring_on_one_harmonic_without_gravity_is_a_rotor() {
+        // Hand derivation: a joint turning about the vertical feels no
+        // gravity, its effort is I qdd, a sine; the second difference of a
+        // sampled sine is the sine times 2 (cos(w h) - 1), so at every
+        // inner state the spring's signature is that multiple of the rotor
+        // column I qdd (weighted alike): one harmonic cannot tell a spring
+        // from a heavier rotor.
+        let flat = Flat::default();
+        let limits = Limits::new([-1.0], [1.0], [3.0], [50.0]);
+        let cols = BaseColumns::of(&flat, &limits, 1).unwrap();
+        let n = 400;
+        let states = sine(n);
+        let x = cols.stack(&flat, &states).unwrap();
+        let tau: Vec<_> = states
+            .iter()
+            .map(|s| flat.inverse_dynamics(&s.q, &s.qd, &s.qdd))
+            .collect();
+        let c = rival_columns(Rival::Elasticity(0), &cols, &states, &x, &tau);
+        let h = 4.0 / n as f64;
+        let w = std::f64::consts::TAU / 4.0;
+        let inertia = tau[n / 8][0] / states[n / 8].qdd[0];
+        let factor = 2.0 * ((w * h).cos() - 1.0) * inertia * cols.weights[0];
+        for i in 1..n - 1 {
+            let want = factor * states[i].qdd[0];
+            assert!((c[0][i] - want).abs() < 1e-9 * factor.abs().max(1.0), "{i}");
+        }
+    }
+
+    #[test]
+    fn a_delay_is_the_efforts_time_derivative() {
+        // The delay's column at an inner state is tau(i+1) - tau(i-1),
+        // weighted: compared with the efforts computed here independently.
+        let hanging = Hanging::default();
+        let limits = Limits::new([-1.0], [1.0], [3.0], [50.0]);
+        let cols = BaseColumns::of(&hanging, &limits, 1).unwrap();
+        let states = sine(40);
+        let x = cols.stack(&hanging, &states).unwrap();
+        let tau: Vec<_> = states
+            .iter()
+            .map(|s| hanging.inverse_dynamics(&s.q, &s.qd, &s.qdd))
+            .collect();
+        let c = rival_columns(Rival::Delay, &cols, &states, &x, &tau);
+        for i in 1..39 {
+            let want = (tau[i + 1][0] - tau[i - 1][0]) * cols.weights[0];
+            assert!((c[0][i] - want).abs() < 1e-12);
+        }
+        // The ends repeat their neighbour's difference.
+        assert_eq!(c[0][0], c[0][1]);
+        assert_eq!(c[0][39], c[0][38]);
     }
 }

@@ -26,5 +26,6 @@ mod payload;
 mod properties;
 mod regressor;
 mod round_trip;
+mod separate;
 mod simulate;
 mod urdf;

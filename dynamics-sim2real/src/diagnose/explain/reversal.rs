@@ -47,7 +47,7 @@ pub fn mark_reversals(
             verdict.status = Status::Ambiguous;
             verdict.rival = Some(Box::new(r.clone()));
             verdict.separating_motion = Some(format!(
-                "reverse joint {}'s velocity (slowly, under load): Coulomb friction changes sign with it, an effort offset does not",
+                "reverse joint {}'s velocity (slowly, under load): Coulomb friction changes sign with it, an effort offset does not; `dynamics excite --separate report.json` designs such a motion within the robot's limits",
                 verdict.joint.as_deref().unwrap_or("?")
             ));
         }

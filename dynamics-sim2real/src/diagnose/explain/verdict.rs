@@ -29,7 +29,7 @@ pub fn verdict(ranked: &[Ranked], gap: f64, options: &Options) -> Verdict {
                 } else {
                     Status::Clear
                 },
-                separating_motion: rival.map(|r| separating_motion(top.kind, r.kind)),
+                separating_motion: rival.map(|r| format!("{}; `dynamics excite --separate report.json` designs such a motion within the robot's limits", separating_motion(top.kind, r.kind))),
                 rival: rival.map(|r| Box::new(r.clone())),
             }
         }
