@@ -543,17 +543,7 @@ pub fn read_motion<const N: usize>(
     let (mut t, mut q, mut qd) = (Vec::new(), Vec::new(), Vec::new());
     for (i, line) in lines {
         let cells: Vec<&str> = line.split(',').map(str::trim).collect();
-        let num = |c: usize| -> Result<f64, String> {
-            cells
-                .get(c)
-                .and_then(|v| v.parse::<f64>().ok())
-                .filter(|v| v.is_finite())
-                .ok_or(format!(
-                    "{file}: line {}: column {} is not a finite number",
-                    i + 1,
-                    c + 1
-                ))
-        };
+        let num = |c: usize| finite_cell(&cells, c, file, i + 1);
         t.push(num(t_col)?);
         let mut row = SVector::<f64, N>::zeros();
         for (j, &c) in q_cols.iter().enumerate() {
@@ -624,17 +614,7 @@ pub fn read_samples<const N: usize>(
     let mut out = Vec::new();
     for (i, line) in lines {
         let cells: Vec<&str> = line.split(',').map(str::trim).collect();
-        let num = |c: usize| -> Result<f64, String> {
-            cells
-                .get(c)
-                .and_then(|v| v.parse::<f64>().ok())
-                .filter(|v| v.is_finite())
-                .ok_or(format!(
-                    "{file}: line {}: column {} is not a finite number",
-                    i + 1,
-                    c + 1
-                ))
-        };
+        let num = |c: usize| finite_cell(&cells, c, file, i + 1);
         let vec = |cs: &[usize]| -> Result<SVector<f64, N>, String> {
             let mut v = SVector::<f64, N>::zeros();
             for (j, &c) in cs.iter().enumerate() {
@@ -776,4 +756,17 @@ pub fn check_data_cmd<R: Robot<N>, const N: usize>(
             .map_err(|e| format!("{}: {e}", path.display()))?;
     }
     Ok(())
+}
+
+/// Cell `c` (0-based) of a CSV line split into `cells`, as a finite
+/// number; `Err` names the file, the line (1-based) and the column.
+fn finite_cell(cells: &[&str], c: usize, file: &str, line: usize) -> Result<f64, String> {
+    cells
+        .get(c)
+        .and_then(|v| v.parse::<f64>().ok())
+        .filter(|v| v.is_finite())
+        .ok_or(format!(
+            "{file}: line {line}: column {} is not a finite number",
+            c + 1
+        ))
 }
