@@ -10,13 +10,12 @@ use crate::Res;
 
 /// Runs the diagnosis of `robot` on two data files and prints it.
 pub fn diagnose_cmd<R: Robot<N> + Clone + Sync, const N: usize>(
-    robot: &R,
+    robot: &dynamics_sim2real::effects::Calibrated<R, N>,
     train: DataFile,
     holdout: DataFile,
     json: Option<PathBuf>,
     report_dir: Option<PathBuf>,
     noise: Option<dynamics_sim2real::diagnose::SensorNoise>,
-    sensors: &[dynamics_sim2real::effects::Effect],
 ) -> Res {
     use dynamics_sim2real::diagnose::Options;
     use indicatif::{ProgressBar, ProgressStyle};
@@ -34,7 +33,7 @@ pub fn diagnose_cmd<R: Robot<N> + Clone + Sync, const N: usize>(
         ..Options::default()
     };
     let (report, warnings, about) =
-        crate::gap::diagnose_calibrated(robot, sensors, &train, &holdout, &options, &progress)?;
+        crate::gap::diagnose_calibrated(robot, &train, &holdout, &options, &progress)?;
     bar.finish_and_clear();
     for line in &about {
         println!("{line}");
@@ -169,7 +168,7 @@ pub fn diagnose_cmd<R: Robot<N> + Clone + Sync, const N: usize>(
         eprintln!("wrote {}", path.display());
     }
     if let Some(dir) = report_dir {
-        let traces = crate::gap::traces_data(robot, &train, &holdout, &report, &options)?;
+        let traces = crate::gap::traces_calibrated(robot, &train, &holdout, &report, &options)?;
         crate::report::write_described(&dir, &report, &traces, &options, &about)?;
         eprintln!("wrote the report to {}", dir.join("report.md").display());
     }

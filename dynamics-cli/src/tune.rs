@@ -9,7 +9,7 @@ use clap::Args;
 use dynamics_runtime::{Parameters, Robot};
 use dynamics_sim2real::baseline::{self, BaselineError, Entry};
 use dynamics_sim2real::diagnose::Parameter;
-use dynamics_sim2real::effects::Effect;
+use dynamics_sim2real::effects::{Effect, Window};
 use serde_json::Value;
 use thiserror::Error;
 
@@ -144,13 +144,30 @@ pub fn apply_set<R: Robot<N>, const N: usize>(
 /// `which.effects[]` (or a top-level `effects[]`), else the effect its
 /// `which.verdict` names, with the parameters of the matching entry of
 /// `which.ranked[]`. A verdict that names no effect is an empty baseline.
+/// An entry limited in time (`window`) is refused here (the effects of
+/// `simulate --effects` are on all the time); [`read_baseline_timed`]
+/// keeps it with its window.
 pub fn read_baseline<R: Robot<N>, const N: usize>(path: &Path) -> Result<Vec<Effect>, TuneError> {
+    let (file, text) = read(path)?;
+    baseline_from_str::<R, N>(&text, &file)
+}
+
+/// [`read_baseline`] with each effect's window (`None`: on all the time),
+/// as `--baseline` takes them back.
+pub fn read_baseline_timed<R: Robot<N>, const N: usize>(
+    path: &Path,
+) -> Result<Vec<(Effect, Option<Window>)>, TuneError> {
+    let (file, text) = read(path)?;
+    timed_baseline_from_str::<R, N>(&text, &file)
+}
+
+fn read(path: &Path) -> Result<(String, String), TuneError> {
     let file = path.display().to_string();
     let text = std::fs::read_to_string(path).map_err(|source| TuneError::Read {
         file: file.clone(),
         source,
     })?;
-    baseline_from_str::<R, N>(&text, &file)
+    Ok((file, text))
 }
 
 /// [`read_baseline`] on the JSON text `text` of a baseline document;
@@ -174,6 +191,39 @@ pub fn baseline_from_str<R: Robot<N>, const N: usize>(
     text: &str,
     file: &str,
 ) -> Result<Vec<Effect>, TuneError> {
+    timed_baseline_from_str::<R, N>(text, file)?
+        .into_iter()
+        .enumerate()
+        .map(|(i, (e, w))| match w {
+            None => Ok(e),
+            Some(_) => Err(TuneError::Shape {
+                file: file.to_string(),
+                place: format!("effect {i} ({})", e.kind()),
+                problem: "an effect limited in time (`window`) is on all the time here: remove the entry, or its window".into(),
+            }),
+        })
+        .collect()
+}
+
+/// [`baseline_from_str`] with each effect's window (`None`: on all the
+/// time).
+///
+/// ```
+/// use dynamics_cli::tune::timed_baseline_from_str;
+/// dynamics_macros::robot! {
+///     pub robot Pendulum; gravity = [0.0, -9.81, 0.0];
+///     link base; link rod { mass = 1.0; com = [1.0, 0.0, 0.0]; }
+///     joint j = revolute(base -> rod) { transfer = [rot_z(q)]; }
+/// }
+/// let text = r#"{"effects": [{"kind": "effort_offset", "joint": "j",
+///     "parameters": [{"name": "offset", "value": 0.3}], "window": {"start": 1.0, "end": 2.5}}]}"#;
+/// let effects = timed_baseline_from_str::<Pendulum, 1>(text, "mine.json").unwrap();
+/// assert_eq!(effects[0].1.map(|w| (w.start, w.end)), Some((1.0, 2.5)));
+/// ```
+pub fn timed_baseline_from_str<R: Robot<N>, const N: usize>(
+    text: &str,
+    file: &str,
+) -> Result<Vec<(Effect, Option<Window>)>, TuneError> {
     let file = file.to_string();
     let doc: Value = serde_json::from_str(text).map_err(|source| TuneError::Json {
         file: file.clone(),
@@ -182,7 +232,7 @@ pub fn baseline_from_str<R: Robot<N>, const N: usize>(
     entries(&doc, &file)?
         .into_iter()
         .map(|(place, entry)| {
-            baseline::effect::<R, N>(&entry).map_err(|source| TuneError::Effect {
+            baseline::timed::<R, N>(&entry).map_err(|source| TuneError::Effect {
                 file: file.clone(),
                 place,
                 source: Box::new(source),
@@ -292,12 +342,25 @@ fn entry(v: &Value) -> Result<Entry, String> {
             })
         })
         .collect::<Result<Vec<_>, String>>()?;
-    if v.get("window").is_some_and(|w| !w.is_null()) {
-        return Err(
-            "an effect limited in time (`window`) cannot be folded into a nominal model: remove the entry, or its window"
-                .into(),
-        );
-    }
+    let window = match v.get("window") {
+        None | Some(Value::Null) => None,
+        Some(w) => {
+            let bound = |name: &str| -> Result<f64, String> {
+                match w.get(name) {
+                    // An open end: on to the end of the record.
+                    None | Some(Value::Null) if name == "end" => Ok(f64::INFINITY),
+                    Some(b) => b
+                        .as_f64()
+                        .ok_or_else(|| format!("`window.{name}` is not a number")),
+                    None => Err(format!("`window.{name}` missing")),
+                }
+            };
+            Some(Window {
+                start: bound("start")?,
+                end: bound("end")?,
+            })
+        }
+    };
     let point = match v.get("point") {
         None | Some(Value::Null) => None,
         Some(Value::String(s)) => Some(s.clone()),
@@ -309,5 +372,6 @@ fn entry(v: &Value) -> Result<Entry, String> {
         point,
         channel,
         parameters,
+        window,
     })
 }

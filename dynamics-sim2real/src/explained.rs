@@ -1,25 +1,25 @@
 //! The figures' model: the diagnosis's whole explanation read back as
 //! `--baseline` reads a report (the model's effects folded into the
-//! model, the sensors' undone on the data), evaluated along the measured
+//! model, the others undone on the data), evaluated along the measured
 //! motion, as time series for the report's plots.
 
 use nalgebra::SVector;
 
-use crate::baseline::Entry;
+use crate::baseline::{undo, Entry};
 use crate::data::Measured;
 use crate::diagnose::traces::{data_series, DataTraces, Traces, TracesError};
 use crate::diagnose::{Options, Prepared, Report};
-use crate::effects::{undo_sensors, Calibrated};
+use crate::effects::Calibrated;
 use dynamics_runtime::Robot;
 
 /// Series of `train` and `holdout` for `robot` with the whole explanation
 /// of `report` (its `which.effects`): each effect read back as
-/// `--baseline` reads it ([`crate::baseline::effect`]), the model's effects
-/// folded into the model ([`Calibrated`]), the sensors' effects undone on
-/// the data ([`undo_sensors`]); the corrected residual is the measured
-/// effort, so corrected, less the calibrated model's effort along the
-/// measured motion. An effect the baseline cannot take back (an elastic
-/// joint, backlash, an effect limited to a window) is left out of the
+/// `--baseline` reads it ([`crate::baseline::timed`]), the model's effects
+/// folded into the model ([`Calibrated`]), the others (the sensors', the
+/// motor sides, the effects limited to a window) undone on the data
+/// ([`undo`]); the corrected residual is the measured effort, so
+/// corrected, less the calibrated model's effort along the measured
+/// motion. An effect the baseline cannot take back is left out of the
 /// series and named in [`Traces::left_out`].
 ///
 /// ```
@@ -47,29 +47,25 @@ pub fn traces<R: Robot<N> + Clone, const N: usize>(
         .transpose()?;
     let (mut effects, mut left_out) = (Vec::new(), Vec::new());
     for e in &report.which.effects {
-        let entry = Entry {
-            kind: e.kind.name().to_string(),
-            joint: e.joint.clone(),
-            point: e.point.clone(),
-            channel: e.channel,
-            parameters: e.parameters.clone(),
-        };
         let place = e.joint.clone().or(e.point.clone()).unwrap_or_default();
-        match (e.window.is_none(), crate::baseline::effect::<R, N>(&entry)) {
-            (true, Ok(x)) if Calibrated::new(robot.clone(), vec![x]).is_ok() => effects.push(x),
+        match crate::baseline::timed::<R, N>(&Entry::from(e)) {
+            Ok(x) if Calibrated::timed(robot.clone(), vec![x]).is_ok() => effects.push(x),
             _ => left_out.push(format!("{} at {place}", e.kind.name())),
         }
     }
     let calibrated =
-        Calibrated::new(robot.clone(), effects.clone()).map_err(|e| TracesError::Entry {
+        Calibrated::timed(robot.clone(), effects.clone()).map_err(|e| TracesError::Entry {
             kind: "explanation".into(),
             place: String::new(),
             cause: e.to_string(),
         })?;
-    let sensors = calibrated.sensor_effects().to_vec();
-    let series = |m: &Measured<N>| -> DataTraces {
+    let series = |m: &Measured<N>| -> Result<DataTraces, TracesError> {
         let p = Prepared::with_noise(robot, m, levels.as_ref());
-        let fixed = undo_sensors(m, &sensors);
+        let fixed = undo(&calibrated, m).map_err(|e| TracesError::Entry {
+            kind: "explanation".into(),
+            place: String::new(),
+            cause: e.to_string(),
+        })?;
         let c = Prepared::with_noise(&calibrated, &fixed, levels.as_ref());
         // The corrected residual at the nominal series' times (an undone
         // delay shifts the record by whole samples; a time it does not
@@ -87,14 +83,14 @@ pub fn traces<R: Robot<N> + Clone, const N: usize>(
                 }
             })
             .collect();
-        data_series::<R, N>(&p, Some(after))
+        Ok(data_series::<R, N>(&p, Some(after)))
     };
     Ok(Traces {
-        train: series(train),
-        holdout: series(holdout),
+        train: series(train)?,
+        holdout: series(holdout)?,
         effect: None,
         window: None,
-        explained: effects,
+        explained: effects.into_iter().map(|(e, _)| e).collect(),
         left_out,
     })
 }

@@ -183,14 +183,14 @@ impl dynamics_cli::RobotSet for Builtin {
         let (a, b) = (dir.join("train.csv"), dir.join("holdout.csv"));
         std::fs::write(&a, &data.train)?;
         std::fs::write(&b, &data.holdout)?;
+        let robot = dynamics_sim2real::effects::Calibrated::new(crate::Arm3r::default(), vec![])?;
         let result = dynamics_cli::diagnose::diagnose_cmd(
-            &crate::Arm3r::default(),
+            &robot,
             dynamics_cli::gap::DataFile::csv(a),
             dynamics_cli::gap::DataFile::csv(b),
             args.json.clone(),
             args.report.clone(),
             args.noise(),
-            &[],
         );
         let _ = std::fs::remove_dir_all(&dir);
         result?;

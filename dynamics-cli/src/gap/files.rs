@@ -4,10 +4,11 @@
 use std::path::Path;
 
 use dynamics_runtime::Robot;
+use dynamics_sim2real::baseline::undo;
 use dynamics_sim2real::data::Measured;
 use dynamics_sim2real::diagnose::traces::{traces, Traces};
 use dynamics_sim2real::diagnose::{diagnose, Options, Report};
-use dynamics_sim2real::effects::{undo_sensors, Effect};
+use dynamics_sim2real::effects::Calibrated;
 use dynamics_sim2real::explained;
 
 use super::{DataFile, GapError};
@@ -53,34 +54,51 @@ pub fn diagnose_data_described<R: Robot<N> + Clone + Sync, const N: usize>(
     options: &Options,
     progress: &(dyn Fn(usize, usize) + Sync),
 ) -> Result<(Report, Vec<String>, Vec<String>), GapError> {
-    diagnose_calibrated(robot, &[], train, holdout, options, progress)
+    diagnose_read(robot, &Ok, train, holdout, options, progress)
 }
 
 /// [`diagnose_data_described`] against a calibrated baseline: `robot` with
-/// the baseline's model effects folded in
-/// ([`dynamics_sim2real::effects::Calibrated`]), and `sensors`, the
-/// baseline's effects on the sensors, undone on both records before the
-/// diagnosis ([`dynamics_sim2real::effects::undo_sensors`]).
+/// the baseline's model effects folded in ([`Calibrated`]), and what it
+/// keeps apart (the sensors' effects, motor sides, effects limited to a
+/// window) undone on both records before the diagnosis
+/// ([`dynamics_sim2real::baseline::undo`]).
 pub fn diagnose_calibrated<R: Robot<N> + Clone + Sync, const N: usize>(
+    robot: &Calibrated<R, N>,
+    train: &DataFile,
+    holdout: &DataFile,
+    options: &Options,
+    progress: &(dyn Fn(usize, usize) + Sync),
+) -> Result<(Report, Vec<String>, Vec<String>), GapError> {
+    let fix = |m: Measured<N>| undone(robot, m);
+    diagnose_read(robot, &fix, train, holdout, options, progress)
+}
+
+/// `m` with what `robot` keeps apart from its model undone (as it is when
+/// the baseline is all model).
+fn undone<R: Robot<N> + Clone, const N: usize>(
+    robot: &Calibrated<R, N>,
+    m: Measured<N>,
+) -> Result<Measured<N>, GapError> {
+    if robot.model_only() {
+        return Ok(m);
+    }
+    undo(robot, &m).map_err(|e| GapError::Request(format!("--baseline: {e}")))
+}
+
+/// Reads both files, corrects each by `fix` (the record as read is dropped
+/// once corrected: a long log is not held twice) and diagnoses them.
+fn diagnose_read<R: Robot<N> + Clone + Sync, const N: usize>(
     robot: &R,
-    sensors: &[Effect],
+    fix: &dyn Fn(Measured<N>) -> Result<Measured<N>, GapError>,
     train: &DataFile,
     holdout: &DataFile,
     options: &Options,
     progress: &(dyn Fn(usize, usize) + Sync),
 ) -> Result<(Report, Vec<String>, Vec<String>), GapError> {
     let (a, about_a) = train.read_described(&R::JOINT_NAMES)?;
+    let a = fix(a)?;
     let (b, about_b) = holdout.read_described(&R::JOINT_NAMES)?;
-    // The records as read are dropped once the sensors' effects are undone
-    // (a long log is not held twice).
-    let undo = |m: Measured<N>| {
-        if sensors.is_empty() {
-            m
-        } else {
-            undo_sensors(&m, sensors)
-        }
-    };
-    let (a, b) = (undo(a), undo(b));
+    let b = fix(b)?;
     let report = diagnose(robot, &a, &b, options, progress)?;
     let warnings = crate::warnings::lines(&report.warnings);
     let about = [
@@ -123,10 +141,35 @@ pub fn traces_data<R: Robot<N> + Clone, const N: usize>(
     report: &Report,
     options: &Options,
 ) -> Result<Traces, GapError> {
+    let a = train.read(&R::JOINT_NAMES)?;
+    let b = holdout.read(&R::JOINT_NAMES)?;
+    traces_of(robot, &a, &b, report, options)
+}
+
+/// [`traces_data`] against a calibrated baseline: the records corrected
+/// as [`diagnose_calibrated`] corrects them, so that the figures show what
+/// the diagnosis saw.
+pub fn traces_calibrated<R: Robot<N> + Clone, const N: usize>(
+    robot: &Calibrated<R, N>,
+    train: &DataFile,
+    holdout: &DataFile,
+    report: &Report,
+    options: &Options,
+) -> Result<Traces, GapError> {
+    let a = undone(robot, train.read(&R::JOINT_NAMES)?)?;
+    let b = undone(robot, holdout.read(&R::JOINT_NAMES)?)?;
+    traces_of(robot, &a, &b, report, options)
+}
+
+fn traces_of<R: Robot<N> + Clone, const N: usize>(
+    robot: &R,
+    a: &Measured<N>,
+    b: &Measured<N>,
+    report: &Report,
+    options: &Options,
+) -> Result<Traces, GapError> {
     if !report.which.effects.is_empty() {
-        let a = train.read(&R::JOINT_NAMES)?;
-        let b = holdout.read(&R::JOINT_NAMES)?;
-        return Ok(explained::traces(robot, &a, &b, report, options)?);
+        return Ok(explained::traces(robot, a, b, report, options)?);
     }
     let chosen = report
         .which
@@ -134,17 +177,5 @@ pub fn traces_data<R: Robot<N> + Clone, const N: usize>(
         .names_effect()
         .then(|| report.which.ranked.first())
         .flatten();
-    traces_for(robot, train, holdout, chosen, options)
-}
-
-fn traces_for<R: Robot<N> + Clone, const N: usize>(
-    robot: &R,
-    train: &DataFile,
-    holdout: &DataFile,
-    chosen: Option<&dynamics_sim2real::diagnose::Ranked>,
-    options: &Options,
-) -> Result<Traces, GapError> {
-    let a = train.read(&R::JOINT_NAMES)?;
-    let b = holdout.read(&R::JOINT_NAMES)?;
-    Ok(traces(robot, &a, &b, chosen, options)?)
+    Ok(traces(robot, a, b, chosen, options)?)
 }

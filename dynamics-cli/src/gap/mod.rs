@@ -7,8 +7,8 @@ mod source;
 mod synth;
 
 pub use files::{
-    diagnose_calibrated, diagnose_data, diagnose_data_described, diagnose_files, traces_data,
-    traces_files,
+    diagnose_calibrated, diagnose_data, diagnose_data_described, diagnose_files, traces_calibrated,
+    traces_data, traces_files,
 };
 pub use source::{parse_window, DataFile};
 pub use synth::{

@@ -8,10 +8,11 @@ use dynamics_sim2real::effects::Calibrated;
 
 use super::args::{BaselineArgs, CheckArgs, ModelArgs, RobotCommand};
 use super::{RobotInfo, RobotVisitor};
-use crate::tune::{apply_set, read_baseline};
+use crate::tune::{apply_set, read_baseline_timed};
 use crate::Res;
 
-/// The robot with `--set` applied and the `--baseline` effects folded in.
+/// The robot with `--set` applied and the `--baseline` effects folded in
+/// (those it keeps apart, for the data, with them).
 fn nominal<R: Robot<N>, const N: usize>(
     mut robot: R,
     model: &ModelArgs,
@@ -20,7 +21,7 @@ fn nominal<R: Robot<N>, const N: usize>(
     apply_set(&mut robot, &model.set)?;
     let effects = match baseline.and_then(|b| b.baseline.as_deref()) {
         Some(path) => {
-            let effects = read_baseline::<R, N>(path)?;
+            let effects = read_baseline_timed::<R, N>(path)?;
             eprintln!(
                 "baseline from {}: {}",
                 path.display(),
@@ -29,7 +30,10 @@ fn nominal<R: Robot<N>, const N: usize>(
                 } else {
                     effects
                         .iter()
-                        .map(|e| format!("{e:?}"))
+                        .map(|(e, w)| match w {
+                            Some(w) => format!("{e:?} in [{}, {}) s", w.start, w.end),
+                            None => format!("{e:?}"),
+                        })
                         .collect::<Vec<_>>()
                         .join("; ")
                 }
@@ -38,7 +42,33 @@ fn nominal<R: Robot<N>, const N: usize>(
         }
         None => Vec::new(),
     };
-    Ok(Calibrated::new(robot, effects).map_err(|e| format!("--baseline: {e}"))?)
+    Ok(Calibrated::timed(robot, effects).map_err(|e| format!("--baseline: {e}"))?)
+}
+
+/// [`nominal`] for a command that uses the model alone (no measured data
+/// to undo the rest on): what the baseline keeps apart from the model is
+/// said to be left out.
+fn model_alone<R: Robot<N>, const N: usize>(
+    robot: R,
+    model: &ModelArgs,
+    baseline: &BaselineArgs,
+    command: &str,
+) -> Result<Calibrated<R, N>, Box<dyn std::error::Error>> {
+    let r = nominal(robot, model, Some(baseline))?;
+    let apart: Vec<String> = r
+        .sensor_effects()
+        .iter()
+        .chain(r.motor_effects())
+        .chain(r.windowed_effects().iter().map(|(e, _)| e))
+        .map(|e| e.kind().name().to_string())
+        .collect();
+    if !apart.is_empty() {
+        eprintln!(
+            "warning: --baseline: {} not part of the model `{command}` uses (undone on measured data by `diagnose` only): left out",
+            apart.join(", ")
+        );
+    }
+    Ok(r)
 }
 
 /// Runs `command` on `robot`.
@@ -58,16 +88,16 @@ pub fn run_on<R: Robot<N> + Clone + Sync, const N: usize>(
             .into()),
         },
         RobotCommand::Eval(args) => {
-            let robot = nominal(robot, &args.model, Some(&args.baseline))?;
+            let robot = model_alone(robot, &args.model, &args.baseline, "eval")?;
             let states = info.states.as_ref().map(|(f, t)| (f.as_str(), t.as_str()));
             crate::commands::eval(&info.name, robot, states, args.states, args.out)
         }
         RobotCommand::Simulate(args) => {
-            let robot = nominal(robot, &args.model, Some(&args.baseline))?;
+            let robot = model_alone(robot, &args.model, &args.baseline, "simulate")?;
             crate::simulate::simulate(&robot, info, &args)
         }
         RobotCommand::Synth(a) => {
-            let robot = nominal(robot, &a.model, Some(&a.baseline))?;
+            let robot = model_alone(robot, &a.model, &a.baseline, "synth")?;
             crate::commands::synth_cmd(
                 &robot,
                 &info.motion,
@@ -111,8 +141,7 @@ pub fn run_on<R: Robot<N> + Clone + Sync, const N: usize>(
                 return Err("give --train and --holdout (data files to diagnose)".into());
             };
             let (train, holdout) = a.data_files(train, holdout)?;
-            let sensors = robot.sensor_effects().to_vec();
-            crate::diagnose::diagnose_cmd(&robot, train, holdout, a.json, a.report, noise, &sensors)
+            crate::diagnose::diagnose_cmd(&robot, train, holdout, a.json, a.report, noise)
         }
         RobotCommand::Identify(a) => {
             let robot = nominal(robot, &a.model, None)?;

@@ -70,6 +70,7 @@ pub use candidates::{payload_com, Candidate, Channel, Prepared, Unnamed};
 pub use error::DiagnoseError;
 pub use evaluate::GapWindow;
 pub use explain::report::*;
+pub(crate) use fit::motor_transmitted_raw;
 pub use fit::Fit;
 pub use numeric::aicc;
 pub use options::Options;

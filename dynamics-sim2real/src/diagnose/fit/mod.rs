@@ -26,6 +26,9 @@ use crate::diagnose::numeric::constrained_least_squares;
 use crate::diagnose::Options;
 use dynamics_runtime::Robot;
 
+/// The motor-side simulation, for a baseline to undo a known motor side
+/// on data (`crate::baseline::undo`).
+pub(crate) use motor_sim::transmitted::motor_transmitted_raw;
 pub use one::{fixed_column, Fit};
 pub use window::{
     corrected, corrected_in, fit_windowed, holdout_window, inside, window_of, windowed, Windows,

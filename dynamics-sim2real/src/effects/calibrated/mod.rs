@@ -6,12 +6,15 @@
 //! forces or inertia (friction laws, rotor inertia, a payload at the tip,
 //! environment resistance) to every quantity of the wrapped model, the way
 //! the plant adds them ([`crate::effects::Plant::mass_and_forces`]).
-//! Effects with a state of their own (elasticity, backlash) or on the
-//! sensors (encoder offset, delay) are not a nominal model's and are
-//! refused.
+//! Effects that are not a rigid model's are kept apart, for the data to be
+//! corrected by (`dynamics_sim2real::baseline::undo`): those on the
+//! sensors (encoder offset, delay, effort scale and offset), those with a
+//! motor-side state of their own (elasticity, backlash: the effort that
+//! reaches the link is simulated along the record), and effects limited to
+//! a window of the record's time.
 //!
-//! Here: the folding (which effects, what they add at a state); the
-//! [`Robot`] implementation in `robot.rs`.
+//! Here: the folding (which effects, what they add at a state) and the
+//! effects kept apart; the [`Robot`] implementation in `robot.rs`.
 
 mod robot;
 #[cfg(test)]
@@ -19,17 +22,32 @@ mod tests;
 
 use nalgebra::{SMatrix, SVector, Vector3};
 
-use super::{Effect, EffectKind, Tip};
+use super::{Effect, EffectKind, Tip, Window};
 use dynamics_runtime::Robot;
 
-/// Why effects cannot be folded into a nominal model.
+/// Why effects cannot be taken into a calibrated model.
 #[derive(Debug, Clone, PartialEq, thiserror::Error)]
 pub enum CalibratedError {
-    /// An effect that is not a force or inertia.
-    #[error("effect `{kind}` cannot be part of a nominal model (kinds that can: coulomb_friction, viscous_friction, stribeck_friction, armature, payload_mass, environment_resistance, joint_spring, inertial_parameters; and the sensors' encoder_offset, time_delay, effort_scale, effort_offset, undone on the data)")]
+    /// No effect (the vocabulary's `none`).
+    #[error("effect `{kind}` is no effect to take back")]
     NotNominal {
         /// Its kind's name.
         kind: &'static str,
+    },
+    /// An effect that cannot be limited to a window (a delay, a motor
+    /// side: their state carries over the window's edges).
+    #[error("effect `{kind}` cannot be limited to a window (kinds that can: every force or inertia of the model, encoder_offset, effort_scale, effort_offset)")]
+    NotWindowed {
+        /// Its kind's name.
+        kind: &'static str,
+    },
+    /// A window that is not a span of time.
+    #[error("effect `{kind}`: {reason}")]
+    Window {
+        /// Its kind's name.
+        kind: &'static str,
+        /// What is wrong with the window.
+        reason: String,
     },
     /// A link correction of a link the robot does not have.
     #[error("effect `{kind}` at link index {link}: the robot has {n} links")]
@@ -82,7 +100,19 @@ pub struct Calibrated<R, const N: usize> {
     robot: R,
     effects: Vec<Effect>,
     sensors: Vec<Effect>,
+    motor: Vec<Effect>,
+    windowed: Vec<(Effect, Window)>,
     tip: Tip,
+}
+
+/// Where an effect of a baseline goes.
+enum Place {
+    /// Folded into the model.
+    Model,
+    /// Undone on the sensors' data.
+    Sensor,
+    /// A motor side, simulated along the data.
+    Motor,
 }
 
 /// What the effects add at one state: to A, to Q(0), to Qqt1 + Qqt2.
@@ -103,14 +133,44 @@ impl<R: Robot<N>, const N: usize> Calibrated<R, N> {
     /// offsets) are not part of the model: they are kept apart
     /// ([`Calibrated::sensor_effects`]) for the data to be corrected by
     /// ([`crate::effects::undo_sensors`]). A late effort stream is a
-    /// negative `time_delay` here.
+    /// negative `time_delay` here. Elasticity and backlash are kept apart
+    /// too ([`Calibrated::motor_effects`]): their motor side has a state of
+    /// its own, which the data's correction simulates.
     pub fn new(robot: R, effects: Vec<Effect>) -> Result<Self, CalibratedError> {
+        Self::timed(robot, effects.into_iter().map(|e| (e, None)).collect())
+    }
+
+    /// [`Calibrated::new`] with effects limited to a window of the
+    /// record's time (`Some(window)`): those are kept apart
+    /// ([`Calibrated::windowed_effects`]), to be undone on the data inside
+    /// their window; a delay and a motor side cannot be limited in time.
+    ///
+    /// ```
+    /// use dynamics_sim2real::effects::{Calibrated, Effect, Window};
+    /// dynamics_macros::robot! {
+    ///     pub robot Pendulum; gravity = [0.0, -9.81, 0.0];
+    ///     link base; link rod { mass = 1.0; com = [1.0, 0.0, 0.0]; }
+    ///     joint j = revolute(base -> rod) { transfer = [rot_z(q)]; }
+    /// }
+    /// let held: Window = "2:4".parse().unwrap();
+    /// let payload = Effect::PayloadMass { mass: 0.5, com: [0.0; 3] };
+    /// let r = Calibrated::timed(Pendulum::default(), vec![(payload, Some(held))]).unwrap();
+    /// assert!(r.effects().is_empty());
+    /// assert_eq!(r.windowed_effects(), &[(payload, held)]);
+    /// let late = Effect::TimeDelay { delay: 0.01 };
+    /// assert!(Calibrated::timed(Pendulum::default(), vec![(late, Some(held))]).is_err());
+    /// ```
+    pub fn timed(
+        robot: R,
+        effects: Vec<(Effect, Option<Window>)>,
+    ) -> Result<Self, CalibratedError> {
         let (coulomb, viscous) = super::nominal_friction(&robot, &SVector::zeros());
         let tip_mass = Tip::body_mass::<R, N>(&robot);
-        let (mut model, mut sensors) = (Vec::new(), Vec::new());
-        for e in effects {
+        let (mut model, mut sensors, mut motor) = (Vec::new(), Vec::new(), Vec::new());
+        let mut windowed = Vec::new();
+        for (e, window) in effects {
             let kind = e.kind().name();
-            let sensor = match e.kind() {
+            let place = match e.kind() {
                 EffectKind::CoulombFriction
                 | EffectKind::ViscousFriction
                 | EffectKind::StribeckFriction
@@ -118,12 +178,13 @@ impl<R: Robot<N>, const N: usize> Calibrated<R, N> {
                 | EffectKind::PayloadMass
                 | EffectKind::EnvironmentResistance
                 | EffectKind::JointSpring
-                | EffectKind::InertialParameters => false,
+                | EffectKind::InertialParameters => Place::Model,
                 EffectKind::EncoderOffset
                 | EffectKind::TimeDelay
                 | EffectKind::EffortScale
-                | EffectKind::EffortOffset => true,
-                _ => return Err(CalibratedError::NotNominal { kind }),
+                | EffectKind::EffortOffset => Place::Sensor,
+                EffectKind::JointElasticity | EffectKind::Backlash => Place::Motor,
+                EffectKind::None => return Err(CalibratedError::NotNominal { kind }),
             };
             if let Some(joint) = e.joint().filter(|&j| j >= N) {
                 return Err(CalibratedError::Joint { kind, joint, n: N });
@@ -142,10 +203,21 @@ impl<R: Robot<N>, const N: usize> Calibrated<R, N> {
                     .or_else(|reason| e.within_tip_body(tip_mass).then_some(()).ok_or(reason))
                     .map_err(|reason| CalibratedError::Invalid { kind, reason })?,
             }
-            if sensor {
-                sensors.push(e);
-            } else {
-                model.push(e);
+            match (window, place) {
+                (Some(_), Place::Motor) => return Err(CalibratedError::NotWindowed { kind }),
+                (Some(_), _) if matches!(e, Effect::TimeDelay { .. }) => {
+                    return Err(CalibratedError::NotWindowed { kind })
+                }
+                (Some(w), _) => {
+                    w.validate().map_err(|err| CalibratedError::Window {
+                        kind,
+                        reason: err.to_string(),
+                    })?;
+                    windowed.push((e, w));
+                }
+                (None, Place::Model) => model.push(e),
+                (None, Place::Sensor) => sensors.push(e),
+                (None, Place::Motor) => motor.push(e),
             }
         }
         // A diagnosis fits the other effects in the measured effort's units:
@@ -153,7 +225,11 @@ impl<R: Robot<N>, const N: usize> Calibrated<R, N> {
         // joint's own forces are `scale` times too large for the model.
         for s in &sensors {
             if let Effect::EffortScale { joint, scale } = *s {
-                for e in model.iter_mut().filter(|e| e.joint() == Some(joint)) {
+                let own = model
+                    .iter_mut()
+                    .chain(windowed.iter_mut().map(|(e, _)| e))
+                    .filter(|e| e.joint() == Some(joint) && e.kind() != EffectKind::EffortScale);
+                for e in own {
                     e.scale_forces(1.0 / scale);
                 }
             }
@@ -164,6 +240,8 @@ impl<R: Robot<N>, const N: usize> Calibrated<R, N> {
             robot,
             effects: model,
             sensors,
+            motor,
+            windowed,
             tip: Tip::of::<R, N>(),
         })
     }
@@ -171,6 +249,25 @@ impl<R: Robot<N>, const N: usize> Calibrated<R, N> {
     /// The effects on the sensors, to be undone on measured data.
     pub fn sensor_effects(&self) -> &[Effect] {
         &self.sensors
+    }
+
+    /// The motor sides (elasticity, backlash), to be simulated along
+    /// measured data.
+    pub fn motor_effects(&self) -> &[Effect] {
+        &self.motor
+    }
+
+    /// The effects limited to a window of the record's time, to be undone
+    /// on measured data inside it.
+    pub fn windowed_effects(&self) -> &[(Effect, Window)] {
+        &self.windowed
+    }
+
+    /// Whether every effect of the baseline is folded into the model
+    /// (none kept apart for the data: a robot that stands for the whole
+    /// baseline wherever a model alone is used).
+    pub fn model_only(&self) -> bool {
+        self.sensors.is_empty() && self.motor.is_empty() && self.windowed.is_empty()
     }
 
     /// The wrapped nominal model.

@@ -110,18 +110,23 @@ fn friction_and_armature_add_what_the_plant_adds() {
 }
 
 #[test]
-fn state_effects_are_refused_by_name_and_sensor_effects_kept_apart() {
+fn motor_sides_and_sensor_effects_are_kept_apart() {
     let elastic = Effect::JointElasticity {
         joint: 0,
         stiffness: 100.0,
         damping: 1.0,
         motor_inertia: 0.01,
     };
-    let e = Calibrated::new(Arm::default(), vec![elastic]);
-    assert!(e
-        .expect_err("refused")
-        .to_string()
-        .contains("joint_elasticity"));
+    let r = Calibrated::new(Arm::default(), vec![elastic]).expect("taken");
+    assert_eq!(r.motor_effects(), &[elastic]);
+    assert!(r.effects().is_empty() && !r.model_only());
+    // A motor side's state carries over a window's edges.
+    let held = Window {
+        start: 1.0,
+        end: 2.0,
+    };
+    let e = Calibrated::timed(Arm::default(), vec![(elastic, Some(held))]);
+    assert!(matches!(e, Err(CalibratedError::NotWindowed { .. })));
     let late = Effect::TimeDelay { delay: 0.01 };
     let scale = Effect::EffortScale {
         joint: 1,

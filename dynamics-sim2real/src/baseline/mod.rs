@@ -3,9 +3,19 @@
 //! `which.ranked[]` and `which.effects[]`) to one effect, through the
 //! diagnosis' own candidate ([`Candidate::effect`]) so that a report reads
 //! back as the model the diagnosis corrected with.
+//!
+//! - here: an entry to an effect (and its window, when it has one);
+//! - `undo.rs`: what a calibrated baseline cannot fold into the rigid
+//!   model, undone on measured data: the sensors' effects, the motor
+//!   sides (the effort that reaches the link, simulated along the record),
+//!   the effects limited to a window.
 
-use crate::diagnose::{Candidate, Channel, Parameter, Unnamed};
-use crate::effects::{Effect, EffectKind};
+mod undo;
+
+pub use undo::{undo, UndoError};
+
+use crate::diagnose::{Candidate, Channel, Explained, Parameter, Unnamed};
+use crate::effects::{Effect, EffectKind, Window};
 use dynamics_runtime::Robot;
 
 /// One effect as a report names it.
@@ -23,6 +33,38 @@ pub struct Entry {
     pub channel: Option<Channel>,
     /// Its parameters by name (`fc`, `mass`, ...); `std` is not used.
     pub parameters: Vec<Parameter>,
+    /// The time span of an effect limited in time, in the record's own
+    /// times (`None`: on all the time).
+    pub window: Option<Window>,
+}
+
+/// A report's effect as a baseline entry, its window included.
+///
+/// ```
+/// use dynamics_sim2real::baseline::Entry;
+/// use dynamics_sim2real::data::Measured;
+/// use dynamics_sim2real::diagnose::{diagnose, Options};
+/// use dynamics_runtime::Robot;
+/// fn entries<R: Robot<3> + Clone + Sync>(robot: &R, train: &Measured<3>, holdout: &Measured<3>) {
+///     let report = diagnose(robot, train, holdout, &Options::default(), &|_, _| {}).expect("enough data");
+///     let back: Vec<Entry> = report.which.effects.iter().map(Entry::from).collect();
+///     assert_eq!(back.len(), report.which.effects.len());
+/// }
+/// ```
+impl From<&Explained> for Entry {
+    fn from(e: &Explained) -> Self {
+        Entry {
+            kind: e.kind.name().to_string(),
+            joint: e.joint.clone(),
+            point: e.point.clone(),
+            channel: e.channel,
+            parameters: e.parameters.clone(),
+            window: e.window.as_ref().map(|w| Window {
+                start: w.start,
+                end: w.end,
+            }),
+        }
+    }
 }
 
 /// Why a report entry cannot become an effect.
@@ -60,6 +102,14 @@ pub enum BaselineError {
         name: String,
         /// The names this kind takes.
         expected: String,
+    },
+    /// A window that is not a span of time.
+    #[error("effect `{kind}`: {reason}")]
+    Window {
+        /// The kind.
+        kind: String,
+        /// What is wrong with the window.
+        reason: String,
     },
     /// A parameter this kind does not take.
     #[error("effect `{kind}`: unknown parameter `{name}` (it takes: {expected})")]
@@ -109,7 +159,44 @@ pub fn parameter_names(kind: EffectKind) -> &'static [&'static str] {
     }
 }
 
-/// The effect `entry` names on robot `R`.
+/// The effect `entry` names on robot `R`, and its window when it is
+/// limited in time (checked to be a span of time).
+///
+/// ```
+/// use dynamics_sim2real::diagnose::Parameter;
+/// use dynamics_sim2real::{baseline::{timed, Entry}, effects::{Effect, Window}};
+/// dynamics_macros::robot! {
+///     pub robot Pendulum; gravity = [0.0, -9.81, 0.0];
+///     link base; link rod { mass = 1.0; com = [1.0, 0.0, 0.0]; }
+///     joint j = revolute(base -> rod) { transfer = [rot_z(q)]; }
+/// }
+/// let held = Window { start: 2.0, end: 4.0 };
+/// let entry = Entry {
+///     kind: "payload_mass".into(), joint: None, point: Some("rod".into()), channel: None,
+///     parameters: vec![Parameter { name: "mass".into(), value: 0.5, std: 0.01, note: None }],
+///     window: Some(held),
+/// };
+/// let (e, w) = timed::<Pendulum, 1>(&entry).unwrap();
+/// assert!(matches!(e, Effect::PayloadMass { mass, .. } if mass == 0.5));
+/// assert_eq!(w, Some(held));
+/// let backwards = Entry { window: Some(Window { start: 4.0, end: 2.0 }), ..entry };
+/// assert!(timed::<Pendulum, 1>(&backwards).unwrap_err().to_string().contains("window"));
+/// ```
+pub fn timed<R: Robot<N>, const N: usize>(
+    entry: &Entry,
+) -> Result<(Effect, Option<Window>), BaselineError> {
+    let e = effect::<R, N>(entry)?;
+    if let Some(w) = entry.window {
+        w.validate().map_err(|err| BaselineError::Window {
+            kind: entry.kind.clone(),
+            reason: err.to_string(),
+        })?;
+    }
+    Ok((e, entry.window))
+}
+
+/// The effect `entry` names on robot `R` (its window, if any, aside:
+/// [`timed`]).
 ///
 /// ```
 /// use dynamics_sim2real::diagnose::Parameter;
@@ -122,6 +209,7 @@ pub fn parameter_names(kind: EffectKind) -> &'static [&'static str] {
 /// let entry = Entry {
 ///     kind: "coulomb_friction".into(), joint: Some("j".into()), point: None, channel: None,
 ///     parameters: vec![Parameter { name: "fc".into(), value: 0.3, std: 0.01, note: None }],
+///     window: None,
 /// };
 /// assert_eq!(effect::<Pendulum, 1>(&entry).unwrap(), Effect::coulomb(0, 0.3));
 /// let bad = Entry { joint: Some("elbow".into()), ..entry };
@@ -250,6 +338,7 @@ mod tests {
             joint: Some("j2".into()),
             point: None,
             channel,
+            window: None,
             parameters: parameters
                 .iter()
                 .map(|&(name, value)| Parameter {
