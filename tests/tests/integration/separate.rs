@@ -11,17 +11,22 @@
 //! rival kind.
 //!
 //! The cases: arm3r, one effect of the pair's true kind drawn by
-//! [`draw_effect`] at a joint drawn from those that can carry it, on a 6 s
-//! run whose reference kind (sines, chirp, pick-and-place), noise level
-//! and seed are drawn from `Rng::new(seed)` (the true kind drawn from
-//! either side of the pair); the case of a kind is the first seed from 1
-//! whose diagnosis reports the pair ambiguous (the truth paired with a
-//! rival kind), or names the wrong effect at the truth's place while
-//! pairing it ambiguously with a rival kind. The seeds
-//! in [`CASES`] were found by that search (`SEPARATE_SEARCH=30 cargo test
-//! --release -p dynamics-tests --test integration separate -- --nocapture`
-//! searches seeds 1..=30 of every kind and prints each outcome); the test
-//! re-checks that each is ambiguous on the default motion, then separates.
+//! [`draw_effect`] at a joint drawn from those that can carry it, on a run
+//! of one of [`DURATIONS`] whose reference kind (sines, chirp,
+//! pick-and-place), noise level and seed are drawn from `Rng::new(seed)`
+//! (the true kind drawn from either side of the pair); the case of a kind
+//! is the first seed from 1 (at the longest run first) whose diagnosis
+//! reports the pair ambiguous (the truth paired with a rival kind), or
+//! names the wrong effect at the truth's place while pairing it
+//! ambiguously with a rival kind. The separating motion has the run's
+//! length; when its report still pairs the truth with a rival, a second
+//! round designs on that report. The cases in [`CASES`] were found by that
+//! search (`SEPARATE_SEARCH=30 cargo test --release -p dynamics-tests
+//! --test integration separate -- --nocapture` searches seeds 1..=30 at
+//! every length for every kind and prints each outcome); the test re-checks
+//! that each is ambiguous on the default motion, that each design
+//! separates its pairs by a larger angle than the default motion, and that
+//! the cases marked in [`SEPARATED`] are separated end to end.
 
 use dynamics_cli::excite::{ambiguous_pairs, limits, rivals};
 use dynamics_runtime::Robot;
@@ -117,7 +122,18 @@ impl PairKind {
 /// Per pair kind (the order of [`KINDS`]): the run length and seed the
 /// search found (`None`: no seed of 1..=30 at any of [`DURATIONS`] left
 /// the pair ambiguous).
-const CASES: [Option<(f64, u64)>; 6] = [Some((6.0, 1)), None, None, Some((6.0, 6)), None, None];
+const CASES: [Option<(f64, u64)>; 6] = [
+    Some((6.0, 1)),
+    Some((3.0, 14)),
+    None,
+    Some((6.0, 6)),
+    None,
+    None,
+];
+
+/// Per pair kind: whether its case is separated end to end (the truth
+/// named at its place, no rival kind left paired with it).
+const SEPARATED: [bool; 6] = [false, true, false, false, false, false];
 
 /// The drawn case of `kind` with `seed`: options of the training run, of
 /// the held-out run, and the effect.
@@ -435,6 +451,11 @@ fn separating_motions_resolve_ambiguous_pairs() {
                     if ok {
                         met.push(kind.label);
                     }
+                    assert!(
+                        search > 0 || ok || !SEPARATED[i],
+                        "{}: {duration} s, seed {seed} is no longer separated: {said}",
+                        kind.label
+                    );
                     found = true;
                 }
             }
