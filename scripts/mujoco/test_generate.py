@@ -131,3 +131,23 @@ def test_logged_effort_is_the_torque_at_the_sample_instant(robot):
     scale = np.abs(ideal).max()
     assert centred < 1e-4 * scale, f"{robot}: {centred:.2e} of {scale:.2e}"
     assert min(held_after, held_before) > 3 * centred, (centred, held_after, held_before)
+
+
+def test_the_pair_score_asks_for_the_payload_alone_within_ten_percent():
+    import pair
+
+    def report(effects, shrink):
+        return {"which": {"effects": effects}, "shrink": {"fraction": shrink}}
+
+    def payload(mass):
+        return {"kind": "payload_mass", "point": "tip", "parameters": [{"name": "mass", "value": mass}]}
+
+    stribeck = {"kind": "stribeck_friction", "joint": "j3", "parameters": []}
+    calibration = report([{"kind": "coulomb_friction", "joint": "j1"}, stribeck], 0.5)
+    ok = pair.score(1.0, calibration, report([payload(1.09)], 0.9))
+    assert ok["pass"] and ok["calibration"] == ["stribeck_friction@j3"] and ok["named"] == ["payload_mass@tip"]
+    assert not pair.score(1.0, calibration, report([payload(1.11)], 0.9))["pass"]
+    assert not pair.score(1.0, calibration, report([payload(1.0), stribeck], 0.9))["pass"]
+    assert not pair.score(1.0, calibration, report([payload(1.0)], 0.8))["pass"]
+    assert not pair.score(1.0, calibration, report([], 0.9))["pass"]
+    assert not pair.score(1.0, None, None)["pass"]

@@ -12,7 +12,7 @@ use crate::diagnose::candidates::{
     motor_feasible, motor_grid, signature_limit, Candidate, MotorGuess, Prepared,
 };
 use dynamics_runtime::{JointKind, Robot};
-use refine::refine;
+use refine::{refine, refine_one};
 use spread::motor_std;
 
 /// Couplings of the stiff rotor, Hz (all above the 45 Hz the elastic
@@ -85,24 +85,9 @@ pub(super) fn stiff_rotor<const N: usize>(linear: Fit, j: usize, p: &Prepared<N>
     let Some((f, c_start)) = best else {
         return linear;
     };
-    let mut jm = start;
-    let mut c_best = c_start;
-    let mut step = 0.35f64;
-    while step > 0.01 {
-        let mut moved = false;
-        let trials = [step.exp(), (-step).exp()];
-        let c = costs(&trials.map(|s| guess(jm * s, f)));
-        for (s, c) in trials.into_iter().zip(c) {
-            if c < c_best {
-                (jm, c_best) = (jm * s, c);
-                moved = true;
-                break;
-            }
-        }
-        if !moved {
-            step *= 0.5;
-        }
-    }
+    let (jm, mut c_best) = refine_one(start, c_start, |jms| {
+        costs(&jms.iter().map(|&jm| guess(jm, f)).collect::<Vec<_>>())
+    });
     if !search.is_whole() {
         c_best = costs_on(&whole, &[guess(jm, f)])
             .first()

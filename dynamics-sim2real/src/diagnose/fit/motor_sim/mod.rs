@@ -34,7 +34,7 @@ pub use stretches::Stretches;
 pub const OBSERVER_HZ: f64 = 3.0;
 
 /// Lanes integrated side by side.
-pub const LANES: usize = 4;
+pub const LANES: usize = 8;
 
 /// The raw transmitted effort (see `transmitted::motor_transmitted_raw`) of
 /// every guess of `gs` at joint `j`, in their order, over the record's
