@@ -6,8 +6,8 @@
 //! smallest such angle over the pairs.
 //!
 //! Linear effects have their regressor columns: Coulomb, Stribeck and
-//! viscous friction, an effort offset, rotor inertia and a link's inertial
-//! parameters. The effects the diagnosis fits by simulation have a
+//! viscous friction, an effort offset, a joint spring (the position), rotor
+//! inertia and a link's inertial parameters. The effects the diagnosis fits by simulation have a
 //! first-order signature on the efforts along the motion instead, used as
 //! their column (the same criterion then applies):
 //!
@@ -58,6 +58,7 @@ pub const BACKLASH_ZONE: f64 = 0.05;
 /// assert_eq!(Rival::named("inertial_parameters", Some("l1"), &names, &links), Ok(Rival::Link(0)));
 /// assert_eq!(Rival::named("backlash", Some("j1"), &names, &links), Ok(Rival::Backlash(0)));
 /// assert_eq!(Rival::named("time_delay", None, &names, &links), Ok(Rival::Delay));
+/// assert_eq!(Rival::named("joint_spring", Some("j1"), &names, &links), Ok(Rival::Spring(0)));
 /// assert!(Rival::named("payload_mass", Some("l2"), &names, &links).is_err());
 /// ```
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
@@ -74,6 +75,9 @@ pub enum Rival {
     Viscous(usize),
     /// A constant effort offset on joint j.
     Offset(usize),
+    /// A spring on joint j: an effort that grows with the position (its
+    /// preload is an offset; the rival's column is the position).
+    Spring(usize),
     /// Rotor inertia of joint j.
     Armature(usize),
     /// The inertial parameters of link l (its base columns).
@@ -110,6 +114,7 @@ impl Rival {
             "stribeck_friction" => Rival::Stribeck(joint()?),
             "viscous_friction" => Rival::Viscous(joint()?),
             "effort_offset" => Rival::Offset(joint()?),
+            "joint_spring" => Rival::Spring(joint()?),
             "armature" => Rival::Armature(joint()?),
             "inertial_parameters" => Rival::Link(
                 place
@@ -124,7 +129,7 @@ impl Rival {
             }
             other => {
                 return Err(format!(
-                    "{other}: no columns or signature here; `excite --separate` separates friction, offsets, rotor and link inertia, a time delay, elasticity and backlash"
+                    "{other}: no columns or signature here; `excite --separate` separates friction, offsets, springs, rotor and link inertia, a time delay, elasticity and backlash"
                 ))
             }
         })
@@ -183,6 +188,7 @@ fn rival_columns<const N: usize>(
         }),
         Rival::Viscous(j) => at_joint(j, &|i| states[i].qd[j]),
         Rival::Offset(j) => at_joint(j, &|_| 1.0),
+        Rival::Spring(j) => at_joint(j, &|i| states[i].q[j]),
         Rival::Armature(j) => at_joint(j, &|i| states[i].qdd[j]),
         Rival::Link(l) => columns
             .kept
@@ -213,7 +219,9 @@ fn rival_columns<const N: usize>(
 
 /// The smallest principal angle (rad) between the columns of `a` and `b`
 /// after the columns of every other base parameter are projected out, for
-/// each pair, over the motion `states`.
+/// each pair, over the motion `states`. A column that keeps less than
+/// [`EXCITED_SHARE`] of itself after the projection counts as not
+/// excited; a rival with no column left has angle zero.
 ///
 /// ```
 /// use dynamics_sim2real::excite::{separation_angles, BaseColumns, Fourier, Limits, Rival};
@@ -268,7 +276,8 @@ pub fn separation_angles<R: Robot<N>, const N: usize>(
             Some(q) => &m - q * (q.transpose() * &m),
             None => m,
         };
-        let (pa, pb) = (perp(to_matrix(&xa)), perp(to_matrix(&xb)));
+        let (ma, mb) = (to_matrix(&xa), to_matrix(&xb));
+        let (pa, pb) = (left(&ma, &perp(ma.clone())), left(&mb, &perp(mb.clone())));
         let angle = match (orthonormal(&pa), orthonormal(&pb)) {
             (Some(qa), Some(qb)) => {
                 let s = (qa.transpose() * qb).singular_values();
@@ -280,6 +289,25 @@ pub fn separation_angles<R: Robot<N>, const N: usize>(
         out.push(angle);
     }
     Ok(out)
+}
+
+/// The share of its column a rival must keep after the other base
+/// columns are projected out to count as excited: below it, what is left
+/// is the rounding or the end rows of a column the others already hold,
+/// and the angle between two such remnants says nothing about the effects.
+pub const EXCITED_SHARE: f64 = 0.01;
+
+/// The columns of `projected` (the columns of `m` with the others
+/// projected out) that keep at least [`EXCITED_SHARE`] of the norm of
+/// their column in `m`.
+fn left(m: &DMatrix<f64>, projected: &DMatrix<f64>) -> DMatrix<f64> {
+    let keep: Vec<usize> = (0..m.ncols())
+        .filter(|&c| {
+            let full = m.column(c).norm();
+            full > 0.0 && projected.column(c).norm() >= EXCITED_SHARE * full
+        })
+        .collect();
+    projected.select_columns(keep.iter())
 }
 
 /// An orthonormal basis of the columns of `m` (those of norm above 1e-9
@@ -380,6 +408,39 @@ mod tests {
             let want = factor * states[i].qdd[0];
             assert!((c[0][i] - want).abs() < 1e-9 * factor.abs().max(1.0), "{i}");
         }
+    }
+
+    #[test]
+    fn a_rival_the_others_hold_is_not_excited() {
+        // The spring's signature on one harmonic without gravity is a
+        // multiple of the rotor column at every inner state (the test
+        // above): projected against the rotor, only the two end rows are
+        // left (well under 1 % of the column), so the spring is not
+        // excited and its angle to an offset is zero, not the 90 degrees
+        // of the two end rows against a constant.
+        let flat = Flat::default();
+        let limits = Limits::new([-1.0], [1.0], [3.0], [50.0]);
+        let cols = BaseColumns::of(&flat, &limits, 1).unwrap();
+        let states = sine(400);
+        let a = separation_angles(
+            &flat,
+            &cols,
+            &[(Rival::Elasticity(0), Rival::Offset(0))],
+            &states,
+        )
+        .unwrap();
+        assert_eq!(a[0], 0.0);
+        // Coulomb friction against an offset on the same swing: both keep
+        // most of their column, and a sign that changes twice a period is
+        // far from a constant.
+        let b = separation_angles(
+            &flat,
+            &cols,
+            &[(Rival::Coulomb(0), Rival::Offset(0))],
+            &states,
+        )
+        .unwrap();
+        assert!(b[0] > 0.5, "{}", b[0]);
     }
 
     #[test]

@@ -11,17 +11,22 @@
 //! rival kind.
 //!
 //! The cases: arm3r, one effect of the pair's true kind drawn by
-//! [`draw_effect`] at a joint drawn from those that can carry it, on a 6 s
-//! run whose reference kind (sines, chirp, pick-and-place), noise level
-//! and seed are drawn from `Rng::new(seed)` (the true kind drawn from
-//! either side of the pair); the case of a kind is the first seed from 1
-//! whose diagnosis reports the pair ambiguous (the truth paired with a
-//! rival kind), or names the wrong effect at the truth's place while
-//! pairing it ambiguously with a rival kind. The seeds
-//! in [`CASES`] were found by that search (`SEPARATE_SEARCH=30 cargo test
-//! --release -p dynamics-tests --test integration separate -- --nocapture`
-//! searches seeds 1..=30 of every kind and prints each outcome); the test
-//! re-checks that each is ambiguous on the default motion, then separates.
+//! [`draw_effect`] at a joint drawn from those that can carry it, on a run
+//! of one of [`DURATIONS`] whose reference kind (sines, chirp,
+//! pick-and-place), noise level and seed are drawn from `Rng::new(seed)`
+//! (the true kind drawn from either side of the pair); the case of a kind
+//! is the first seed from 1 (at the longest run first) whose diagnosis
+//! reports the pair ambiguous (the truth paired with a rival kind), or
+//! names the wrong effect at the truth's place while pairing it
+//! ambiguously with a rival kind. The separating motion has the run's
+//! length; when its report still pairs the truth with a rival, a second
+//! round designs on that report. The cases in [`CASES`] were found by that
+//! search (`SEPARATE_SEARCH=30 cargo test --release -p dynamics-tests
+//! --test integration separate -- --nocapture` searches seeds 1..=30 at
+//! every length for every kind and prints each outcome); the test re-checks
+//! that each is ambiguous on the default motion, that each design
+//! separates its pairs by a larger angle than the default motion, and that
+//! the cases marked in [`SEPARATED`] are separated end to end.
 
 use dynamics_cli::excite::{ambiguous_pairs, limits, rivals};
 use dynamics_runtime::Robot;
@@ -36,7 +41,15 @@ use nalgebra::SVector;
 use robots::registry::AnyRobot;
 
 const ROBOT: &str = "arm3r";
-const DURATION: f64 = 6.0;
+
+/// The run lengths the search draws cases on, s: the default 6 s, and
+/// shorter runs, on which a joint reverses less often (a Coulomb friction
+/// at a joint that never reverses is an offset to the data).
+const DURATIONS: [f64; 3] = [6.0, 3.0, 1.5];
+
+/// Rounds of `excite --separate`: a second one on the report of the first
+/// separating motion when that leaves another rival.
+const ROUNDS: usize = 2;
 
 /// A pair kind: the two sides' effect kinds (a delay is rivalled by any
 /// motor-side effect).
@@ -106,15 +119,28 @@ impl PairKind {
     }
 }
 
-/// Per pair kind (the order of [`KINDS`]): the seed the search found
-/// (`None`: none of seeds 1..=30 left the pair ambiguous).
-const CASES: [Option<u64>; 6] = [Some(1), None, None, Some(6), None, None];
+/// Per pair kind (the order of [`KINDS`]): the run length and seed the
+/// search found (`None`: no seed of 1..=30 at any of [`DURATIONS`] left
+/// the pair ambiguous).
+const CASES: [Option<(f64, u64)>; 6] = [
+    Some((6.0, 1)),
+    Some((3.0, 14)),
+    None,
+    Some((6.0, 6)),
+    None,
+    None,
+];
+
+/// Per pair kind: whether its case is separated end to end (the truth
+/// named at its place, no rival kind left paired with it).
+const SEPARATED: [bool; 6] = [false, true, false, false, false, false];
 
 /// The drawn case of `kind` with `seed`: options of the training run, of
 /// the held-out run, and the effect.
 fn case<R: Robot<N> + Clone, const N: usize>(
     robot: &R,
     pair: &PairKind,
+    duration: f64,
     seed: u64,
 ) -> Option<(SynthOptions<N>, SynthOptions<N>, Effect)> {
     let mut rng = Rng::new(seed);
@@ -128,7 +154,7 @@ fn case<R: Robot<N> + Clone, const N: usize>(
     let level = rng.uniform(0.5, 2.0);
     let m = robots::builtin::motion(ROBOT);
     let opts = SynthOptions::<N> {
-        duration: DURATION,
+        duration,
         excitation,
         home: SVector::from_fn(|k, _| m.home[k]),
         amplitude: SVector::from_fn(|k, _| m.amplitude[k]),
@@ -140,7 +166,7 @@ fn case<R: Robot<N> + Clone, const N: usize>(
         seed: 1000 * seed + 7,
         ..Default::default()
     };
-    let scales = Scales::of(robot, &opts.reference(), DURATION);
+    let scales = Scales::of(robot, &opts.reference(), duration);
     // A rotor (armature, a motor side) only where the controller carries it.
     let motor = matches!(
         kind,
@@ -225,6 +251,24 @@ fn said(report: &Report) -> String {
         })
         .collect::<Vec<_>>()
         .join(", ")
+        + &report
+            .which
+            .ranked
+            .iter()
+            .filter(|r| r.kind == EffectKind::StribeckFriction)
+            .take(1)
+            .map(|r| {
+                format!(
+                    "; ranked stribeck@{}: {}",
+                    r.joint.clone().unwrap_or_default(),
+                    r.parameters
+                        .iter()
+                        .map(|p| format!("{} {:.3e} +- {:.1e}", p.name, p.value, p.std))
+                        .collect::<Vec<_>>()
+                        .join(", ")
+                )
+            })
+            .collect::<String>()
         + &format!(
             "; verdict {:?} {:?}{}",
             report.which.verdict.kind,
@@ -243,9 +287,10 @@ fn said(report: &Report) -> String {
 fn run<R: Robot<N> + Clone + Sync, const N: usize>(
     robot: &R,
     kind: &PairKind,
+    duration: f64,
     seed: u64,
 ) -> Outcome {
-    let Some((opts, hold, effect)) = case(robot, kind, seed) else {
+    let Some((opts, hold, effect)) = case(robot, kind, duration, seed) else {
         return Outcome::Clear("no effect drawn".into());
     };
     let rival_kinds = kind.rivals(effect.kind());
@@ -286,47 +331,65 @@ fn run<R: Robot<N> + Clone + Sync, const N: usize>(
         opts.excitation,
         said(&before)
     );
-    let (pairs, labels) = match rivals::<R, N>(&json) {
-        Ok(p) => p,
-        Err(e) => return Outcome::Refused(e),
-    };
     let m = robots::builtin::motion(ROBOT);
     let lim = limits::<N>(
         AnyRobot::by_name(ROBOT).expect("robot").limits().as_ref(),
         &m,
     );
-    let mut o = DesignOptions::new(DURATION);
-    o.evaluations = 600;
-    let (d, angles) = match design_separating(robot, &lim, &o, &pairs) {
-        Ok(x) => x,
-        Err(e) => return Outcome::Refused(e.to_string()),
-    };
-    // The same pairs on the default motion (its reference, equally spaced).
-    let reference = opts.reference();
-    let states: Vec<_> = (0..=600)
-        .map(|k| reference.at(DURATION * k as f64 / 600.0))
-        .collect();
-    let default = separation_angles(robot, &d.columns, &pairs, &states).expect("angles");
-    for (l, (a, b)) in labels.iter().zip(angles.iter().zip(&default)) {
-        eprintln!(
-            "  {l}: separation angle {:.1} deg on the designed motion, {:.1} deg on the default",
-            a.to_degrees(),
-            b.to_degrees()
-        );
-        assert!(
-            a > b,
-            "{l}: the design separates less than the default motion"
-        );
+    let mut json = json;
+    let mut after = None;
+    for round in 0..ROUNDS {
+        let (pairs, labels) = match rivals::<R, N>(&json) {
+            Ok(p) if !p.0.is_empty() => p,
+            Ok(_) => break,
+            Err(e) if round == 0 => return Outcome::Refused(e),
+            Err(_) => break,
+        };
+        let mut o = DesignOptions::new(duration);
+        o.evaluations = 600;
+        let (d, angles) = match design_separating(robot, &lim, &o, &pairs) {
+            Ok(x) => x,
+            Err(e) if round == 0 => return Outcome::Refused(e.to_string()),
+            Err(_) => break,
+        };
+        // The same pairs on the default motion (its reference, equally
+        // spaced).
+        let reference = opts.reference();
+        let states: Vec<_> = (0..=600)
+            .map(|k| reference.at(duration * k as f64 / 600.0))
+            .collect();
+        let default = separation_angles(robot, &d.columns, &pairs, &states).expect("angles");
+        for (l, (a, b)) in labels.iter().zip(angles.iter().zip(&default)) {
+            eprintln!(
+                "  round {}: {l}: separation angle {:.1} deg on the designed motion, {:.1} deg on the default",
+                round + 1,
+                a.to_degrees(),
+                b.to_degrees()
+            );
+            assert!(
+                a > b,
+                "{l}: the design separates less than the default motion"
+            );
+        }
+        let on = SynthOptions {
+            motion: Some(Excitation::designed(d.motion.clone())),
+            ..opts.clone()
+        };
+        let report = match diagnosed(&on) {
+            Ok(r) => r,
+            Err(e) => return Outcome::Refused(format!("on the designed motion: {e}")),
+        };
+        json = serde_json::to_value(&report).expect("report JSON");
+        let done = names(&report, &truth) && !pair_left(&json, rival_kinds, &truth);
+        eprintln!("  round {}: {}", round + 1, said(&report));
+        after = Some(report);
+        if done {
+            break;
+        }
     }
-    let on = SynthOptions {
-        motion: Some(Excitation::designed(d.motion.clone())),
-        ..opts.clone()
+    let Some(after) = after else {
+        return Outcome::Refused("no pair to separate".into());
     };
-    let after = match diagnosed(&on) {
-        Ok(r) => r,
-        Err(e) => return Outcome::Refused(format!("on the designed motion: {e}")),
-    };
-    let json = serde_json::to_value(&after).expect("report JSON");
     Outcome::Separated {
         named: names(&after, &truth),
         ambiguous: pair_left(&json, rival_kinds, &truth),
@@ -343,18 +406,21 @@ fn separating_motions_resolve_ambiguous_pairs() {
         .unwrap_or(0);
     let mut met = Vec::new();
     for (i, kind) in KINDS.iter().enumerate() {
-        let seeds: Vec<u64> = if search > 0 {
-            (1..=search).collect()
+        let seeds: Vec<(f64, u64)> = if search > 0 {
+            DURATIONS
+                .iter()
+                .flat_map(|&d| (1..=search).map(move |s| (d, s)))
+                .collect()
         } else {
             CASES[i].into_iter().collect()
         };
         let mut found = false;
-        for seed in seeds {
-            let outcome = robots::each_robot!(&robot, r => run(r, kind, seed));
+        for (duration, seed) in seeds {
+            let outcome = robots::each_robot!(&robot, r => run(r, kind, duration, seed));
             match outcome {
                 Outcome::Clear(s) => {
                     eprintln!(
-                        "{}: seed {seed}: not ambiguous on the default motion: {s}",
+                        "{}: {duration} s, seed {seed}: not ambiguous on the default motion: {s}",
                         kind.label
                     );
                     // A fixed case must still be ambiguous on the default motion.
@@ -366,7 +432,7 @@ fn separating_motions_resolve_ambiguous_pairs() {
                 }
                 Outcome::Refused(why) => {
                     eprintln!(
-                        "{}: seed {seed}: ambiguous; separation refused: {why}",
+                        "{}: {duration} s, seed {seed}: ambiguous; separation refused: {why}",
                         kind.label
                     );
                     found = true;
@@ -378,13 +444,18 @@ fn separating_motions_resolve_ambiguous_pairs() {
                 } => {
                     let ok = named && !ambiguous;
                     eprintln!(
-                        "{}: seed {seed}: on the separating motion: {} ({said})",
+                        "{}: {duration} s, seed {seed}: on the separating motion: {} ({said})",
                         kind.label,
                         if ok { "SEPARATED" } else { "NOT separated" }
                     );
                     if ok {
                         met.push(kind.label);
                     }
+                    assert!(
+                        search > 0 || ok || !SEPARATED[i],
+                        "{}: {duration} s, seed {seed} is no longer separated: {said}",
+                        kind.label
+                    );
                     found = true;
                 }
             }

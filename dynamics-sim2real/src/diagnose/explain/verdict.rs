@@ -3,6 +3,7 @@
 //! within noise or `unexplained` when the gap is real.
 
 use super::report::{Ranked, Status, Verdict, VerdictKind};
+use crate::diagnose::select::nested_rival_stands;
 use crate::diagnose::Options;
 use crate::effects::EffectKind;
 
@@ -18,7 +19,7 @@ pub fn verdict(ranked: &[Ranked], gap: f64, options: &Options) -> Verdict {
             let rival = ranked
                 .iter()
                 .skip(1)
-                .find(|r| top.aicc - r.aicc > -options.ambiguity_margin);
+                .find(|r| top.aicc - r.aicc > -options.ambiguity_margin && stands(top, r));
             Verdict {
                 kind: VerdictKind::Effect(top.kind),
                 joint: top.joint.clone(),
@@ -50,6 +51,23 @@ pub fn verdict(ranked: &[Ranked], gap: f64, options: &Options) -> Verdict {
             }
         }
     }
+}
+
+/// Whether `rival` leaves `top` ambiguous: at another place always; at
+/// the same place, a rival that nests `top` (or is nested by it) only while
+/// the data leave the richer one's extra parameter undetermined
+/// (`select::nested_rival_stands`).
+fn stands(top: &Ranked, rival: &Ranked) -> bool {
+    fn tuples(r: &Ranked) -> Vec<(&str, f64, f64)> {
+        r.parameters
+            .iter()
+            .map(|p| (p.name.as_str(), p.value, p.std))
+            .collect()
+    }
+    let (a, b) = (tuples(top), tuples(rival));
+    top.joint != rival.joint
+        || top.point != rival.point
+        || nested_rival_stands((top.kind, &a), (rival.kind, &b))
 }
 
 /// A motion that would tell `a` and `b` apart.

@@ -19,6 +19,7 @@ mod pool;
 mod rank;
 
 pub use compound::{effects, joint_fit, without_others, Explanation};
+pub use nesting::nested_rival_stands;
 pub use pool::{Pool, Solution};
 
 use nalgebra::SVector;

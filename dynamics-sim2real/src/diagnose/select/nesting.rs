@@ -7,6 +7,7 @@
 
 use crate::diagnose::candidates::Candidate;
 use crate::diagnose::Options;
+use crate::effects::EffectKind;
 
 /// The simpler term a richer one nests at its place.
 pub fn simpler(c: Candidate) -> Option<fn(&Candidate) -> bool> {
@@ -39,5 +40,132 @@ pub fn nesting(c: Candidate, options: &Options) -> f64 {
     match c {
         Candidate::Stribeck(..) => options.none_margin.max(options.nesting_margin),
         _ => options.nesting_margin,
+    }
+}
+
+/// A Stribeck breakaway level this far above the Coulomb level (as a
+/// fraction of it) is physically meaningful: below it the hump at low
+/// speed is a few percent of the friction a drive shows and no one acts on
+/// it (measured breakaway levels of robot joints lie 10-100 % above their
+/// Coulomb level).
+pub const MEANINGFUL_BREAKAWAY: f64 = 0.1;
+
+/// Standard deviations either side of a value that bound what the data
+/// determine of it (about 95 % for a Gaussian estimate).
+pub const INTERVAL_STDS: f64 = 2.0;
+
+/// What the data say of the parameters a richer effect adds to the simpler
+/// one it nests at its place.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub enum Extra {
+    /// Determined near zero: the interval excludes every physically
+    /// meaningful value, so the simpler effect is the answer whatever the
+    /// information criterion's margin.
+    Absent,
+    /// Determined away from zero: the richer effect's extra is there.
+    Present,
+    /// The interval covers both zero and a meaningful value (or the
+    /// extra has no interval here): the data cannot tell the two apart.
+    Undetermined,
+}
+
+/// What the fitted `parameters` (name, value, standard deviation) of a
+/// richer effect of kind `richer` say of its extra over the simpler effect
+/// it nests. Stribeck friction over Coulomb friction: the breakaway excess
+/// `fs_minus_fc`, against zero and [`MEANINGFUL_BREAKAWAY`] times the
+/// Coulomb level `fc`, each within [`INTERVAL_STDS`] standard deviations.
+/// The other nested pairs (a motor side over its rotor, a spring over an
+/// offset, a link over a payload) have no interval of their extra on one
+/// physical scale here: `Undetermined`, so the information criterion's
+/// margin alone decides whether they are ambiguous.
+pub fn extra(richer: EffectKind, parameters: &[(&str, f64, f64)]) -> Extra {
+    let get = |name: &str| {
+        parameters
+            .iter()
+            .find(|p| p.0 == name)
+            .map(|p| (p.1, p.2))
+            .filter(|(v, s)| v.is_finite() && s.is_finite() && *s >= 0.0)
+    };
+    match richer {
+        EffectKind::StribeckFriction => {
+            let (Some((fc, _)), Some((x, s))) = (get("fc"), get("fs_minus_fc")) else {
+                return Extra::Undetermined;
+            };
+            let meaningful = MEANINGFUL_BREAKAWAY * fc.abs();
+            let (lo, hi) = (x - INTERVAL_STDS * s, x + INTERVAL_STDS * s);
+            if lo > 0.0 || hi < 0.0 {
+                Extra::Present
+            } else if hi < meaningful && lo > -meaningful {
+                Extra::Absent
+            } else {
+                Extra::Undetermined
+            }
+        }
+        _ => Extra::Undetermined,
+    }
+}
+
+/// A fitted effect: its kind and its parameters (name, value, standard
+/// deviation).
+pub type Fitted<'a> = (EffectKind, &'a [(&'a str, f64, f64)]);
+
+/// Whether `rival`, at the same place as the `chosen` effect and within
+/// the information criterion's ambiguity margin of it, leaves the choice
+/// ambiguous. When one of the two nests the other, the richer one's extra
+/// parameter decides ([`extra`]): a richer rival whose extra the data
+/// determine near zero does not (the simpler chosen effect is the answer;
+/// no motion could make a nested rival fit worse, it only costs its extra
+/// parameter), nor does a simpler rival of a chosen richer effect whose
+/// extra the data determine away from zero; while the data leave the extra
+/// undetermined, it does. Pairs that do not nest: always.
+pub fn nested_rival_stands(chosen: Fitted, rival: Fitted) -> bool {
+    let nests = |rich: EffectKind, simple: EffectKind| {
+        matches!(
+            (rich, simple),
+            (EffectKind::StribeckFriction, EffectKind::CoulombFriction)
+        )
+    };
+    if nests(rival.0, chosen.0) {
+        extra(rival.0, rival.1) != Extra::Absent
+    } else if nests(chosen.0, rival.0) {
+        extra(chosen.0, chosen.1) != Extra::Present
+    } else {
+        true
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn a_breakaway_excess_is_judged_by_its_interval() {
+        use EffectKind::{CoulombFriction as C, StribeckFriction as S};
+        // fc = 1: meaningful excess 0.1; intervals at 2 std.
+        let p = |x: f64, s: f64| [("fc", 1.0, 0.01), ("fs_minus_fc", x, s)];
+        // [-0.02, 0.06]: covers zero, excludes 0.1 -> absent.
+        assert_eq!(extra(S, &p(0.02, 0.02)), Extra::Absent);
+        // [0.1, 0.5]: excludes zero -> present.
+        assert_eq!(extra(S, &p(0.3, 0.1)), Extra::Present);
+        // [-0.1, 0.3]: covers both -> undetermined.
+        assert_eq!(extra(S, &p(0.1, 0.1)), Extra::Undetermined);
+        // An undetermined spread is no interval.
+        assert_eq!(extra(S, &p(0.0, f64::INFINITY)), Extra::Undetermined);
+        // Coulomb chosen, Stribeck rival: it stands unless its excess is
+        // determined near zero.
+        let c = [("fc", 1.0, 0.01)];
+        let stands = |chosen: Fitted, rival: Fitted| nested_rival_stands(chosen, rival);
+        assert!(!stands((C, &c), (S, &p(0.02, 0.02))));
+        assert!(stands((C, &c), (S, &p(0.1, 0.1))));
+        assert!(stands((C, &c), (S, &p(0.3, 0.1))));
+        // Stribeck chosen, Coulomb rival: it stands unless the excess is
+        // determined away from zero.
+        assert!(!stands((S, &p(0.3, 0.1)), (C, &c)));
+        assert!(stands((S, &p(0.1, 0.1)), (C, &c)));
+        // Pairs without such an interval: the margin decides.
+        assert!(stands(
+            (EffectKind::Armature, &[("inertia", 0.1, 1e-4)]),
+            (EffectKind::Backlash, &[("half_width", 1e-3, 1e-5)])
+        ));
     }
 }

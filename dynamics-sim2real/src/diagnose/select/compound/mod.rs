@@ -42,7 +42,7 @@ use nalgebra::SVector;
 use rayon::prelude::*;
 
 use super::criterion::tie_key;
-use super::nesting::{nesting, simpler};
+use super::nesting::{nested_rival_stands, nesting, simpler};
 use super::pool::prior::STRENGTHS;
 use super::pool::{Pool, Solution};
 use crate::diagnose::candidates::{Candidate, Friction, Prepared};
@@ -253,12 +253,25 @@ pub fn explain<R: Robot<N>, const N: usize>(
                             m != i && pool.terms[u].family() == pool.terms[t].family()
                         })
                 })
-                .map(|t| {
+                .filter_map(|t| {
                     let mut s = set.clone();
                     s[i] = t;
-                    (t, crit(pool, &pool.solve(&s)) - full)
+                    let swapped = pool.solve(&s);
+                    let d = crit(pool, &swapped) - full;
+                    // A rival nesting the chosen effect (or nested by it)
+                    // at its place: its extra parameter's interval, in the
+                    // fit that holds the richer of the two, decides.
+                    let c = pool.terms[t].fit.candidate;
+                    let stands = c.joint() != me.joint() || {
+                        let mine = joint_fit(pool, set[i], &sol.theta[i], &sol.std[i]);
+                        let theirs = joint_fit(pool, t, &swapped.theta[i], &swapped.std[i]);
+                        nested_rival_stands(
+                            (me.kind(), &mine.parameters()),
+                            (c.kind(), &theirs.parameters()),
+                        )
+                    };
+                    (d < options.ambiguity_margin && stands).then_some((t, d))
                 })
-                .filter(|(_, d)| *d < options.ambiguity_margin)
                 .min_by_key(|a| (tie_key(a.1), a.0))
                 .map(|(t, _)| t)
         })
