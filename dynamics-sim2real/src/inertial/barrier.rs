@@ -29,72 +29,106 @@ const GROWTH: f64 = 10.0;
 /// (the duality gap of a centred point is `ORDER / s`).
 const ORDER: f64 = 5.0;
 
-/// An affine matrix function `M(x) = m0 + sum x_c a_c`, a quadratic
-/// `1/2 x^T q x + l^T x` and a ball `x^T b x < R^2`: what one centring
-/// minimises is `quadratic(x) - ln det M(x) - ln(R^2 - x^T b x)`.
-struct Problem {
-    m0: Matrix4<f64>,
-    a: Vec<Matrix4<f64>>,
-    q: DMatrix<f64>,
-    l: DVector<f64>,
-    b: DMatrix<f64>,
-    radius: f64,
+/// One 4 x 4 affine matrix function of some of the variables,
+/// `M(x) = m0 + sum a_c x_{var_c}`, kept positive definite.
+pub(super) struct Block {
+    pub(super) m0: Matrix4<f64>,
+    /// (variable, its matrix).
+    pub(super) a: Vec<(usize, Matrix4<f64>)>,
 }
 
-impl Problem {
+impl Block {
     fn matrix(&self, x: &DVector<f64>) -> Matrix4<f64> {
         let mut m = self.m0;
-        for (c, a) in self.a.iter().enumerate() {
-            m += a * x[c];
+        for (c, a) in &self.a {
+            m += a * x[*c];
         }
         m
     }
+}
 
-    /// The objective, `None` outside the domain (`M` not positive
-    /// definite).
-    fn value(&self, x: &DVector<f64>) -> Option<f64> {
-        let ch = self.matrix(x).cholesky()?;
-        let room = self.room(x);
-        if room.is_nan() || room <= 0.0 {
-            return None;
-        }
-        let logdet = 2.0 * ch.l().diagonal().iter().map(|d| d.ln()).sum::<f64>();
-        let quad = 0.5 * (&self.q * x).dot(x) + self.l.dot(x);
-        let v = quad - logdet - room.ln();
-        v.is_finite().then_some(v)
-    }
+/// A ball `x^T b x < R^2` (`b` over all the variables).
+pub(super) struct Ball {
+    pub(super) b: DMatrix<f64>,
+    pub(super) radius: f64,
+}
 
+impl Ball {
     /// `R^2 - x^T b x`: the ball's room left.
     fn room(&self, x: &DVector<f64>) -> f64 {
         self.radius * self.radius - (&self.b * x).dot(x)
     }
+}
+
+/// What one centring minimises: the quadratic `1/2 x^T q x + l^T x`
+/// minus `ln det M(x)` of every block and `ln` of every ball's room.
+pub(super) struct Problem {
+    pub(super) blocks: Vec<Block>,
+    pub(super) balls: Vec<Ball>,
+    pub(super) q: DMatrix<f64>,
+    pub(super) l: DVector<f64>,
+}
+
+impl Problem {
+    /// The objective, `None` outside the domain (a block not positive
+    /// definite, or outside a ball).
+    fn value(&self, x: &DVector<f64>) -> Option<f64> {
+        let mut v = 0.5 * (&self.q * x).dot(x) + self.l.dot(x);
+        for block in &self.blocks {
+            let ch = block.matrix(x).cholesky()?;
+            v -= 2.0 * ch.l().diagonal().iter().map(|d| d.ln()).sum::<f64>();
+        }
+        for ball in &self.balls {
+            let room = ball.room(x);
+            if room.is_nan() || room <= 0.0 {
+                return None;
+            }
+            v -= room.ln();
+        }
+        v.is_finite().then_some(v)
+    }
 
     /// Damped Newton from `x` (inside the domain) until the Newton
     /// decrement is negligible or `done(x)`.
-    fn centre(&self, mut x: DVector<f64>, done: &dyn Fn(&DVector<f64>) -> bool) -> DVector<f64> {
-        let n = x.len();
+    pub(super) fn centre(
+        &self,
+        mut x: DVector<f64>,
+        done: &dyn Fn(&DVector<f64>) -> bool,
+    ) -> DVector<f64> {
         for _ in 0..NEWTON {
             if done(&x) {
                 break;
             }
-            let Some(inv) = self.matrix(&x).try_inverse() else {
-                break;
-            };
-            let b: Vec<Matrix4<f64>> = self.a.iter().map(|a| inv * a).collect();
             let mut g = &self.q * &x + &self.l;
             let mut h = self.q.clone();
-            for c in 0..n {
-                g[c] -= b[c].trace();
-                for d in 0..=c {
-                    let v = (b[c] * b[d]).trace();
-                    h[(c, d)] += v;
-                    h[(d, c)] = h[(c, d)];
+            let mut inside = true;
+            for block in &self.blocks {
+                let Some(inv) = block.matrix(&x).try_inverse() else {
+                    inside = false;
+                    break;
+                };
+                let b: Vec<(usize, Matrix4<f64>)> =
+                    block.a.iter().map(|(c, a)| (*c, inv * a)).collect();
+                for (i, (c, bc)) in b.iter().enumerate() {
+                    g[*c] -= bc.trace();
+                    for (d, bd) in &b[..=i] {
+                        let v = (bc * bd).trace();
+                        h[(*c, *d)] += v;
+                        if c != d {
+                            h[(*d, *c)] += v;
+                        }
+                    }
                 }
             }
-            let room = self.room(&x);
-            let bx = &self.b * &x;
-            g += &bx * (2.0 / room);
-            h += &self.b * (2.0 / room) + &bx * bx.transpose() * (4.0 / (room * room));
+            if !inside {
+                break;
+            }
+            for ball in &self.balls {
+                let room = ball.room(&x);
+                let bx = &ball.b * &x;
+                g += &bx * (2.0 / room);
+                h += &ball.b * (2.0 / room) + &bx * bx.transpose() * (4.0 / (room * room));
+            }
             let Some(ch) = h.cholesky() else { break };
             let step = -ch.solve(&g);
             let decrement = -g.dot(&step);
@@ -172,16 +206,22 @@ pub fn nearest_move(
             let mut l = DVector::<f64>::zeros(f + 1);
             l[f] = -s;
             let p = Problem {
-                m0: m0 - Matrix4::identity() * rel,
-                a: a1.clone(),
+                blocks: vec![Block {
+                    m0: m0 - Matrix4::identity() * rel,
+                    a: a1.iter().copied().enumerate().collect(),
+                }],
+                balls: vec![Ball {
+                    b: DMatrix::from_fn(f + 1, f + 1, |r, c| {
+                        if r < f && c < f {
+                            wtw[(r, c)]
+                        } else {
+                            0.0
+                        }
+                    }),
+                    radius,
+                }],
                 q: DMatrix::zeros(f + 1, f + 1),
                 l,
-                b: DMatrix::from_fn(
-                    f + 1,
-                    f + 1,
-                    |r, c| if r < f && c < f { wtw[(r, c)] } else { 0.0 },
-                ),
-                radius,
             };
             x = p.centre(x, &inside);
             if inside(&x) {
@@ -199,12 +239,16 @@ pub fn nearest_move(
     let mut s = 1.0;
     while ORDER / s > 1e-8 {
         let p = Problem {
-            m0,
-            a: a.clone(),
+            blocks: vec![Block {
+                m0,
+                a: a.iter().copied().enumerate().collect(),
+            }],
+            balls: vec![Ball {
+                b: wtw.clone(),
+                radius,
+            }],
             q: &wtw * (2.0 * s),
             l: DVector::zeros(f),
-            b: wtw.clone(),
-            radius,
         };
         z = p.centre(z, &|_| false);
         s *= GROWTH;

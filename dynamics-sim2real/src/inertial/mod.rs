@@ -11,10 +11,12 @@ use thiserror::Error;
 
 mod barrier;
 mod consistent;
+mod metric;
 mod pseudo;
 mod size;
 
 pub use consistent::{complete, nearest_physical, Completed};
+pub use metric::{nearest_in_metric, Link as MetricLink};
 pub use pseudo::{margin, pseudo_inertia};
 pub use size::{units, LIGHTEST, SMALLEST};
 

@@ -8,8 +8,10 @@
 //!    sample's instant, or held over the interval after it), not an
 //!    effect: left out, with a warning;
 //! 2. an effect whose parameters the data do not determine, or that are
-//!    not physical (`determinacy.rs`), or a link correction that leaves no
-//!    physical body, is not named: a suggestion, with the reason;
+//!    not physical (`determinacy.rs`), is not named: a suggestion, with the
+//!    reason; a link correction is held to the nearest physical body in
+//!    the metric of the data (`Pool::solve_physical`) in this test and
+//!    those below, and not named when none is found;
 //! 3. every other effect must lower the held-out record's residual, the
 //!    others refitted on the training record without it, by more than the
 //!    sensor noise could: `(sse_without - sse_with) / tau` (sums of squares
@@ -29,9 +31,8 @@ use super::determinacy::undetermined;
 use super::holdout::{limit_to_windows, Holdout};
 use crate::diagnose::candidates::{delta, Candidate, Excitation, LinkBasis, Prepared};
 use crate::diagnose::fit::Windows;
-use crate::diagnose::select::{joint_fit, Explanation, Pool};
+use crate::diagnose::select::{joint_fit, leaves_a_body, Explanation, Pool};
 use crate::effects::Effect;
-use crate::inertial::complete;
 use dynamics_runtime::{JointKind, Robot};
 
 /// The chance, over all the effects of a set tested together, that any
@@ -145,13 +146,7 @@ pub fn correlation_time(w: &[f64], spacing: usize) -> f64 {
 /// nominal parameters `nominal` a physical body once the combinations the
 /// data do not determine are moved (unknown nominal parameters: assumed).
 fn physical(b: &LinkBasis, theta: &[f64], nominal: Option<&SVector<f64, 10>>) -> bool {
-    let Some(nom) = nominal else {
-        return true;
-    };
-    match complete(nom, &delta(b, theta), &b.free_combinations()) {
-        Some(c) => !c.projected && c.scale >= 1.0 - 1e-9,
-        None => false,
-    }
+    nominal.is_none_or(|nom| leaves_a_body(nom, &delta(b, theta), &b.free_combinations()))
 }
 
 /// The explanation `e` over `pool` confirmed on the held-out record `h`
@@ -182,6 +177,8 @@ pub fn confirm<R: Robot<N>, const N: usize>(
         std: e.sol.std[i].clone(),
         why,
     };
+    // The link corrections the data allow: the nearest physical bodies.
+    let allowed = pool.solve_physical(&e.set, nominal);
     // Positions into `e.set` still in the explanation.
     let mut keep: Vec<usize> = Vec::new();
     for (i, &t) in e.set.iter().enumerate() {
@@ -195,7 +192,7 @@ pub fn confirm<R: Robot<N>, const N: usize>(
             }
         }
         if let Some(b) = &term.link {
-            if !physical(b, &e.sol.theta[i], nominal.get(b.link)) {
+            if !physical(b, &allowed.theta[i], nominal.get(b.link)) {
                 suggested.push(suggest(i, Unconfirmed::NotPhysical));
                 continue;
             }
@@ -210,7 +207,7 @@ pub fn confirm<R: Robot<N>, const N: usize>(
     limit_to_windows(&mut hold, h, pool, e, windows);
     let terms = |pos: &[usize]| -> Vec<usize> { pos.iter().map(|&i| e.set[i]).collect() };
     let sse = |pos: &[usize]| -> f64 {
-        let sol = pool.solve(&terms(pos));
+        let sol = pool.solve_physical(&terms(pos), nominal);
         hold.residual(pos, &sol.theta).norm_squared()
     };
     let spacing = h.rows.windows(2).map(|w| w[1] - w[0]).min().unwrap_or(1);
@@ -257,7 +254,7 @@ pub fn confirm<R: Robot<N>, const N: usize>(
         }
     }
     let set = terms(&keep);
-    let sol = pool.solve(&set);
+    let sol = pool.solve_physical(&set, nominal);
     let rivals = keep
         .iter()
         .map(|&i| e.rivals[i].filter(|r| !set.contains(r)))

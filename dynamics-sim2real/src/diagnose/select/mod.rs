@@ -20,6 +20,7 @@ mod rank;
 
 pub use compound::{effects, joint_fit, without_others, Explanation};
 pub use nesting::nested_rival_stands;
+pub(in crate::diagnose) use pool::leaves_a_body;
 pub use pool::{Pool, Solution};
 
 use nalgebra::SVector;

@@ -18,9 +18,11 @@ use crate::diagnose::fit::Fit;
 use prior::{weight, Prior};
 
 mod build;
+mod physical;
 pub mod prior;
 mod solve;
 mod windows;
+pub(in crate::diagnose) use physical::leaves_a_body;
 pub(in crate::diagnose) use solve::independent;
 
 /// One term of the pool: a fitted single candidate and its columns.

@@ -14,6 +14,12 @@ impl Pool {
     /// the parameter furthest beyond its limit at the limit and solving
     /// again.
     pub fn solve(&self, set: &[usize]) -> Solution {
+        self.solve_held(set, &[])
+    }
+
+    /// [`Pool::solve`] with the free columns of `preset` (pool column,
+    /// value) held at their values (their standard deviations zero).
+    pub(super) fn solve_held(&self, set: &[usize], preset: &[(usize, f64)]) -> Solution {
         // (set pos, column, lower bound, limit)
         let mut free: Vec<(usize, usize, f64, f64)> = Vec::new();
         let mut fixed: Vec<usize> = Vec::new();
@@ -48,8 +54,14 @@ impl Pool {
         let mut active = independent(&self.gram, &cols);
         let dependent = active.iter().filter(|a| !**a).count();
         k = k.saturating_sub(dependent);
-        // Parameters held at a limit: (free index, value).
+        // Parameters held at a limit or preset: (free index, value).
         let mut held: Vec<(usize, f64)> = Vec::new();
+        for &(c, v) in preset {
+            if let Some(i) = free.iter().position(|f| f.1 == c) {
+                active[i] = false;
+                held.push((i, v));
+            }
+        }
         let (theta, std, sse) = loop {
             // y'' = y' - the held columns times their values.
             let mut yy = yy0;

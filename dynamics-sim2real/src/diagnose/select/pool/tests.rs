@@ -122,3 +122,65 @@ fn reweighting_the_joints_rows_is_weighted_least_squares() {
     pool.reweight(&[1.0, 1.0]);
     assert!((pool.solve(&[0]).theta[0][0] - 2.5).abs() < 1e-9);
 }
+
+/// A link correction the free fit takes below any body (its mass
+/// determined alone, 3 kg taken from a 2 kg rod) is moved to the nearest
+/// physical one: it leaves a body, it is on the boundary (a little more
+/// taken leaves none), the fit is worse than the free one, and the other
+/// term is fitted again with the link held. A physical fit is left alone.
+#[test]
+fn a_link_correction_is_held_to_a_body() {
+    use crate::diagnose::candidates::{delta, LinkBasis};
+    use nalgebra::SVector;
+    let (m, c, l) = (2.0, 0.3, 0.4);
+    let iyy = m * l * l / 12.0 + m * c * c;
+    let rod = SVector::<f64, 10>::from([m, m * c, 0.0, 0.0, 1e-4, 0.0, iyy, 0.0, 0.0, iyy]);
+    let n = 400;
+    let mass: Vec<f64> = (0..n).map(|i| (i as f64 * 0.05).sin()).collect();
+    let other: Vec<f64> = (0..n).map(|i| (i as f64 * 0.011).cos()).collect();
+    let x = DMatrix::from_fn(n, 2, |r, k| if k == 0 { mass[r] } else { other[r] });
+    let fit = |dm: f64| {
+        let y = DVector::from_fn(n, |r, _| dm * mass[r] + 0.5 * other[r]);
+        let mut link = term(Candidate::Inertial(0), vec![0], vec![false], None);
+        let mut v = DMatrix::<f64>::zeros(10, 1);
+        v[(0, 0)] = 1.0;
+        link.link = Some(LinkBasis {
+            link: 0,
+            v,
+            tip: false,
+        });
+        let offset = term(Candidate::EffortOffset(0), vec![1], vec![false], None);
+        test_pool(x.clone(), y, vec![link, offset], 1)
+    };
+    let pool = fit(-3.0);
+    let free = pool.solve(&[0, 1]);
+    let held = pool.solve_physical(&[0, 1], &[rod]);
+    assert!((free.theta[0][0] + 3.0).abs() < 1e-9);
+    let b = pool.terms[0].link.clone().expect("a link term");
+    let change = |dm: f64| delta(&b, &[dm]);
+    let dm = held.theta[0][0];
+    assert!(dm > -2.0 && dm < 0.0, "{dm}");
+    assert!(leaves_a_body(&rod, &change(dm), &b.free_combinations()));
+    assert!(!leaves_a_body(
+        &rod,
+        &change(dm - 0.01),
+        &b.free_combinations()
+    ));
+    assert!(held.sse > free.sse);
+    // The offset fitted again with the link held: the direct fit of what
+    // the held link leaves.
+    let g = |a: &[f64], b: &[f64]| a.iter().zip(b).map(|(x, y)| x * y).sum::<f64>();
+    let rest: Vec<f64> = (0..n)
+        .map(|r| (-3.0 - dm) * mass[r] + 0.5 * other[r])
+        .collect();
+    let direct = g(&rest, &other) / g(&other, &other);
+    assert!(
+        (held.theta[1][0] - direct).abs() < 1e-9,
+        "{} vs {direct}",
+        held.theta[1][0]
+    );
+    // A fit that leaves a body is the free fit itself.
+    let fine = fit(0.2);
+    let (a, z) = (fine.solve(&[0, 1]), fine.solve_physical(&[0, 1], &[rod]));
+    assert_eq!(a.theta, z.theta);
+}
