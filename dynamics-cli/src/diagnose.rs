@@ -15,9 +15,8 @@ pub fn diagnose_cmd<R: Robot<N> + Clone + Sync, const N: usize>(
     holdout: DataFile,
     json: Option<PathBuf>,
     report_dir: Option<PathBuf>,
-    noise: Option<dynamics_sim2real::diagnose::SensorNoise>,
+    options: dynamics_sim2real::diagnose::Options,
 ) -> Res {
-    use dynamics_sim2real::diagnose::Options;
     use indicatif::{ProgressBar, ProgressStyle};
     let bar = ProgressBar::new(0);
     bar.set_style(
@@ -27,10 +26,6 @@ pub fn diagnose_cmd<R: Robot<N> + Clone + Sync, const N: usize>(
     let progress = |done: usize, total: usize| {
         bar.set_length(total as u64);
         bar.set_position(done as u64);
-    };
-    let options = Options {
-        noise,
-        ..Options::default()
     };
     let (report, warnings, about) =
         crate::gap::diagnose_calibrated(robot, &train, &holdout, &options, &progress)?;

@@ -190,7 +190,7 @@ impl dynamics_cli::RobotSet for Builtin {
             dynamics_cli::gap::DataFile::csv(b),
             args.json.clone(),
             args.report.clone(),
-            args.noise(),
+            args.options(),
         );
         let _ = std::fs::remove_dir_all(&dir);
         result?;

@@ -60,7 +60,12 @@ fn run<R: Robot<N> + Clone + Sync, const N: usize>(robot: R, args: &[String]) ->
         eprintln!("warning: {w}");
     }
     let start = std::time::Instant::now();
-    let options = Options::default();
+    // HOLD_LINKS=1: link corrections held to the nearest physical body
+    // (`dynamics diagnose --hold-links`).
+    let options = Options {
+        hold_links: std::env::var_os("HOLD_LINKS").is_some_and(|v| v == "1"),
+        ..Options::default()
+    };
     let quiet = |_: usize, _: usize| {};
     let (report, how, train, holdout) = match diagnose(&robot, &train, &holdout, &options, &quiet) {
         // (matched by its message, so that this compiles whether or not the

@@ -250,6 +250,11 @@ pub struct DiagnoseArgs {
         requires = "noise_tau"
     )]
     pub noise_qd: Option<Vec<f64>>,
+    /// Hold a link correction the data take beyond every physical body at the nearest body
+    /// (in the metric of the data) and name it if it holds on the held-out record, instead of
+    /// leaving it out: for a nominal model whose inertial parameters are rough (a CAD model).
+    #[arg(long)]
+    pub hold_links: bool,
     /// The nominal model.
     #[command(flatten)]
     pub model: ModelArgs,
@@ -286,6 +291,16 @@ impl DiagnoseArgs {
                 topic: self.topic.clone(),
             },
         ))
+    }
+
+    /// The diagnosis's options these arguments set (the stated noise,
+    /// `--hold-links`), the others at their defaults.
+    pub fn options(&self) -> dynamics_sim2real::diagnose::Options {
+        dynamics_sim2real::diagnose::Options {
+            noise: self.noise(),
+            hold_links: self.hold_links,
+            ..Default::default()
+        }
     }
 
     /// The stated sensor noise, if any.

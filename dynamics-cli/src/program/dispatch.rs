@@ -135,13 +135,13 @@ pub fn run_on<R: Robot<N> + Clone + Sync, const N: usize>(
             )
         }
         RobotCommand::Diagnose(a) => {
-            let noise = a.noise();
+            let options = a.options();
             let robot = nominal(robot, &a.model, Some(&a.baseline))?;
             let (Some(train), Some(holdout)) = (a.train.clone(), a.holdout.clone()) else {
                 return Err("give --train and --holdout (data files to diagnose)".into());
             };
             let (train, holdout) = a.data_files(train, holdout)?;
-            crate::diagnose::diagnose_cmd(&robot, train, holdout, a.json, a.report, noise)
+            crate::diagnose::diagnose_cmd(&robot, train, holdout, a.json, a.report, options)
         }
         RobotCommand::Identify(a) => {
             let robot = nominal(robot, &a.model, None)?;

@@ -124,7 +124,7 @@ fn stages<R: Robot<N> + Clone + Sync, const N: usize>(
     // The single-effect ranking and the compound explanation.
     let selection = select::select(robot, &records.p, &records.h, fitted, options);
     // Where the gap is; the explanation on the held-out record.
-    let evaluation = evaluate::evaluate(robot, &records, &selection);
+    let evaluation = evaluate::evaluate(robot, &records, &selection, options.hold_links);
     // The report.
     Ok(explain::report::<R, N>(
         &records,

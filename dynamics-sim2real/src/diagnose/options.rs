@@ -46,6 +46,17 @@ pub struct Options {
     /// inverse dynamics) rather than what noise of the levels estimated
     /// from the data makes of it.
     pub noise: Option<SensorNoise>,
+    /// Hold a link correction the fit takes beyond every body at the
+    /// nearest physical one in the metric of the data, and name it when it
+    /// holds on the held-out record (`select/pool/physical.rs`); off, such
+    /// a correction is left out with the reason. For a model whose
+    /// inertial parameters are known to be rough (a CAD model of a real
+    /// arm): on logs of real arms it names corrections that predict the
+    /// held-out record better than a least-squares identification; on
+    /// simulated data whose links are exact, the held corrections also
+    /// stand in for effects of other kinds the diagnosis models more simply
+    /// than the simulator (docs/diagnosis.md).
+    pub hold_links: bool,
 }
 
 impl Default for Options {
@@ -62,6 +73,7 @@ impl Default for Options {
             threads: 0,
             chunk: 0,
             noise: None,
+            hold_links: false,
         }
     }
 }

@@ -9,9 +9,10 @@
 //!    effect: left out, with a warning;
 //! 2. an effect whose parameters the data do not determine, or that are
 //!    not physical (`determinacy.rs`), is not named: a suggestion, with the
-//!    reason; a link correction is held to the nearest physical body in
-//!    the metric of the data (`Pool::solve_physical`) in this test and
-//!    those below, and not named when none is found;
+//!    reason; so is a link correction that leaves no physical body, unless
+//!    [`Options::hold_links`](crate::diagnose::Options::hold_links): it is
+//!    then held to the nearest physical body in the metric of the data
+//!    (`Pool::solve_physical`) in this test and those below;
 //! 3. every other effect must lower the held-out record's residual, the
 //!    others refitted on the training record without it, by more than the
 //!    sensor noise could: `(sse_without - sse_with) / tau` (sums of squares
@@ -152,7 +153,9 @@ fn physical(b: &LinkBasis, theta: &[f64], nominal: Option<&SVector<f64, 10>>) ->
 /// The explanation `e` over `pool` confirmed on the held-out record `h`
 /// (`hlinks`: its link regressor columns; `windows`: the training windows
 /// of the windowed effects); `p` the training record, `excitation` what it
-/// shows of each joint, `nominal` the links' nominal inertial parameters.
+/// shows of each joint, `nominal` the links' nominal inertial parameters;
+/// `hold_links`: link corrections held to the nearest physical body
+/// ([`Pool::solve_physical`]) instead of left out when they leave none.
 #[allow(clippy::too_many_arguments)]
 pub fn confirm<R: Robot<N>, const N: usize>(
     p: &Prepared<N>,
@@ -163,6 +166,7 @@ pub fn confirm<R: Robot<N>, const N: usize>(
     windows: &Windows,
     excitation: &Excitation,
     nominal: &[SVector<f64, 10>],
+    hold_links: bool,
 ) -> Confirmed {
     let mut suggested = Vec::new();
     let mut within_sample = None;
@@ -177,8 +181,19 @@ pub fn confirm<R: Robot<N>, const N: usize>(
         std: e.sol.std[i].clone(),
         why,
     };
-    // The link corrections the data allow: the nearest physical bodies.
-    let allowed = pool.solve_physical(&e.set, nominal);
+    let solve = |set: &[usize]| {
+        if hold_links {
+            pool.solve_physical(set, nominal)
+        } else {
+            pool.solve(set)
+        }
+    };
+    // The link corrections judged: as fitted, or held to bodies.
+    let allowed = if hold_links {
+        pool.solve_physical(&e.set, nominal)
+    } else {
+        e.sol.clone()
+    };
     // Positions into `e.set` still in the explanation.
     let mut keep: Vec<usize> = Vec::new();
     for (i, &t) in e.set.iter().enumerate() {
@@ -207,7 +222,7 @@ pub fn confirm<R: Robot<N>, const N: usize>(
     limit_to_windows(&mut hold, h, pool, e, windows);
     let terms = |pos: &[usize]| -> Vec<usize> { pos.iter().map(|&i| e.set[i]).collect() };
     let sse = |pos: &[usize]| -> f64 {
-        let sol = pool.solve_physical(&terms(pos), nominal);
+        let sol = solve(&terms(pos));
         hold.residual(pos, &sol.theta).norm_squared()
     };
     let spacing = h.rows.windows(2).map(|w| w[1] - w[0]).min().unwrap_or(1);
@@ -254,7 +269,7 @@ pub fn confirm<R: Robot<N>, const N: usize>(
         }
     }
     let set = terms(&keep);
-    let sol = pool.solve_physical(&set, nominal);
+    let sol = solve(&set);
     let rivals = keep
         .iter()
         .map(|&i| e.rivals[i].filter(|r| !set.contains(r)))

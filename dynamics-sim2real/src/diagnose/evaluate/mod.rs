@@ -67,6 +67,7 @@ pub fn evaluate<'a, R: Robot<N> + Clone + Sync, const N: usize>(
     robot: &R,
     records: &'a Records<N>,
     selection: &Selection,
+    hold_links: bool,
 ) -> Evaluation<'a, N> {
     let (p, h) = (&records.p, &records.h);
     let mut training_warnings = Vec::new();
@@ -98,6 +99,7 @@ pub fn evaluate<'a, R: Robot<N> + Clone + Sync, const N: usize>(
         &selection.windows,
         &records.excitation,
         &selection.nominal,
+        hold_links,
     );
     let e = &confirmed.explanation;
     let mut hold = Holdout::new(h, &hlinks, pool, e);
