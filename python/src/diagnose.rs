@@ -32,6 +32,8 @@ pub struct Request<'a, 'py> {
     pub holdout_window: Option<&'a Bound<'py, PyAny>>,
     /// `noise_tau`, `noise_q`, `noise_qd`.
     pub noise: [Option<&'a Bound<'py, PyAny>>; 3],
+    /// `hold_links` (`--hold-links`).
+    pub hold_links: bool,
     pub progress: Option<Bound<'py, PyAny>>,
 }
 
@@ -357,6 +359,7 @@ pub fn run<'py>(
             qd: qd.unwrap_or_else(|| vec![0.0]),
             tau,
         }),
+        hold_links: req.hold_links,
         ..Options::default()
     };
     let reporter = Progress::new(py, req.progress)?;

@@ -573,7 +573,8 @@ impl PyRobot {
 
     /// The gap diagnosis (see `dynamics.Robot.diagnose` in the stubs).
     #[pyo3(signature = (train, holdout, *, columns=None, topic=None, train_window=None,
-        holdout_window=None, noise_tau=None, noise_q=None, noise_qd=None, progress=None))]
+        holdout_window=None, noise_tau=None, noise_q=None, noise_qd=None, hold_links=false,
+        progress=None))]
     #[allow(clippy::too_many_arguments)]
     fn diagnose<'py>(
         &self,
@@ -587,6 +588,7 @@ impl PyRobot {
         noise_tau: Option<&Bound<'py, PyAny>>,
         noise_q: Option<&Bound<'py, PyAny>>,
         noise_qd: Option<&Bound<'py, PyAny>>,
+        hold_links: bool,
         progress: Option<Bound<'py, PyAny>>,
     ) -> PyResult<Bound<'py, PyAny>> {
         crate::diagnose::run(
@@ -600,6 +602,7 @@ impl PyRobot {
                 train_window,
                 holdout_window,
                 noise: [noise_tau, noise_q, noise_qd],
+                hold_links,
                 progress,
             },
         )
