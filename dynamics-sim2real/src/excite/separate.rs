@@ -319,6 +319,13 @@ pub fn separation_angles<R: Robot<N>, const N: usize>(
     Ok(out)
 }
 
+/// Whether the pair nests (Stribeck over Coulomb friction, a motor side
+/// over its rotor, at one joint): its value is then how well the motion
+/// determines the richer one's extra, not an angle.
+pub(crate) fn nested(a: Rival, b: Rival) -> bool {
+    breakaway_joint(a, b).is_some() || motor_side(a, b).is_some()
+}
+
 /// The joint of a nested friction pair: Coulomb friction and Stribeck
 /// friction at the same joint (either order).
 fn breakaway_joint(a: Rival, b: Rival) -> Option<usize> {
