@@ -384,6 +384,13 @@ fn run<R: Robot<N> + Clone + Sync, const N: usize>(
                 a.to_degrees(),
                 b.to_degrees()
             );
+            // The design maximises the smallest value over the pairs, not
+            // each: when searching, a pair it leaves below the default is
+            // reported and the case goes on to the diagnosis.
+            if std::env::var("SEPARATE_SEARCH").is_ok() && a <= b {
+                eprintln!("  {l}: the design separates less than the default motion");
+                continue;
+            }
             assert!(
                 a > b,
                 "{l}: the design separates less than the default motion"
