@@ -4,6 +4,7 @@
 use nalgebra::SVector;
 
 use super::search::{search, Problem};
+use super::separate::nested;
 use super::{
     check, identifiability, BaseColumns, Check, Clearance, Clearances, Criterion, ExciteError,
     Figures, Fourier, Identifiability, Limits, Minimum, Rival,
@@ -243,7 +244,10 @@ pub fn design<R: Robot<N> + Sync, const N: usize>(
 /// Designs a motion of `robot` within `limits` that tells each pair of
 /// rival effects apart: it maximises the smallest over the pairs of the
 /// separation angle (see [`crate::excite::separation_angles`]); returns
-/// the design and the angles (rad) over one period.
+/// the design and the angles (rad) over one period. For a nested pair
+/// (Stribeck over Coulomb friction, elasticity or backlash over a rotor)
+/// without a period given, the period is searched too: the whole
+/// divisions of the duration into periods of at least 1.5 s.
 ///
 /// ```
 /// use dynamics_sim2real::excite::{design_separating, Limits, Options, Rival};
@@ -274,8 +278,35 @@ pub fn design_separating<R: Robot<N> + Sync, const N: usize>(
             cause: "no pair of rival effects to separate".into(),
         });
     }
-    run(robot, limits, options, pairs)
+    if options.period.is_some() || !pairs.iter().any(|&(a, b)| nested(a, b)) {
+        return run(robot, limits, options, pairs);
+    }
+    // A nested pair's extra is measured at the motion's slow reversals
+    // (a breakaway) or its effort's turns (a motor side), whose number
+    // grows as the period shrinks: the period is searched too, over the
+    // whole divisions of the duration into periods of at least
+    // `NESTED_PERIOD`, each with the whole budget; the best kept.
+    let most = (options.duration / NESTED_PERIOD).floor().max(1.0) as usize;
+    let mut best: Option<(Design<N>, Vec<f64>)> = None;
+    for m in 1..=most {
+        let o = Options {
+            period: Some(options.duration / m as f64),
+            ..options.clone()
+        };
+        let found = run(robot, limits, &o, pairs)?;
+        let worst = |a: &[f64]| a.iter().fold(f64::INFINITY, |m, &v| m.min(v));
+        if best.as_ref().is_none_or(|b| worst(&found.1) > worst(&b.1)) {
+            best = Some(found);
+        }
+    }
+    best.ok_or(ExciteError::Numeric {
+        place: "separating design",
+        cause: "no period searched".into(),
+    })
 }
+
+/// The shortest period searched for a nested pair, s.
+const NESTED_PERIOD: f64 = 1.5;
 
 fn run<R: Robot<N> + Sync, const N: usize>(
     robot: &R,

@@ -28,6 +28,17 @@
 //! states: the states must be equally spaced in time (their spacing does
 //! not matter: an angle does not depend on a column's scale).
 //!
+//! A nested pair, Coulomb friction and the Stribeck friction that contains
+//! it at the same joint, is judged otherwise: the diagnosis tells them
+//! apart by the interval of the extra parameter, the breakaway excess
+//! `fs - fc` (`diagnose/select/nesting.rs`), so the design minimises its
+//! predicted standard deviation, with every other column (Coulomb friction
+//! included) in the fit. The angle would work against this pair: the
+//! excess column lives where the speed is below the Stribeck velocity, the
+//! Coulomb column everywhere, and their cosine is about the square root of
+//! the share of slow samples, so a larger angle means fewer slow samples,
+//! where the excess is measured. See [`breakaway_separation`].
+//!
 //! A payload at the tip is refused: it is a change of the distal link's
 //! inertial parameters (its column lies in their span: no motion separates
 //! them); the diagnosis can prefer it only by parsimony (one parameter
@@ -221,7 +232,16 @@ fn rival_columns<const N: usize>(
 /// after the columns of every other base parameter are projected out, for
 /// each pair, over the motion `states`. A column that keeps less than
 /// [`EXCITED_SHARE`] of itself after the projection counts as not
-/// excited; a rival with no column left has angle zero.
+/// excited; a rival with no column left has angle zero. A pair of
+/// Coulomb and Stribeck friction at the same joint (nested: Stribeck adds
+/// the breakaway excess) gets, in place of the angle, how well the motion
+/// determines that excess, also in `[0, pi/2]`: the arcsine of the
+/// excess column's norm after every other column (Coulomb friction
+/// included) is projected out, over the norm of a constant effort at the
+/// joint (see the module's docs). A rigid rotor against the elasticity or
+/// backlash that nests it at its joint gets how strongly the motion shows
+/// the richer one's signature beyond the rotor, `atan` of its size against
+/// the joint's typical effort, also in `[0, pi/2)`.
 ///
 /// ```
 /// use dynamics_sim2real::excite::{separation_angles, BaseColumns, Fourier, Limits, Rival};
@@ -267,6 +287,14 @@ pub fn separation_angles<R: Robot<N>, const N: usize>(
             })
             .collect();
         let rows = states.len() * N;
+        if let Some(j) = breakaway_joint(a, b) {
+            out.push(breakaway_separation(j, columns, states, &x, &tau, &others));
+            continue;
+        }
+        if let Some((j, extra)) = motor_side(a, b) {
+            out.push(motor_separation(robot, j, extra, columns, states, &x, &tau));
+            continue;
+        }
         let xa = rival_columns(a, columns, states, &x, &tau);
         let xb = rival_columns(b, columns, states, &x, &tau);
         let to_matrix = |cols: &[Vec<f64>]| DMatrix::from_fn(rows, cols.len(), |r, c| cols[c][r]);
@@ -289,6 +317,193 @@ pub fn separation_angles<R: Robot<N>, const N: usize>(
         out.push(angle);
     }
     Ok(out)
+}
+
+/// Whether the pair nests (Stribeck over Coulomb friction, a motor side
+/// over its rotor, at one joint): its value is then how well the motion
+/// determines the richer one's extra, not an angle.
+pub(crate) fn nested(a: Rival, b: Rival) -> bool {
+    breakaway_joint(a, b).is_some() || motor_side(a, b).is_some()
+}
+
+/// The joint of a nested friction pair: Coulomb friction and Stribeck
+/// friction at the same joint (either order).
+fn breakaway_joint(a: Rival, b: Rival) -> Option<usize> {
+    match (a, b) {
+        (Rival::Coulomb(i), Rival::Stribeck(j)) | (Rival::Stribeck(j), Rival::Coulomb(i))
+            if i == j =>
+        {
+            Some(j)
+        }
+        _ => None,
+    }
+}
+
+/// How well a motion determines the Stribeck breakaway excess at joint
+/// `j` (the extra parameter of Stribeck over Coulomb friction), as an
+/// angle in `[0, pi/2]` so that it ranks with the other pairs' angles:
+/// `asin(r)`, `r` the norm of the excess column after every other base
+/// column and the joint's Coulomb column are projected out, over the norm
+/// of a constant effort at the joint on every state (the most a friction
+/// column can hold). The excess's predicted standard deviation is the
+/// effort noise over that projected norm, so at a given number of states
+/// a larger `r` is a proportionally tighter interval of the excess, which
+/// is what the diagnosis's verdict on the pair reads. `r` is the smallest
+/// over the Stribeck velocities the diagnosis searches
+/// ([`crate::diagnose::STRIBECK_GRID`]): the narrowest, 0.01 rad/s, is
+/// fitted too and must be determined as well.
+///
+/// The excess `exp(-(v/vs)^2) sign(v)` is narrow in time (crossed in
+/// `vs / |qdd|`, often less than a state's spacing), so each state's value
+/// is its root mean square over the state's interval (the velocity taken
+/// linear from the state to the midpoints with its neighbours, as the
+/// diagnosis takes it), with the sign of its mean: the sum of squares is
+/// then the excess's energy over the motion whatever the spacing, like
+/// that of a constant column.
+fn breakaway_separation<const N: usize>(
+    j: usize,
+    columns: &BaseColumns<N>,
+    states: &[Reference<N>],
+    x: &DMatrix<f64>,
+    tau: &[SVector<f64, N>],
+    others: &[usize],
+) -> f64 {
+    let n = states.len();
+    let rows = n * N;
+    let coulomb = rival_columns(Rival::Coulomb(j), columns, states, x, tau);
+    let mut base: Vec<Vec<f64>> = others
+        .iter()
+        .map(|&c| x.column(c).iter().copied().collect())
+        .collect();
+    base.extend(coulomb);
+    let m = DMatrix::from_fn(rows, base.len(), |r, c| base[c][r]);
+    let q = orthonormal(&m);
+    let full = columns.weights[j].abs() * (n as f64).sqrt();
+    if full == 0.0 || n == 0 {
+        return 0.0;
+    }
+    let v = |i: usize| states[i].qd[j];
+    crate::diagnose::STRIBECK_GRID
+        .iter()
+        .map(|&vs| {
+            let f = |u: f64| (-(u / vs).powi(2)).exp() * (u / columns.sign_zone).tanh();
+            let mut s = nalgebra::DVector::zeros(rows);
+            for i in 0..n {
+                let prev = v(i.saturating_sub(1));
+                let next = v((i + 1).min(n - 1));
+                let (mean, square) = interval_moments(&f, prev, v(i), next);
+                s[i * N + j] = square.sqrt() * mean.signum() * columns.weights[j];
+            }
+            let left = match &q {
+                Some(q) => &s - q * (q.transpose() * &s),
+                None => s,
+            };
+            (left.norm() / full).min(1.0).asin()
+        })
+        .fold(f64::INFINITY, f64::min)
+}
+
+/// The joint and the richer effect of a nested motor-side pair: a rigid
+/// rotor and the elasticity or backlash that contains it at the same joint
+/// (either order).
+fn motor_side(a: Rival, b: Rival) -> Option<(usize, Rival)> {
+    match (a, b) {
+        (Rival::Armature(i), e @ (Rival::Elasticity(j) | Rival::Backlash(j)))
+        | (e @ (Rival::Elasticity(j) | Rival::Backlash(j)), Rival::Armature(i))
+            if i == j =>
+        {
+            Some((j, e))
+        }
+        _ => None,
+    }
+}
+
+/// A rotor's inertia as a fraction of its joint's inertia, a backlash's
+/// half-width (rad) and an elastic joint's natural frequency (Hz): the
+/// nominal sizes that put a motor side's extra signature in efforts (the
+/// middle of the ranges of geared robot joints: a few arcminutes of play,
+/// a drive's first mode at 5-30 Hz). They scale the measure of every
+/// motion alike, so the motion it prefers for one pair does not depend on
+/// them; they weigh a motor-side pair against the others in a design of
+/// several pairs.
+const NOMINAL_ROTOR: f64 = 0.2;
+const NOMINAL_GAP: f64 = 1e-3;
+const NOMINAL_MODE_HZ: f64 = 15.0;
+
+/// How strongly a motion shows a motor side's extra beyond its rigid rotor
+/// at joint `j` (elasticity or backlash, which nest the rotor: the
+/// diagnosis names the richer one only when its signature earns its extra
+/// parameters over the rotor), as an angle in `[0, pi/2)`: `atan(r)`, `r`
+/// the root mean square over the states of the extra's first-order
+/// signature in efforts at its nominal size, after every base column (the
+/// rotor included) is projected out, in units of the joint's typical
+/// effort (the rows' weights). The signature is the second time derivative
+/// of the joint's effort (elasticity: the motor leads by `tau / k`, times
+/// `J_m`, about `tau'' / omega^2`) or of its smoothed sign (backlash:
+/// `J_m delta sign(tau)''`); the time step is read from the states
+/// (second differences of the positions against the accelerations).
+fn motor_separation<R: Robot<N>, const N: usize>(
+    robot: &R,
+    j: usize,
+    extra: Rival,
+    columns: &BaseColumns<N>,
+    states: &[Reference<N>],
+    x: &DMatrix<f64>,
+    tau: &[SVector<f64, N>],
+) -> f64 {
+    let n = states.len();
+    if n < 3 {
+        return 0.0;
+    }
+    // h^2 from q(i+1) - 2 q(i) + q(i-1) = h^2 qdd(i), least squares.
+    let (mut num, mut den) = (0.0, 0.0);
+    for i in 1..n - 1 {
+        for k in 0..N {
+            let d2 = states[i + 1].q[k] - 2.0 * states[i].q[k] + states[i - 1].q[k];
+            num += d2 * states[i].qdd[k];
+            den += states[i].qdd[k].powi(2);
+        }
+    }
+    if !(den > 0.0 && num > 0.0) {
+        return 0.0;
+    }
+    let h2 = num / den;
+    let q0 = states[0].q;
+    let zero = SVector::<f64, N>::zeros();
+    let inertia = (robot.inverse_dynamics(
+        &q0,
+        &zero,
+        &SVector::from_fn(|k, _| if k == j { 1.0 } else { 0.0 }),
+    ) - robot.inverse_dynamics(&q0, &zero, &zero))[j]
+        .abs();
+    let size = match extra {
+        Rival::Backlash(_) => NOMINAL_ROTOR * inertia * NOMINAL_GAP,
+        _ => (std::f64::consts::TAU * NOMINAL_MODE_HZ).powi(-2),
+    };
+    let c = rival_columns(extra, columns, states, x, tau);
+    let b = nalgebra::DVector::from_iterator(n * N, c[0].iter().map(|v| v * size / h2));
+    let left = match orthonormal(x) {
+        Some(q) => &b - &q * (q.transpose() * &b),
+        None => b,
+    };
+    (left.norm() / (n as f64).sqrt()).atan()
+}
+
+/// The mean and the mean square of `f` over a state's interval: the
+/// velocity linear from `v` to the midpoints with its neighbours `prev`
+/// and `next`, each half weighing alike, sampled at steps of an eighth of
+/// the smooth sign's width (at most 256 a half).
+fn interval_moments(f: &impl Fn(f64) -> f64, prev: f64, v: f64, next: f64) -> (f64, f64) {
+    let half = |a: f64, b: f64| {
+        let step = crate::effects::SIGN_SMOOTHING / 8.0;
+        let m = ((b - a).abs() / step).ceil().clamp(1.0, 256.0) as usize;
+        (0..m).fold((0.0, 0.0), |(s1, s2), i| {
+            let y = f(a + (b - a) * (i as f64 + 0.5) / m as f64);
+            (s1 + y / m as f64, s2 + y * y / m as f64)
+        })
+    };
+    let (a, b) = (half(0.5 * (prev + v), v), half(v, 0.5 * (v + next)));
+    (0.5 * (a.0 + b.0), 0.5 * (a.1 + b.1))
 }
 
 /// The share of its column a rival must keep after the other base
@@ -441,6 +656,65 @@ mod tests {
         )
         .unwrap();
         assert!(b[0] > 0.5, "{}", b[0]);
+    }
+
+    /// The breakaway measure of the sine of [`sine`] at `n` states a period.
+    fn breakaway(n: usize) -> f64 {
+        let flat = Flat::default();
+        let limits = Limits::new([-1.0], [1.0], [3.0], [50.0]);
+        let cols = BaseColumns::of(&flat, &limits, 1).unwrap();
+        let a = separation_angles(
+            &flat,
+            &cols,
+            &[(Rival::Coulomb(0), Rival::Stribeck(0))],
+            &sine(n),
+        )
+        .unwrap();
+        a[0]
+    }
+
+    #[test]
+    fn a_breakaway_excess_is_judged_by_its_energy_at_any_spacing() {
+        // The sine 0.5 sin(pi t / 2) reverses at 1.23 rad/s^2: it crosses
+        // the narrowest Stribeck bump (0.01 rad/s) in about 8 ms, under a
+        // state's spacing at 100 Hz. The measure's square is the excess's
+        // energy (after projection) over that of a constant: the same at
+        // 100 Hz and at 2 kHz, and at most the unprojected energy share
+        // computed here by quadrature (the min over the searched velocities
+        // of the time mean of (exp(-(v/vs)^2) tanh(v/0.01))^2), and close
+        // to it.
+        let (coarse, fine) = (breakaway(400), breakaway(8000));
+        assert!(coarse > 0.0 && fine > 0.0);
+        assert!(
+            (coarse.sin() / fine.sin() - 1.0).abs() < 0.05,
+            "{coarse} at 100 Hz, {fine} at 2 kHz"
+        );
+        let w = std::f64::consts::TAU / 4.0;
+        let m = 400_000;
+        let share = crate::diagnose::STRIBECK_GRID
+            .iter()
+            .map(|&vs| {
+                (0..m)
+                    .map(|k| {
+                        let v = 0.5 * w * (w * 4.0 * (k as f64 + 0.5) / m as f64).cos();
+                        ((-(v / vs).powi(2)).exp() * (v / 0.01).tanh()).powi(2)
+                    })
+                    .sum::<f64>()
+                    / m as f64
+            })
+            .fold(f64::INFINITY, f64::min);
+        // The excess is a short pulse of each sign around every reversal,
+        // nearly orthogonal to the smooth columns and to a sign held for
+        // seconds: the projection takes little of it.
+        let r2 = fine.sin().powi(2);
+        assert!(
+            r2 <= share * 1.01 && r2 >= 0.9 * share,
+            "{r2} against {share}"
+        );
+        // The angle between the two columns of the pair would be large
+        // for the same sine (the excess is a small part of the Coulomb
+        // column): the measure is not the angle.
+        assert!(fine < 0.5, "{fine}");
     }
 
     #[test]

@@ -73,7 +73,9 @@ pub enum Extra {
 /// richer effect of kind `richer` say of its extra over the simpler effect
 /// it nests. Stribeck friction over Coulomb friction: the breakaway excess
 /// `fs_minus_fc`, against zero and [`MEANINGFUL_BREAKAWAY`] times the
-/// Coulomb level `fc`, each within [`INTERVAL_STDS`] standard deviations.
+/// Coulomb level `fc`, each within [`INTERVAL_STDS`] standard deviations
+/// (an excess held at zero by its sign constraint, reported without a
+/// spread, has no interval).
 /// The other nested pairs (a motor side over its rotor, a spring over an
 /// offset, a link over a payload) have no interval of their extra on one
 /// physical scale here: `Undetermined`, so the information criterion's
@@ -91,6 +93,12 @@ pub fn extra(richer: EffectKind, parameters: &[(&str, f64, f64)]) -> Extra {
             let (Some((fc, _)), Some((x, s))) = (get("fc"), get("fs_minus_fc")) else {
                 return Extra::Undetermined;
             };
+            // Held at its bound by the sign constraint (value zero, no
+            // spread): the data asked for a negative excess, and how
+            // firmly is not reported, so there is no interval.
+            if x == 0.0 && s == 0.0 {
+                return Extra::Undetermined;
+            }
             let meaningful = MEANINGFUL_BREAKAWAY * fc.abs();
             let (lo, hi) = (x - INTERVAL_STDS * s, x + INTERVAL_STDS * s);
             if lo > 0.0 || hi < 0.0 {
@@ -149,8 +157,10 @@ mod tests {
         assert_eq!(extra(S, &p(0.3, 0.1)), Extra::Present);
         // [-0.1, 0.3]: covers both -> undetermined.
         assert_eq!(extra(S, &p(0.1, 0.1)), Extra::Undetermined);
-        // An undetermined spread is no interval.
+        // An undetermined spread is no interval, nor is a value held at
+        // its bound with no spread.
         assert_eq!(extra(S, &p(0.0, f64::INFINITY)), Extra::Undetermined);
+        assert_eq!(extra(S, &p(0.0, 0.0)), Extra::Undetermined);
         // Coulomb chosen, Stribeck rival: it stands unless its excess is
         // determined near zero.
         let c = [("fc", 1.0, 0.01)];
