@@ -92,9 +92,8 @@ pub fn nearest_in_metric(
         let j0 = pseudo_inertia(&link.nominal);
         let scale = j0.norm().max(1e-300);
         let m0 = (j0 + Matrix4::identity() * (TOL * scale)) / scale;
-        if m0.cholesky().is_none() {
-            return None;
-        }
+        // The nominal link must be a body: the barrier starts from it.
+        m0.cholesky()?;
         let column = |m: &DMatrix<f64>, c: usize| {
             pseudo_inertia(&SVector::from_fn(|r, _| m[(r, c)])) / scale
         };
@@ -236,8 +235,8 @@ mod tests {
             free: unit(9),
         };
         let ask = DVector::from_element(1, -0.005);
-        let with =
-            nearest_in_metric(&[link.clone()], &DMatrix::identity(1, 1), &ask).expect("solved");
+        let with = nearest_in_metric(std::slice::from_ref(&link), &DMatrix::identity(1, 1), &ask)
+            .expect("solved");
         let alone = Link {
             free: DMatrix::zeros(10, 0),
             ..link
