@@ -3,7 +3,6 @@
 //! timing, taken out of a record before it is compared with the model
 //! (the model side of a baseline is [`super::Calibrated`]).
 
-
 use super::Effect;
 use crate::data::Measured;
 
