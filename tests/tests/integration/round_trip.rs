@@ -430,7 +430,7 @@ fn explore() {
                 .iter()
                 .filter_map(|e| timed::<Arm3r, 3>(&Entry::from(e)).ok())
                 .collect();
-            let calibrated = Calibrated::timed(robot.clone(), taken).expect("taken");
+            let calibrated = Calibrated::timed(robot, taken).expect("taken");
             let (a, b) = (
                 undo(&calibrated, &train).expect("undone"),
                 undo(&calibrated, &holdout).expect("undone"),
