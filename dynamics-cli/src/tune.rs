@@ -9,7 +9,7 @@ use clap::Args;
 use dynamics_runtime::{Parameters, Robot};
 use dynamics_sim2real::baseline::{self, BaselineError, Entry};
 use dynamics_sim2real::diagnose::Parameter;
-use dynamics_sim2real::effects::{Effect, Window};
+use dynamics_sim2real::effects::{Calibrated, Effect, Window};
 use serde_json::Value;
 use thiserror::Error;
 
@@ -159,6 +159,46 @@ pub fn read_baseline_timed<R: Robot<N>, const N: usize>(
 ) -> Result<Vec<(Effect, Option<Window>)>, TuneError> {
     let (file, text) = read(path)?;
     timed_baseline_from_str::<R, N>(&text, &file)
+}
+
+/// The warning for a command that uses `robot`'s model alone (no measured
+/// data to undo the rest on: `eval`, `simulate`, `synth`, Python's
+/// `simulate`): what the baseline keeps apart from the model (the sensors'
+/// effects, the motor sides, effects limited to a window) is left out
+/// there. `None` when the model holds the whole baseline.
+///
+/// ```
+/// use dynamics_cli::tune::left_out;
+/// use dynamics_sim2real::effects::{Calibrated, Effect};
+/// dynamics_macros::robot! {
+///     pub robot Pendulum; gravity = [0.0, -9.81, 0.0];
+///     link base; link rod { mass = 1.0; com = [1.0, 0.0, 0.0]; }
+///     joint j = revolute(base -> rod) { transfer = [rot_z(q)]; }
+/// }
+/// let scale = Effect::EffortScale { joint: 0, scale: 1.2 };
+/// let r = Calibrated::new(Pendulum::default(), vec![scale, Effect::coulomb(0, 0.1)]).unwrap();
+/// let warning = left_out(&r, "simulate").unwrap();
+/// assert!(warning.contains("effort_scale") && !warning.contains("coulomb"));
+/// let folded = Calibrated::new(Pendulum::default(), vec![Effect::coulomb(0, 0.1)]).unwrap();
+/// assert_eq!(left_out(&folded, "simulate"), None);
+/// ```
+pub fn left_out<R: Robot<N>, const N: usize>(
+    robot: &Calibrated<R, N>,
+    command: &str,
+) -> Option<String> {
+    let apart: Vec<&str> = robot
+        .sensor_effects()
+        .iter()
+        .chain(robot.motor_effects())
+        .chain(robot.windowed_effects().iter().map(|(e, _)| e))
+        .map(|e| e.kind().name())
+        .collect();
+    (!apart.is_empty()).then(|| {
+        format!(
+            "--baseline: {} not part of the model `{command}` uses (undone on measured data by `diagnose` only): left out",
+            apart.join(", ")
+        )
+    })
 }
 
 fn read(path: &Path) -> Result<(String, String), TuneError> {

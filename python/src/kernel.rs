@@ -182,6 +182,9 @@ pub struct SimulationArrays {
     pub tau: Vec<f64>,
     /// Reference positions, `T x N`.
     pub reference: Vec<f64>,
+    /// Warnings as the command line prints them (what of the baseline the
+    /// model leaves out).
+    pub warnings: Vec<String>,
 }
 
 /// What `identify` gives: the JSON of `identify --json`, the data's
@@ -609,6 +612,9 @@ where
             None => Vec::new(),
         };
         let model = Calibrated::new(self.0.clone(), base).map_err(|e| format!("baseline: {e}"))?;
+        let warnings = dynamics_cli::tune::left_out(&model, "simulate")
+            .into_iter()
+            .collect();
         let effects = match effects {
             Some(d) => baseline_from_str::<Calibrated<R, N>, N>(&d.text, &d.name)
                 .map_err(|e| e.to_string())?,
@@ -626,6 +632,7 @@ where
             qdd: flat(&tr.qdd),
             tau: flat(&tr.tau),
             reference: flat(&run.reference),
+            warnings,
         })
     }
 

@@ -114,6 +114,13 @@ pub fn simulate<'py>(
     let run = py
         .detach(|| kernel.simulate(&info, &args, baseline.as_ref(), effects.as_ref()))
         .map_err(PyValueError::new_err)?;
+    // As the command line warns on stderr.
+    let logger = py
+        .import("logging")?
+        .call_method1("getLogger", ("dynamics",))?;
+    for w in &run.warnings {
+        logger.call_method1("warning", (w,))?;
+    }
     let (t, n) = (run.t.len(), robot.kernel.joint_names().len());
     let d = PyDict::new(py);
     d.set_item("t", array(py, &run.t, &[t]))?;

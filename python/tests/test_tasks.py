@@ -83,6 +83,34 @@ def test_simulate_with_a_baseline_and_a_csv_reference_equals_the_command_line(tm
     assert run["t"][-1] == pytest.approx(0.79)
 
 
+def test_simulate_warns_of_the_baseline_effects_it_leaves_out(tmp_path, caplog):
+    # An effort scale (a sensor's) and an elastic joint (a motor side) are no
+    # part of the model a simulation's controller uses: the run is the one
+    # without them, and the warning names them, as the command line's does.
+    arm = dynamics.Robot("arm3r")
+    apart = {"effects": EFFECTS["effects"] + [
+        {"kind": "effort_scale", "joint": "j1", "parameters": [{"name": "scale", "value": 1.2}]},
+        {"kind": "joint_elasticity", "joint": "j2", "parameters": [
+            {"name": "motor_inertia", "value": 0.01}, {"name": "stiffness", "value": 50.0},
+            {"name": "damping", "value": 0.1}]},
+    ]}
+    kwargs = dict(duration=0.5, rate=100, seed=2)
+    with caplog.at_level(logging.WARNING, logger="dynamics"):
+        run = arm.simulate(baseline=apart, **kwargs)
+    warned = [r.getMessage() for r in caplog.records if r.name == "dynamics"]
+    assert len(warned) == 1
+    assert "effort_scale" in warned[0] and "joint_elasticity" in warned[0]
+    assert "friction" not in warned[0]
+    folded = arm.simulate(baseline=EFFECTS, **kwargs)
+    for key in ("q", "qd", "tau"):
+        assert np.array_equal(run[key], folded[key]), key
+    path = tmp_path / "apart.json"
+    path.write_text(json.dumps(apart))
+    cli = run_cli("simulate", "--robot", "arm3r", "--out", tmp_path / "sim", "--duration", "0.5",
+                  "--rate", "100", "--seed", "2", "--baseline", path)
+    assert f"warning: {warned[0]}" in cli.stderr
+
+
 def test_simulate_errors():
     arm = dynamics.Robot("arm3r")
     with pytest.raises(ValueError, match="--rate and --bandwidth must be positive"):

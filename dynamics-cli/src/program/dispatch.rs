@@ -8,7 +8,7 @@ use dynamics_sim2real::effects::Calibrated;
 
 use super::args::{BaselineArgs, CheckArgs, ModelArgs, RobotCommand};
 use super::{RobotInfo, RobotVisitor};
-use crate::tune::{apply_set, read_baseline_timed};
+use crate::tune::{apply_set, left_out, read_baseline_timed};
 use crate::Res;
 
 /// The robot with `--set` applied and the `--baseline` effects folded in
@@ -55,18 +55,8 @@ fn model_alone<R: Robot<N>, const N: usize>(
     command: &str,
 ) -> Result<Calibrated<R, N>, Box<dyn std::error::Error>> {
     let r = nominal(robot, model, Some(baseline))?;
-    let apart: Vec<String> = r
-        .sensor_effects()
-        .iter()
-        .chain(r.motor_effects())
-        .chain(r.windowed_effects().iter().map(|(e, _)| e))
-        .map(|e| e.kind().name().to_string())
-        .collect();
-    if !apart.is_empty() {
-        eprintln!(
-            "warning: --baseline: {} not part of the model `{command}` uses (undone on measured data by `diagnose` only): left out",
-            apart.join(", ")
-        );
+    if let Some(warning) = left_out(&r, command) {
+        eprintln!("warning: {warning}");
     }
     Ok(r)
 }

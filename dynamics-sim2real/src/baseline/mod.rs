@@ -150,7 +150,12 @@ pub fn parameter_names(kind: EffectKind) -> &'static [&'static str] {
         EffectKind::EncoderOffset => &["offset"],
         EffectKind::TimeDelay => &["delay"],
         EffectKind::JointElasticity => &["motor_inertia", "stiffness", "damping"],
-        EffectKind::Backlash => &["motor_inertia", "half_width", "contact_stiffness"],
+        EffectKind::Backlash => &[
+            "motor_inertia",
+            "half_width",
+            "contact_stiffness",
+            "contact_damping",
+        ],
         EffectKind::EffortScale => &["scale"],
         EffectKind::EffortOffset => &["offset"],
         EffectKind::JointSpring => &["stiffness", "preload"],
@@ -286,15 +291,21 @@ pub fn effect<R: Robot<N>, const N: usize>(entry: &Entry) -> Result<Effect, Base
             })
         }
         Candidate::Backlash(joint) => {
-            // The report gives the contact stiffness; its damping is the
-            // generator's (`synth::draw`): 10 % of critical on the rotor.
+            // The report gives the contact's damping as fitted; an entry
+            // without it (a report of an earlier version, a hand-written
+            // baseline) takes the diagnosis's grid value: 10 % of critical
+            // on the rotor.
             let (jm, k) = (get("motor_inertia")?, get("contact_stiffness")?);
+            let damping = match entry.parameters.iter().any(|p| p.name == "contact_damping") {
+                true => get("contact_damping")?,
+                false => 0.2 * (k * jm).sqrt(),
+            };
             return Ok(Effect::Backlash {
                 joint,
                 half_width: get("half_width")?,
                 motor_inertia: jm,
                 contact_stiffness: k,
-                contact_damping: 0.2 * (k * jm).sqrt(),
+                contact_damping: damping,
             });
         }
         _ => {}

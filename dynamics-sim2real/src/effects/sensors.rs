@@ -3,8 +3,6 @@
 //! timing, taken out of a record before it is compared with the model
 //! (the model side of a baseline is [`super::Calibrated`]).
 
-use nalgebra::SVector;
-
 use super::Effect;
 use crate::data::Measured;
 
@@ -66,10 +64,14 @@ pub fn undo_sensors<const N: usize>(m: &Measured<N>, effects: &[Effect]) -> Meas
 
 /// The motion of `m` read `d` seconds later (earlier for `d < 0`) at each
 /// sample time, linearly between samples; samples without such a time
-/// dropped.
+/// dropped. A sample is missing, or in a hole, when its own effort or a
+/// sample its motion is read from was (`Measured::missing`,
+/// `Measured::holes`): the holes are the runs of such samples.
 fn shifted<const N: usize>(m: &Measured<N>, d: f64) -> Measured<N> {
     let n = m.len();
-    let at = |x: &[SVector<f64, N>], s: f64| -> Option<SVector<f64, N>> {
+    // The samples (one or two) and weights the motion at time `s` is read
+    // from.
+    let from = |s: f64| -> Option<(usize, usize, f64)> {
         // The last sample at or before `s`.
         let i = m.t.partition_point(|&t| t <= s);
         if i == 0 {
@@ -77,27 +79,49 @@ fn shifted<const N: usize>(m: &Measured<N>, d: f64) -> Measured<N> {
         }
         let i = i - 1;
         if (m.t[i] - s).abs() <= 1e-12 * (1.0 + s.abs()) {
-            return Some(x[i]);
+            return Some((i, i, 0.0));
         }
         let j = i + 1;
-        (j < n).then(|| {
-            let f = (s - m.t[i]) / (m.t[j] - m.t[i]);
-            x[i] * (1.0 - f) + x[j] * f
-        })
+        (j < n).then(|| (i, j, (s - m.t[i]) / (m.t[j] - m.t[i])))
     };
+    let mut in_hole = vec![false; n];
+    for &(a, b) in &m.holes {
+        in_hole[a.min(n)..b.min(n)].fill(true);
+    }
     let mut out = Measured::<N> {
         qd_measured: m.qd_measured,
         warnings: m.warnings.clone(),
         joints: m.joints.clone(),
+        prepared: m.prepared,
+        interpolation_variance: m.interpolation_variance,
         ..Default::default()
     };
+    let mut missing = Vec::new();
+    let mut hole = Vec::new();
     for k in 0..n {
-        let s = m.t[k] + d;
-        if let (Some(q), Some(qd)) = (at(&m.q, s), at(&m.qd, s)) {
-            out.t.push(m.t[k]);
-            out.q.push(q);
-            out.qd.push(qd);
-            out.tau.push(m.tau[k]);
+        let Some((i, j, f)) = from(m.t[k] + d) else {
+            continue;
+        };
+        out.t.push(m.t[k]);
+        out.q.push(m.q[i] * (1.0 - f) + m.q[j] * f);
+        out.qd.push(m.qd[i] * (1.0 - f) + m.qd[j] * f);
+        out.tau.push(m.tau[k]);
+        missing.push(!(m.measured(k) && m.measured(i) && m.measured(j)));
+        hole.push(in_hole[k] || in_hole[i] || in_hole[j]);
+    }
+    if !m.missing.is_empty() {
+        out.missing = missing;
+    }
+    // The runs of samples in a hole.
+    let mut start = None;
+    for (k, &h) in hole.iter().chain([&false]).enumerate() {
+        match (h, start) {
+            (true, None) => start = Some(k),
+            (false, Some(a)) => {
+                out.holes.push((a, k));
+                start = None;
+            }
+            _ => {}
         }
     }
     out
@@ -132,6 +156,38 @@ mod tests {
         assert_eq!(early.len(), 998);
         assert_eq!(early.t[0], m.t[2]);
         assert!((early.q[0][1] - 2.0 * m.t[0]).abs() < 1e-12);
+    }
+
+    /// A record with a hole (samples 40..50 filled) and two filled samples:
+    /// once its motion is read 10.5 ms later, a sample is missing or in a
+    /// hole where its effort, or either sample its motion is read from,
+    /// was (by hand: the motion of sample k comes from samples k + 10 and
+    /// k + 11).
+    #[test]
+    fn a_late_motion_undone_keeps_the_records_holes_and_missing_samples() {
+        let t: Vec<f64> = (0..100).map(|k| k as f64 * 1e-3).collect();
+        let mut m = record(&t);
+        m.holes = vec![(40, 50)];
+        m.missing = (0..100)
+            .map(|k| (40..50).contains(&k) || k == 5 || k == 80)
+            .collect();
+        m.prepared = true;
+        m.interpolation_variance = 0.8;
+        let fixed = undo_sensors(&m, &[Effect::TimeDelay { delay: 0.0105 }]);
+        assert_eq!(fixed.len(), 89);
+        // In a hole: its effort (40..50) or its motion (from 29..39 and
+        // 30..40, i.e. k + 10 or k + 11 in 40..50): samples 29..50.
+        assert_eq!(fixed.holes, vec![(29, 50)]);
+        let missing: Vec<usize> = (0..89).filter(|&k| fixed.missing[k]).collect();
+        let mut expected: Vec<usize> = (29..50).collect();
+        // Sample 5 (its effort), 80 (its effort) and those reading their
+        // motion from 80 (k = 69, 70); sample 5's motion is read by none
+        // in range below 0 (k = -5, -6).
+        expected.extend([5, 69, 70, 80]);
+        expected.sort();
+        assert_eq!(missing, expected);
+        assert!(fixed.prepared);
+        assert_eq!(fixed.interpolation_variance, 0.8);
     }
 
     #[test]

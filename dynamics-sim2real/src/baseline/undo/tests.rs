@@ -132,3 +132,41 @@ fn a_windowed_payload_undone_inside_its_window_leaves_the_rigid_effort() {
         assert_eq!(fixed.tau[k], m.tau[k]);
     }
 }
+
+/// An effort scale on all the time and an effort offset between 2 and 4 s
+/// at the elbow (the generator's sensor reads `scale` x applied +
+/// `offset`): undone, the elbow's effort is what the rigid model asks, to
+/// within noise, inside the window and outside. Taking the offset out in
+/// measured units after the scale is divided out would leave
+/// `offset (1 - 1 / scale)` inside the window.
+#[test]
+fn a_windowed_effort_offset_at_a_scaled_joint_is_undone_in_applied_units() {
+    let held = Window {
+        start: 2.0,
+        end: 4.0,
+    };
+    let scale = Effect::EffortScale {
+        joint: 1,
+        scale: 1.4,
+    };
+    let offset = Effect::EffortOffset {
+        joint: 1,
+        offset: 1.5,
+    };
+    let m = synthesize(
+        &Arm2::default(),
+        &[scale, offset],
+        &options(vec![None, Some(held)]),
+    )
+    .expect("synthesises");
+    let inside = |t: f64| (2.1..3.9).contains(&t);
+    let outside = |t: f64| !(1.9..4.1).contains(&t);
+    let before = gap(&Arm2::default(), &m, 1, inside);
+    let r = Calibrated::timed(Arm2::default(), vec![(scale, None), (offset, Some(held))])
+        .expect("taken");
+    let fixed = undo(&r, &m).expect("undone");
+    let (after_in, after_out) = (gap(&r, &fixed, 1, inside), gap(&r, &fixed, 1, outside));
+    println!("scaled elbow with a windowed offset: gap over noise inside {before:.2} -> {after_in:.2}, outside {after_out:.2}");
+    assert!(before > 5.0, "{before}");
+    assert!(after_in < 1.6 && after_out < 1.6, "{after_in} {after_out}");
+}

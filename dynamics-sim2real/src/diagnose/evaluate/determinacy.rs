@@ -58,7 +58,10 @@ pub fn why_not(
         return Some("zero, held at its bound: the data ask for none".into());
     }
     // Grid-searched values carry half a step as their spread by design.
-    let grid = matches!(name, "vw" | "vs" | "alpha");
+    // A backlash's contact damping shapes only the instants of contact:
+    // the fit's value is given (a baseline simulates the same motor side
+    // with it), and the backlash is judged by its other parameters.
+    let grid = matches!(name, "vw" | "vs" | "alpha" | "contact_damping");
     if !(grid || std.is_finite() && std <= value.abs()) {
         return Some(on_data("not identifiable"));
     }

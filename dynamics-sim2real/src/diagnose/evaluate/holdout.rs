@@ -6,7 +6,7 @@
 use nalgebra::{DVector, SVector};
 
 use crate::diagnose::candidates::{combined, linear_columns, Prepared};
-use crate::diagnose::fit::{fixed_column, holdout_window, inside, window_of, Windows};
+use crate::diagnose::fit::{fixed_column, holdout_window_in, inside, window_of, Windows};
 use crate::diagnose::select::{without_others, Explanation, Pool};
 
 /// One effect's held-out columns: its free ones and its fixed one.
@@ -146,7 +146,11 @@ pub fn fraction(before: f64, after: f64) -> f64 {
 
 /// The explanation's windowed effects limited to their held-out windows on
 /// the held-out side (found there by the same search, the training fit's
-/// sign kept).
+/// sign kept). The search runs on the held-out residual that the
+/// explanation's effects on all the time leave (with their training
+/// parameters): on the nominal model's residual, an unexplained friction
+/// on every joint moved the window of a payload and left friction that
+/// the training record shows unconfirmed on the held-out one.
 pub fn limit_to_windows<const N: usize>(
     hold: &mut Holdout<N>,
     h: &Prepared<N>,
@@ -154,13 +158,17 @@ pub fn limit_to_windows<const N: usize>(
     e: &Explanation,
     windows: &Windows,
 ) {
+    let windowed = |i: usize| window_of(windows, pool.terms[e.set[i]].fit.candidate).is_some();
+    let always: Vec<usize> = (0..e.set.len()).filter(|&i| !windowed(i)).collect();
+    let theta: Vec<Vec<f64>> = always.iter().map(|&i| e.sol.theta[i].clone()).collect();
+    let left = hold.residual(&always, &theta);
     for (i, &t) in e.set.iter().enumerate() {
         let c = pool.terms[t].fit.candidate;
-        if window_of(windows, c).is_none() {
+        if !windowed(i) {
             continue;
         }
         let theta = e.sol.theta[i].first().copied().unwrap_or(0.0);
-        let m = match holdout_window(c, h, theta) {
+        let m = match holdout_window_in(c, h, theta, left.as_slice()) {
             Some(w) => DVector::from_vec(inside(h, &w)),
             None => DVector::zeros(h.n()),
         };

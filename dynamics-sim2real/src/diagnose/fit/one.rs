@@ -81,6 +81,7 @@ impl Fit {
             if matches!(c, Candidate::Backlash(_)) {
                 out.push(("half_width", g.half_width, sd.half_width));
                 out.push(("contact_stiffness", g.stiffness, sd.stiffness));
+                out.push(("contact_damping", g.damping, sd.damping));
             } else {
                 out.push(("stiffness", g.stiffness, sd.stiffness));
                 out.push(("damping", g.damping, sd.damping));

@@ -222,7 +222,10 @@ impl<R: Robot<N>, const N: usize> Calibrated<R, N> {
         }
         // A diagnosis fits the other effects in the measured effort's units:
         // at a joint whose effort reads `scale` times the applied one, its
-        // joint's own forces are `scale` times too large for the model.
+        // joint's own forces are `scale` times too large for the model. So
+        // is an effort offset limited to a window: the record's effort is
+        // divided by the scale (always on) before the windowed offset is
+        // taken out of it.
         for s in &sensors {
             if let Effect::EffortScale { joint, scale } = *s {
                 let own = model
@@ -231,6 +234,9 @@ impl<R: Robot<N>, const N: usize> Calibrated<R, N> {
                     .filter(|e| e.joint() == Some(joint) && e.kind() != EffectKind::EffortScale);
                 for e in own {
                     e.scale_forces(1.0 / scale);
+                    if let Effect::EffortOffset { offset, .. } = e {
+                        *offset /= scale;
+                    }
                 }
             }
         }

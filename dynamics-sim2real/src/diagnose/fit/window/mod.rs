@@ -167,13 +167,26 @@ pub fn window_of(windows: &Windows, c: Candidate) -> Option<Window> {
 /// `theta`): the same search on the held-out rows, the sign of the
 /// training fit kept.
 pub fn holdout_window<const N: usize>(c: Candidate, h: &Prepared<N>, theta: f64) -> Option<Window> {
+    holdout_window_in(c, h, theta, &whitened(h, |k| h.sig.residual[k]))
+}
+
+/// [`holdout_window`] searched on the whitened residual `y` over the fit
+/// rows of `h` (the residual other effects leave, where they are known).
+pub fn holdout_window_in<const N: usize>(
+    c: Candidate,
+    h: &Prepared<N>,
+    theta: f64,
+    y: &[f64],
+) -> Option<Window> {
     if c.linear_parameters().is_empty() {
         return None;
     }
     let x = main_column(c, h);
-    let y = whitened(h, |k| h.sig.residual[k]);
+    if x.len() != y.len() {
+        return None;
+    }
     let sign = if theta >= 0.0 { 1.0 } else { -1.0 };
-    let found = search::<N>(&x, &y, Some(sign))?;
+    let found = search::<N>(&x, y, Some(sign))?;
     Some(refine(c, h, &found))
 }
 
