@@ -181,13 +181,7 @@ pub fn nearest_physical(pi: &SVector<f64, 10>) -> SVector<f64, 10> {
 mod tests {
     use super::*;
     use crate::inertial::check;
-
-    /// A rod along x: 2 kg, COM at 0.3 m.
-    fn rod() -> SVector<f64, 10> {
-        let (m, c, l) = (2.0, 0.3, 0.4);
-        let iyy = m * l * l / 12.0 + m * c * c;
-        SVector::from([m, m * c, 0.0, 0.0, 1e-4, 0.0, iyy, 0.0, 0.0, iyy])
-    }
+    use crate::inertial::tests::rod;
 
     /// The pseudo-inertia test agrees with the mass-properties check on
     /// physical and unphysical parameter sets.

@@ -149,13 +149,7 @@ pub fn nearest_in_metric(
 mod tests {
     use super::*;
     use crate::inertial::margin;
-
-    /// A uniform rod: 2 kg, centre of mass 0.3 m out on x, length 0.4 m.
-    fn rod() -> SVector<f64, 10> {
-        let (m, c, l) = (2.0, 0.3, 0.4);
-        let iyy = m * l * l / 12.0 + m * c * c;
-        SVector::from([m, m * c, 0.0, 0.0, 1e-4, 0.0, iyy, 0.0, 0.0, iyy])
-    }
+    use crate::inertial::tests::rod;
 
     fn unit(i: usize) -> DMatrix<f64> {
         let mut v = DMatrix::<f64>::zeros(10, 1);

@@ -225,8 +225,16 @@ pub fn describe(link: &str, nominal: &SVector<f64, 10>, delta: &SVector<f64, 10>
 }
 
 #[cfg(test)]
-mod tests {
+pub(crate) mod tests {
     use super::*;
+
+    /// A thin uniform rod along x (the tests' common link): 2 kg, centre of
+    /// mass 0.3 m out, 0.4 m long; I about the origin by the parallel axis.
+    pub(crate) fn rod() -> SVector<f64, 10> {
+        let (m, c, l) = (2.0, 0.3, 0.4);
+        let iyy = m * l * l / 12.0 + m * c * c;
+        SVector::from([m, m * c, 0.0, 0.0, 1e-4, 0.0, iyy, 0.0, 0.0, iyy])
+    }
 
     /// A box of mass m, sides a, b, c, centred at `c`, rotated by `r`.
     fn box_pi(m: f64, sides: [f64; 3], c: Vector3<f64>, r: Matrix3<f64>) -> SVector<f64, 10> {

@@ -136,6 +136,23 @@ fn motor_side(backlash: bool, joint: usize, hz: f64, ratio: f64, arcmin: f64) ->
     }
 }
 
+/// Coulomb and viscous friction at every joint of the arm3r: what every
+/// case carries beside its one effect.
+fn friction() -> Vec<Effect> {
+    (0..3)
+        .flat_map(|j| {
+            [
+                Effect::CoulombFriction {
+                    joint: j,
+                    fc: 0.3,
+                    vw: SIGN_SMOOTHING,
+                },
+                Effect::ViscousFriction { joint: j, fv: 0.2 },
+            ]
+        })
+        .collect()
+}
+
 /// One effect of every kind the report can name, each on its own record
 /// of the 3R arm with friction on every joint (so that the first report
 /// is never empty): the first report must name the case's kind, and the
@@ -168,18 +185,7 @@ fn motor_side(backlash: bool, joint: usize, hz: f64, ratio: f64, arcmin: f64) ->
 /// beside it; on what the always-on effects leave, it round-trips.
 #[test]
 fn a_report_as_the_baseline_of_its_own_data_names_nothing_further() {
-    let friction: Vec<Effect> = (0..3)
-        .flat_map(|j| {
-            [
-                Effect::CoulombFriction {
-                    joint: j,
-                    fc: 0.3,
-                    vw: SIGN_SMOOTHING,
-                },
-                Effect::ViscousFriction { joint: j, fv: 0.2 },
-            ]
-        })
-        .collect();
+    let friction = friction();
     // A point mass of 0.3 kg at the link frame's origin (a physical body
     // added: no first or second moment about that origin).
     let mut delta = [0.0; 10];
@@ -357,18 +363,7 @@ fn explore() {
         println!("truth {e:?}");
         let seed = f(5) as u64;
         let kind: ExcitationKind = w[6].parse().expect("excitation");
-        let mut effects: Vec<Effect> = (0..3)
-            .flat_map(|j| {
-                [
-                    Effect::CoulombFriction {
-                        joint: j,
-                        fc: 0.3,
-                        vw: SIGN_SMOOTHING,
-                    },
-                    Effect::ViscousFriction { joint: j, fv: 0.2 },
-                ]
-            })
-            .collect();
+        let mut effects = friction();
         effects.push(e);
         let mut windows = vec![None; effects.len() - 1];
         windows.push(window);

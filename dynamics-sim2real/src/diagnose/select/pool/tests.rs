@@ -131,10 +131,7 @@ fn reweighting_the_joints_rows_is_weighted_least_squares() {
 #[test]
 fn a_link_correction_is_held_to_a_body() {
     use crate::diagnose::candidates::{delta, LinkBasis};
-    use nalgebra::SVector;
-    let (m, c, l) = (2.0, 0.3, 0.4);
-    let iyy = m * l * l / 12.0 + m * c * c;
-    let rod = SVector::<f64, 10>::from([m, m * c, 0.0, 0.0, 1e-4, 0.0, iyy, 0.0, 0.0, iyy]);
+    let rod = crate::inertial::tests::rod();
     let n = 400;
     let mass: Vec<f64> = (0..n).map(|i| (i as f64 * 0.05).sin()).collect();
     let other: Vec<f64> = (0..n).map(|i| (i as f64 * 0.011).cos()).collect();
