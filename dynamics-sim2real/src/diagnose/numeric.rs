@@ -17,7 +17,10 @@ pub(crate) fn least_squares(x: &DMatrix<f64>, y: &DVector<f64>) -> Option<DVecto
 pub struct LinearFit {
     /// Parameters (zero where a sign constraint became active).
     pub theta: Vec<f64>,
-    /// Standard deviations (from sigma^2 (X^T X)^-1).
+    /// Standard deviations (from sigma^2 (X^T X)^-1). A parameter held
+    /// at zero by its sign constraint has the spread it would have if
+    /// freed (its column added back to the final fit): how firmly the data
+    /// hold it there.
     pub std: Vec<f64>,
     /// Residual sum of squares.
     pub sse: f64,
@@ -29,6 +32,8 @@ pub struct LinearFit {
 pub fn constrained_least_squares(x: &DMatrix<f64>, y: &DVector<f64>, nonneg: &[bool]) -> LinearFit {
     let p = x.ncols();
     let mut active = vec![true; p];
+    // Columns held at zero by their sign constraint.
+    let mut bound: Vec<usize> = Vec::new();
     loop {
         let cols: Vec<usize> = (0..p).filter(|&i| active[i]).collect();
         let mut theta = vec![0.0; p];
@@ -44,18 +49,38 @@ pub fn constrained_least_squares(x: &DMatrix<f64>, y: &DVector<f64>, nonneg: &[b
                     .map(|(&i, _)| i);
                 if let Some(i) = worst {
                     active[i] = false;
+                    bound.push(i);
                     continue;
                 }
                 let r = y - &xa * &sol;
                 let sse = r.norm_squared();
                 let dof = (y.len() as f64 - cols.len() as f64).max(1.0);
-                let cov = (xa.transpose() * &xa).try_inverse();
+                let gram = xa.transpose() * &xa;
+                let cov = gram.clone().try_inverse();
                 for (n, &i) in cols.iter().enumerate() {
                     theta[i] = sol[n];
                     std[i] = cov
                         .as_ref()
                         .map(|c| (c[(n, n)] * sse / dof).max(0.0).sqrt())
                         .unwrap_or(f64::INFINITY);
+                }
+                // A held column's variance if freed: sigma^2 over the part
+                // of its column outside the others' span (the Schur
+                // complement of the Gram matrix with it added).
+                let sigma2 = sse / (dof - 1.0).max(1.0);
+                for &i in &bound {
+                    let xi = x.column(i);
+                    let g = xa.transpose() * xi;
+                    let own = xi.norm_squared();
+                    let outside = match gram.clone().cholesky() {
+                        Some(ch) => own - g.dot(&ch.solve(&g)),
+                        None => 0.0,
+                    };
+                    std[i] = if outside > 1e-12 * own && outside.is_finite() {
+                        (sigma2 / outside).sqrt()
+                    } else {
+                        f64::INFINITY
+                    };
                 }
                 return LinearFit { theta, std, sse };
             }
@@ -109,5 +134,23 @@ mod tests {
         let fit = constrained_least_squares(&x, &y, &[true, true]);
         assert_eq!(fit.theta[1], 0.0);
         assert!(fit.theta[0] > 1.9 && fit.sse > 0.1);
+        // The held parameter's spread is the one it has when freed: the
+        // unconstrained fit's, up to the one degree of freedom its residual
+        // has more (same sse up to the constrained fit's, by hand below).
+        let y2 = DVector::from_fn(20, |r, _| {
+            2.0 * r as f64 - 0.5 * (r as f64).sin() + 0.1 * ((7 * r) as f64).cos()
+        });
+        let held = constrained_least_squares(&x, &y2, &[true, true]);
+        let freed = constrained_least_squares(&x, &y2, &[false, false]);
+        assert_eq!(held.theta[1], 0.0);
+        assert!(freed.theta[1] < 0.0);
+        // sigma^2 of the held fit (18 degrees of freedom left once the
+        // held column counts) over the freed variance's (18) scale.
+        let expected = freed.std[1] * (held.sse / freed.sse).sqrt();
+        assert!(
+            (held.std[1] / expected - 1.0).abs() < 1e-9,
+            "{} vs {expected}",
+            held.std[1]
+        );
     }
 }

@@ -10,10 +10,16 @@ use crate::effects::EffectKind;
 use dynamics_runtime::JointKind;
 
 /// Below this, in any of the parameters' units (kg m^2, N m, s, rad, ...),
-/// a value without a spread is the zero a sign constraint holds it at
+/// a value is the zero a sign constraint holds it at
 /// plus rounding (a rotor inertia of 8e-16 kg m^2 came out of an hour's
 /// log with nothing at that joint).
 pub const HELD_AT_ZERO: f64 = 1e-12;
+
+/// Whether `value` of parameter `name` is the zero a sign constraint
+/// holds it at (a payload's centre of mass has no sign constraint).
+pub(crate) fn held_at_zero(name: &str, value: f64) -> bool {
+    !matches!(name, "com_x" | "com_y" | "com_z") && value.abs() <= HELD_AT_ZERO
+}
 
 /// The spread (m) below which a payload's centre-of-mass coordinate near
 /// the tip frame's origin is still reported as a number.
@@ -53,8 +59,9 @@ pub fn why_not(
             .then(|| format!("not placed by these data (spread {std:.3} m)"));
     }
     // A value held at zero by its sign constraint (the fit's active bound:
-    // no spread, nothing left of the value but rounding) is no effect.
-    if std == 0.0 && value.abs() <= HELD_AT_ZERO {
+    // nothing left of the value but rounding; its spread is the one it
+    // would have if freed) is no effect.
+    if held_at_zero(name, value) {
         return Some("zero, held at its bound: the data ask for none".into());
     }
     // Grid-searched values carry half a step as their spread by design.
@@ -136,6 +143,11 @@ mod tests {
     #[test]
     fn a_value_held_at_zero_is_no_effect() {
         let why = why_not(EffectKind::Armature, "inertia", 8.4e-16, 0.0, None).unwrap();
+        assert!(why.contains("held at its bound"), "{why}");
+        assert!(held_at_zero("inertia", 8.4e-16) && !held_at_zero("inertia", 1e-9));
+        assert!(!held_at_zero("com_z", 0.0));
+        // Held with the spread it would have if freed.
+        let why = why_not(EffectKind::Armature, "inertia", 0.0, 3e-4, None).unwrap();
         assert!(why.contains("held at its bound"), "{why}");
         // A small value the fit determines is still a value.
         assert!(why_not(EffectKind::Armature, "inertia", 1e-9, 1e-10, None).is_none());

@@ -24,6 +24,7 @@ mod shrink;
 mod yardstick;
 
 pub use confirm::{Confidence, Confirmed, Suggestion, Unconfirmed};
+pub(crate) use determinacy::held_at_zero;
 pub use determinacy::why_not;
 pub use gap_windows::GapWindow;
 pub use holdout::{fraction, limit_to_windows, Holdout};

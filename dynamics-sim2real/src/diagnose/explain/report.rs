@@ -2,6 +2,7 @@
 
 use serde::Serialize;
 
+use crate::diagnose::evaluate::held_at_zero;
 use crate::effects::EffectKind;
 use crate::Warning;
 
@@ -221,7 +222,9 @@ pub struct Parameter {
     /// Name.
     pub name: String,
     /// Value (SI); `null` in JSON where [`Parameter::note`] says why it
-    /// cannot be acted on.
+    /// cannot be acted on, except a value held at zero by its sign
+    /// constraint: zero, with the spread it has if freed (how firmly the
+    /// data hold it there).
     pub value: f64,
     /// Standard deviation (grid-searched parameters: half the grid step);
     /// infinite (`null` in JSON) where the data do not determine it.
@@ -235,7 +238,7 @@ pub struct Parameter {
 impl Serialize for Parameter {
     fn serialize<S: serde::Serializer>(&self, s: S) -> Result<S::Ok, S::Error> {
         use serde::ser::SerializeStruct;
-        let shown = self.note.is_none();
+        let shown = self.note.is_none() || held_at_zero(&self.name, self.value);
         let mut st = s.serialize_struct("Parameter", 3 + usize::from(!shown))?;
         st.serialize_field("name", &self.name)?;
         st.serialize_field("value", &shown.then_some(self.value))?;

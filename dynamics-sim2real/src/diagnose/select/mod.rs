@@ -19,7 +19,7 @@ mod pool;
 mod rank;
 
 pub use compound::{effects, joint_fit, without_others, Explanation};
-pub use nesting::nested_rival_stands;
+pub use nesting::{breakaway_data_needed, nested_rival_stands};
 pub(in crate::diagnose) use pool::leaves_a_body;
 pub use pool::{Pool, Solution};
 

@@ -74,8 +74,8 @@ pub enum Extra {
 /// it nests. Stribeck friction over Coulomb friction: the breakaway excess
 /// `fs_minus_fc`, against zero and [`MEANINGFUL_BREAKAWAY`] times the
 /// Coulomb level `fc`, each within [`INTERVAL_STDS`] standard deviations
-/// (an excess held at zero by its sign constraint, reported without a
-/// spread, has no interval).
+/// (an excess held at zero by its sign constraint is judged at the spread
+/// it has when freed; one without a spread has no interval).
 /// The other nested pairs (a motor side over its rotor, a spring over an
 /// offset, a link over a payload) have no interval of their extra on one
 /// physical scale here: `Undetermined`, so the information criterion's
@@ -93,10 +93,12 @@ pub fn extra(richer: EffectKind, parameters: &[(&str, f64, f64)]) -> Extra {
             let (Some((fc, _)), Some((x, s))) = (get("fc"), get("fs_minus_fc")) else {
                 return Extra::Undetermined;
             };
-            // Held at its bound by the sign constraint (value zero, no
-            // spread): the data asked for a negative excess, and how
-            // firmly is not reported, so there is no interval.
-            if x == 0.0 && s == 0.0 {
+            // No spread is no interval. An excess held at zero by its
+            // sign constraint carries the spread it has when freed: the
+            // data asked for a negative excess, and the interval around
+            // zero at that spread holds (conservatively) what a positive
+            // one could be.
+            if s == 0.0 {
                 return Extra::Undetermined;
             }
             let meaningful = MEANINGFUL_BREAKAWAY * fc.abs();
@@ -111,6 +113,51 @@ pub fn extra(richer: EffectKind, parameters: &[(&str, f64, f64)]) -> Extra {
         }
         _ => Extra::Undetermined,
     }
+}
+
+/// How much spread the data leave the spread estimate itself and the
+/// Stribeck velocity the fit picks from its grid: a motion is asked to
+/// determine the breakaway excess this much tighter than the bare
+/// interval rule needs.
+pub const DATA_MARGIN: f64 = 1.5;
+
+/// How many times as much data of the same kind would settle a
+/// breakaway excess `excess +- std` over a Coulomb level `fc` (the
+/// Stribeck fit's `fs_minus_fc` and `fc`): the interval of
+/// [`INTERVAL_STDS`] standard deviations, shrinking as one over the square
+/// root of the data's length, must leave out zero or every meaningful
+/// value ([`MEANINGFUL_BREAKAWAY`] of `fc`), with [`DATA_MARGIN`] to
+/// spare. One where these data already settle it; `None` where they give
+/// no spread or no Coulomb level to judge by.
+///
+/// ```
+/// use dynamics_sim2real::diagnose::breakaway_data_needed;
+/// // 10 % of fc = 1 is 0.1; an excess held at zero to +- 0.1 needs its
+/// // spread 2 x 1.5 = 3 times smaller for the interval to stay under
+/// // 0.1: nine times the data.
+/// let f = breakaway_data_needed(1.0, 0.0, 0.1).unwrap();
+/// assert!((f - 9.0).abs() < 1e-9);
+/// // Settled already: absent (+- 0.01) or present (0.5 +- 0.05).
+/// assert_eq!(breakaway_data_needed(1.0, 0.0, 0.01), Some(1.0));
+/// assert_eq!(breakaway_data_needed(1.0, 0.5, 0.05), Some(1.0));
+/// ```
+pub fn breakaway_data_needed(fc: f64, excess: f64, std: f64) -> Option<f64> {
+    let meaningful = MEANINGFUL_BREAKAWAY * fc.abs();
+    if !(meaningful > 0.0 && std > 0.0 && std.is_finite() && excess.is_finite()) {
+        return None;
+    }
+    let wanted = INTERVAL_STDS * DATA_MARGIN * std;
+    // Absent: |excess| + wanted' < meaningful; present: excess - wanted' > 0.
+    let absent =
+        (meaningful > excess.abs()).then(|| (wanted / (meaningful - excess.abs())).powi(2));
+    let present = (excess > 0.0).then(|| (wanted / excess).powi(2));
+    let f = match (absent, present) {
+        (Some(a), Some(p)) => a.min(p),
+        (Some(a), None) => a,
+        (None, Some(p)) => p,
+        (None, None) => return None,
+    };
+    Some(f.max(1.0))
 }
 
 /// A fitted effect: its kind and its parameters (name, value, standard
@@ -157,10 +204,14 @@ mod tests {
         assert_eq!(extra(S, &p(0.3, 0.1)), Extra::Present);
         // [-0.1, 0.3]: covers both -> undetermined.
         assert_eq!(extra(S, &p(0.1, 0.1)), Extra::Undetermined);
-        // An undetermined spread is no interval, nor is a value held at
-        // its bound with no spread.
+        // An undetermined spread is no interval, nor is a value with no
+        // spread.
         assert_eq!(extra(S, &p(0.0, f64::INFINITY)), Extra::Undetermined);
         assert_eq!(extra(S, &p(0.0, 0.0)), Extra::Undetermined);
+        // Held at zero with the spread it has when freed: [-0.04, 0.04]
+        // excludes 0.1 -> absent; [-0.2, 0.2] does not.
+        assert_eq!(extra(S, &p(0.0, 0.02)), Extra::Absent);
+        assert_eq!(extra(S, &p(0.0, 0.1)), Extra::Undetermined);
         // Coulomb chosen, Stribeck rival: it stands unless its excess is
         // determined near zero.
         let c = [("fc", 1.0, 0.01)];

@@ -12,7 +12,9 @@ impl Pool {
     /// sign constraint is one at 0) kept by holding the parameter furthest
     /// below its bound at the bound and solving again, limits by holding
     /// the parameter furthest beyond its limit at the limit and solving
-    /// again.
+    /// again. A parameter held at its lower bound has the spread it would
+    /// have if freed (its column added back to the final fit): how firmly
+    /// the data hold it there; one held at a limit or preset has none.
     pub fn solve(&self, set: &[usize]) -> Solution {
         self.solve_held(set, &[])
     }
@@ -56,6 +58,8 @@ impl Pool {
         k = k.saturating_sub(dependent);
         // Parameters held at a limit or preset: (free index, value).
         let mut held: Vec<(usize, f64)> = Vec::new();
+        // Parameters held at their lower bound (free index).
+        let mut bound: Vec<usize> = Vec::new();
         for &(c, v) in preset {
             if let Some(i) = free.iter().position(|f| f.1 == c) {
                 active[i] = false;
@@ -83,9 +87,27 @@ impl Pool {
             let idx: Vec<usize> = (0..free.len()).filter(|&i| active[i]).collect();
             let m = idx.len();
             if m == 0 {
-                let at: Vec<(usize, f64)> = held.clone();
-                let zero = held.iter().map(|&(i, _)| (i, 0.0)).collect();
-                break (at, zero, yy.max(0.0));
+                // Every column held: one at its lower bound, freed alone,
+                // has sigma^2 over its own norm as its variance.
+                let sigma2 = yy.max(0.0) / (self.n() as f64 - 1.0).max(1.0);
+                let mut at: Vec<(usize, f64)> = held.clone();
+                let mut spread: Vec<(usize, f64)> = held.iter().map(|&(i, _)| (i, 0.0)).collect();
+                for &i in &bound {
+                    let own = self.gram[(free[i].1, free[i].1)];
+                    let s = if own > 0.0 {
+                        (sigma2 / own).sqrt()
+                    } else {
+                        f64::INFINITY
+                    };
+                    match spread.iter_mut().find(|t| t.0 == i) {
+                        Some(t) => t.1 = s,
+                        None => {
+                            at.push((i, 0.0));
+                            spread.push((i, s));
+                        }
+                    }
+                }
+                break (at, spread, yy.max(0.0));
             }
             let d: Vec<f64> = idx
                 .iter()
@@ -111,6 +133,7 @@ impl Pool {
                 .map(|(i, _)| i);
             if let Some(i) = worst {
                 active[i] = false;
+                bound.push(i);
                 if free[i].2 != 0.0 {
                     held.push((i, free[i].2));
                 }
@@ -138,7 +161,29 @@ impl Pool {
                     (idx[r], z[r] / d[r], s)
                 })
                 .collect();
+            // A column held at its lower bound: the spread it has if
+            // freed, sigma^2 over the part of its (unit-scaled) column
+            // outside the active ones' span.
+            let sigma2 = sse / (dof - 1.0).max(1.0);
+            let freed = |i: usize| {
+                let c = free[i].1;
+                let di = self.gram[(c, c)].sqrt();
+                let gv = DVector::from_fn(m, |r, _| self.gram[(c, free[idx[r]].1)] / (di * d[r]));
+                let outside = 1.0 - gv.dot(&ch.solve(&gv));
+                if outside > DEPENDENT && di > 0.0 {
+                    (sigma2 / outside).sqrt() / di
+                } else {
+                    f64::INFINITY
+                }
+            };
             theta.extend(held.iter().map(|&(i, v)| (i, v, 0.0)));
+            for &i in &bound {
+                let s = freed(i);
+                match theta.iter_mut().find(|t| t.0 == i) {
+                    Some(t) => t.2 = s,
+                    None => theta.push((i, 0.0, s)),
+                }
+            }
             break (
                 theta.iter().map(|t| (t.0, t.1)).collect::<Vec<_>>(),
                 theta.iter().map(|t| (t.0, t.2)).collect::<Vec<_>>(),

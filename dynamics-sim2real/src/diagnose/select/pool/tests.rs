@@ -48,6 +48,22 @@ fn joint_fits_from_the_gram_match_direct_least_squares() {
         assert!((sol.std[t][0] / direct.std[d] - 1.0).abs() < 1e-6);
     }
     assert!((sol.sse / direct.sse - 1.0).abs() < 1e-9);
+    // The held coefficient's spread is the one it has freed: the
+    // unconstrained fit's, scaled by the two fits' residuals (the same
+    // degrees of freedom), by both routes.
+    let unconstrained = constrained_least_squares(
+        &DMatrix::from_fn(n, 3, |r, c| cols[c][r]),
+        &y_minus_fixed,
+        &[false, false, false],
+    );
+    assert!(unconstrained.theta[1] < -0.5);
+    let freed = unconstrained.std[1] * (direct.sse / unconstrained.sse).sqrt();
+    assert!(
+        (sol.std[1][0] / freed - 1.0).abs() < 1e-6,
+        "{:?} vs {freed}",
+        sol.std[1]
+    );
+    assert!((direct.std[1] / freed - 1.0).abs() < 1e-9);
     assert_eq!(sol.k, 1 + 1 + 1 + 3);
     // The residual it leaves is the direct one.
     let r = pool.residual(&[0, 1, 2, 3], &sol);
