@@ -246,6 +246,51 @@ pub fn rivals<R: Robot<N>, const N: usize>(
     Ok((pairs, labels))
 }
 
+/// For every ambiguous Coulomb-vs-Stribeck pair of a diagnosis report
+/// (see [`ambiguous_pairs`]), the joint and how many times as much data of
+/// the kind that made the report would settle the Stribeck fit's
+/// breakaway excess (`data_needed` of the `which.ranked[]` entry of
+/// `stribeck_friction` at the joint). A nested pair is not separated by
+/// the motion's shape alone: the richer effect fits as well on any motion,
+/// and only a tighter interval of its extra decides; that takes a longer
+/// run.
+///
+/// ```
+/// let report: serde_json::Value = serde_json::from_str(r#"{"which": {"verdict":
+///   {"kind": "coulomb_friction", "joint": "j3", "status": "ambiguous",
+///    "rival": {"kind": "stribeck_friction", "joint": "j3"}}, "effects": [],
+///   "ranked": [{"kind": "stribeck_friction", "joint": "j3", "data_needed": 8.1}]}}"#).unwrap();
+/// assert_eq!(dynamics_cli::excite::data_needed(&report), vec![("j3".to_string(), 8.1)]);
+/// ```
+pub fn data_needed(report: &serde_json::Value) -> Vec<(String, f64)> {
+    let which = &report["which"];
+    let mut out: Vec<(String, f64)> = Vec::new();
+    for ((ka, pa), (kb, pb)) in ambiguous_pairs(report) {
+        let kinds = [ka.as_str(), kb.as_str()];
+        let (Some(joint), true) = (
+            pa.clone().filter(|a| Some(a) == pb.as_ref()),
+            kinds.contains(&"coulomb_friction") && kinds.contains(&"stribeck_friction"),
+        ) else {
+            continue;
+        };
+        let needed = which["ranked"]
+            .as_array()
+            .into_iter()
+            .flatten()
+            .find(|r| {
+                r["kind"] == "stribeck_friction" && r["joint"].as_str() == Some(joint.as_str())
+            })
+            .and_then(|r| r["data_needed"].as_f64())
+            .filter(|f| f.is_finite() && *f >= 1.0);
+        if let Some(f) = needed {
+            if !out.iter().any(|o| o.0 == joint) {
+                out.push((joint, f));
+            }
+        }
+    }
+    out
+}
+
 /// One value per joint from a list of one or `N` values.
 fn per_joint<const N: usize>(v: &[f64], what: &str) -> Result<SVector<f64, N>, String> {
     match v.len() {
@@ -409,6 +454,22 @@ pub fn excite_cmd<R: Robot<N> + Sync, const N: usize>(
                     "angle_deg": angles[i].to_degrees(),
                     "default_angle_deg": before[i].to_degrees(),
                 }));
+            }
+            for (joint, f) in data_needed(&json) {
+                let pair = |l: &str| {
+                    l.contains("coulomb_friction")
+                        && l.contains("stribeck_friction")
+                        && l.split(' ').filter(|w| *w == joint).count() == 2
+                };
+                for (row, _) in rows.iter_mut().zip(&labels).filter(|(_, l)| pair(l)) {
+                    row["data_needed"] = serde_json::json!(f);
+                }
+                if f > 1.0 {
+                    println!(
+                        "coulomb vs stribeck friction at {joint}: the report's data leave the breakaway excess undetermined; settling it takes about {f:.1} times as much data of that kind: a run {f:.1} times as long as the report's training record (repeat this design: --duration with --period {:.3})",
+                        d.motion.period
+                    );
+                }
             }
             (d, Some(rows))
         }

@@ -78,6 +78,7 @@ mod tests {
             delta_aicc: 1.0,
             holdout_share: 0.5,
             channel: None,
+            data_needed: None,
         };
         let mut ranked = vec![
             entry(EffectKind::EncoderOffset, 7.8e15),

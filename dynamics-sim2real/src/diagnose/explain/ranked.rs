@@ -5,6 +5,7 @@
 use crate::diagnose::candidates::Candidate;
 use crate::diagnose::explain::report::{Parameter, Ranked};
 use crate::diagnose::fit::Fit;
+use crate::diagnose::select::breakaway_data_needed;
 use dynamics_runtime::Robot;
 
 /// The report's entry of a fit: parameters with their spreads, share of
@@ -43,5 +44,18 @@ pub fn ranked_entry<R: Robot<N>, const N: usize>(
         aicc: a,
         delta_aicc: aicc0 - a,
         holdout_share,
+        data_needed: data_needed(f),
     }
+}
+
+/// A Stribeck fit's [`breakaway_data_needed`], from its Coulomb level and
+/// breakaway excess.
+fn data_needed(f: &Fit) -> Option<f64> {
+    if !matches!(f.candidate, Candidate::Stribeck(..)) {
+        return None;
+    }
+    let p = f.parameters();
+    let get = |name: &str| p.iter().find(|x| x.0 == name).map(|x| (x.1, x.2));
+    let ((fc, _), (x, s)) = (get("fc")?, get("fs_minus_fc")?);
+    breakaway_data_needed(fc, x, s)
 }

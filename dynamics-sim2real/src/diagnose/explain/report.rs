@@ -277,6 +277,12 @@ pub struct Ranked {
     /// effort stream late against position and velocity).
     #[serde(skip_serializing_if = "Option::is_none")]
     pub channel: Option<Channel>,
+    /// For `stribeck_friction`: how many times as much data of this kind
+    /// would settle its breakaway excess over the Coulomb level, present
+    /// or absent (1 where these data settle it; see
+    /// [`breakaway_data_needed`](crate::diagnose::breakaway_data_needed)).
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub data_needed: Option<f64>,
 }
 
 /// The verdict.
