@@ -37,11 +37,11 @@ pub struct Basis<const N: usize> {
     pub tip_alpha: Vec<Vector3<f64>>,
     /// Mean A[j][j] over the data.
     pub inertia: SVector<f64, N>,
-    /// Per sample, a joint's acceleration per unit of its own effort: what
-    /// the link of a motor-side simulation answers to (`motor_sim/`). One
-    /// over its mean own inertia at every sample (see `Basis::new` for the
-    /// per-sample inverse mass matrix tried instead).
-    pub compliance: Vec<SVector<f64, N>>,
+    /// Per joint, its acceleration per unit of its own effort: what the
+    /// link of a motor-side simulation answers to (`motor_sim/`). One over
+    /// its mean own inertia (see `Basis::new` for the per-sample inverse
+    /// mass matrix tried instead).
+    pub compliance: SVector<f64, N>,
     /// Gravity vector of the model.
     pub gravity: Vector3<f64>,
     /// The tip used.
@@ -93,7 +93,7 @@ impl<const N: usize> Basis<N> {
             jac_w: Vec::new(),
             tip_alpha: Vec::new(),
             inertia: SVector::zeros(),
-            compliance: vec![SVector::zeros(); n],
+            compliance: SVector::zeros(),
             gravity: Vector3::from(R::GRAVITY),
             tip,
             tip_mass: Tip::body_mass::<R, N>(robot),
@@ -119,15 +119,12 @@ impl<const N: usize> Basis<N> {
         // The link's response to its own effort, as one over its mean own
         // inertia. The inverse mass matrix's diagonal at each sample (the
         // joint's response with the other joints' efforts held; the
-        // machinery takes it per sample) was tried: right on the MAR's
+        // simulation would take it per sample) was tried: right on the MAR's
         // backlash cases, but on the real Panda log it chose elastic joints
         // at joints 1-3 that predicted the held-out half worse (plain
         // shrink 0.429 to 0.409; `scripts/real-logs.sh`): there the other
         // joints' controllers hold them, which neither figure models.
-        let own = b.inertia.map(|x| if x > 0.0 { 1.0 / x } else { 0.0 });
-        for v in b.compliance.iter_mut() {
-            *v = own;
-        }
+        b.compliance = b.inertia.map(|x| if x > 0.0 { 1.0 / x } else { 0.0 });
         // Columns built from the acceleration estimate are smoothed once
         // more, like the acceleration itself.
         smooth_in_place(&sig.sg, &mut b.tip_acc, (a, z));
