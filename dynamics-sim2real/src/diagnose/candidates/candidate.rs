@@ -8,6 +8,7 @@ use nalgebra::SVector;
 
 use super::basis::Basis;
 use super::grids::{ALPHA_GRID, COULOMB_WIDTHS, STRIBECK_GRID};
+use super::row_series::{coulomb_law, stribeck_law};
 use crate::diagnose::candidates::shift::{late_effort_column, late_motion_column};
 use crate::diagnose::signals::Signals;
 use crate::effects::{Effect, EffectKind, SIGN_SMOOTHING};
@@ -332,20 +333,13 @@ impl Candidate {
         let mut c = [SVector::zeros(); 4];
         let qd = &sig.qd[k];
         match *self {
-            Candidate::Coulomb(j, w) => {
-                // The sharp width's column is the sign's (`Basis::coulomb`).
-                c[0][j] = match COULOMB_WIDTHS.iter().position(|&g| g == w) {
-                    Some(i) if i > 0 => basis.coulomb[i - 1][k][j],
-                    _ => basis.sign[k][j],
-                };
-            }
+            Candidate::Coulomb(j, w) => c[0][j] = basis.series.law(sig, coulomb_law(w), k, j),
             Candidate::Viscous(j) => c[0][j] = qd[j],
             Candidate::Stribeck(j, vs) => {
-                c[0][j] = basis.sign[k][j];
-                let i = STRIBECK_GRID.iter().position(|&g| g == vs).unwrap_or(0);
-                c[1][j] = basis.stribeck[i][k][j];
+                c[0][j] = basis.series.law(sig, coulomb_law(SIGN_SMOOTHING), k, j);
+                c[1][j] = basis.series.law(sig, stribeck_law(vs), k, j);
             }
-            Candidate::Armature(j) => c[0][j] = basis.qdd[k][j],
+            Candidate::Armature(j) => c[0][j] = basis.series.qdd(sig, k, j),
             Candidate::Payload => {
                 c[0] = basis.jac[k].transpose() * (basis.tip_acc[k] - basis.gravity)
             }

@@ -29,6 +29,7 @@ mod links;
 mod motor;
 mod prepared;
 mod records;
+mod row_series;
 mod shift;
 mod visibility;
 

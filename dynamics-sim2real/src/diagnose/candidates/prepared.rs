@@ -66,13 +66,13 @@ impl<const N: usize> Prepared<N> {
         chunk: usize,
     ) -> Self {
         let (sig, levels) = Signals::new(robot, m, levels, chunk);
-        let basis = Arc::new(Basis::new(robot, &sig, chunk));
         let h = sig.sg.half();
         let (a, z) = sig.range;
-        let rows = (a + h..z.saturating_sub(h))
+        let rows: Vec<usize> = (a + h..z.saturating_sub(h))
             .step_by(h.max(1))
             .filter_map(|k| row_near(&sig, k, h))
             .collect();
+        let basis = Arc::new(Basis::new(robot, &sig, &rows, chunk));
         Prepared {
             sig,
             basis,

@@ -38,14 +38,14 @@ pub const LANES: usize = 8;
 
 /// The raw transmitted effort (see `transmitted::motor_transmitted_raw`) of
 /// every guess of `gs` at joint `j`, in their order, over the record's
-/// range (NaN outside it); `compliance` per sample is the link's
+/// range (NaN outside it); `compliance` per joint is the link's
 /// acceleration per unit of its own effort (`Basis::compliance`).
 pub fn transmitted_raw_many<const N: usize>(
     sig: &Signals<N>,
     j: usize,
     gs: &[MotorGuess],
     backlash: bool,
-    compliance: &[SVector<f64, N>],
+    compliance: &SVector<f64, N>,
 ) -> Vec<Vec<f64>> {
     let n = sig.t.len();
     let (a, _) = sig.range;
@@ -92,7 +92,7 @@ pub fn transmitted_each<const N: usize, T>(
     j: usize,
     gs: &[MotorGuess],
     backlash: bool,
-    compliance: &[SVector<f64, N>],
+    compliance: &SVector<f64, N>,
     stretches: &Stretches,
     mut reduce: impl FnMut(&Simulated) -> T,
 ) -> Vec<T> {
@@ -120,7 +120,7 @@ fn in_lanes<const N: usize>(
     j: usize,
     gs: &[MotorGuess],
     backlash: bool,
-    compliance: &[SVector<f64, N>],
+    compliance: &SVector<f64, N>,
     span: (usize, usize),
 ) -> Vec<Vec<f64>> {
     let mut out = Vec::with_capacity(gs.len());
@@ -149,13 +149,13 @@ fn lanes<const N: usize, const L: usize, const B: bool>(
     sig: &Signals<N>,
     j: usize,
     gs: &[MotorGuess],
-    compliance: &[SVector<f64, N>],
+    compliance: &SVector<f64, N>,
     (a, z): (usize, usize),
 ) -> Vec<Vec<f64>> {
     let n = z.saturating_sub(a);
     let used = gs.len().min(L);
     let nan = || vec![vec![f64::NAN; n]; used];
-    if z <= a + 1 || used == 0 || compliance.len() < z || sig.t.len() < z {
+    if z <= a + 1 || used == 0 || sig.t.len() < z {
         return nan();
     }
     let g: [MotorGuess; L] = std::array::from_fn(|l| gs[l.min(used - 1)]);
@@ -205,8 +205,8 @@ fn lanes<const N: usize, const L: usize, const B: bool>(
         );
         let h = (sig.t[k + 1] - sig.t[k]) / SUB as f64;
         let tau = sig.tau_raw[k][j];
-        // The link's response to its own effort over the interval.
-        let inv_i = 0.5 * (compliance[k][j] + compliance[k + 1][j]);
+        // The link's response to its own effort.
+        let inv_i = compliance[j];
         // The measured motion and the model's effort at fraction s of the
         // interval.
         let at = |s: f64| -> [f64; 4] {

@@ -12,7 +12,7 @@ fn one_at_a_time<const N: usize>(
     j: usize,
     g: &MotorGuess,
     backlash: bool,
-    compliance: &[SVector<f64, N>],
+    compliance: &SVector<f64, N>,
 ) -> Vec<f64> {
     let n = sig.t.len();
     let (a, z) = sig.range;
@@ -62,7 +62,7 @@ fn one_at_a_time<const N: usize>(
         );
         let h = (sig.t[k + 1] - sig.t[k]) / SUB as f64;
         let tau = sig.tau_raw[k][j];
-        let inv_i = 0.5 * (compliance[k][j] + compliance[k + 1][j]);
+        let inv_i = compliance[j];
         // State derivative of (motor angle, motor rate, link angle, link
         // rate) at fraction s of the interval: the link follows the
         // measured motion plus what the transmitted effort adds over the
@@ -173,12 +173,8 @@ fn guesses(backlash: bool) -> Vec<MotorGuess> {
 #[test]
 fn every_lane_is_the_simulation_of_its_guess_alone() {
     let sig = signals();
-    // A link whose response to its effort varies along the motion.
-    let compliance: Vec<SVector<f64, 1>> = sig
-        .t
-        .iter()
-        .map(|&s| SVector::<f64, 1>::new(1.0 / (0.8 + 0.2 * (2.0 * s).sin())))
-        .collect();
+    // A link of inertia 0.8.
+    let compliance = SVector::<f64, 1>::new(1.0 / 0.8);
     for backlash in [false, true] {
         let mut gs = guesses(backlash);
         // A guess whose integration blows up (a rotor of no inertia).

@@ -28,7 +28,7 @@ pub fn motor_transmitted<const N: usize>(
     j: usize,
     g: &MotorGuess,
     backlash: bool,
-    compliance: &[SVector<f64, N>],
+    compliance: &SVector<f64, N>,
 ) -> Vec<f64> {
     sig.sg
         .apply(&motor_transmitted_raw(sig, j, g, backlash, compliance), 0)
@@ -41,7 +41,7 @@ pub fn motor_transmitted_raw<const N: usize>(
     j: usize,
     g: &MotorGuess,
     backlash: bool,
-    compliance: &[SVector<f64, N>],
+    compliance: &SVector<f64, N>,
 ) -> Vec<f64> {
     transmitted_raw_many(sig, j, std::slice::from_ref(g), backlash, compliance)
         .pop()
