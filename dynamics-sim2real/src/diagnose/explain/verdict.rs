@@ -30,7 +30,15 @@ pub fn verdict(ranked: &[Ranked], gap: f64, options: &Options) -> Verdict {
                 } else {
                     Status::Clear
                 },
-                separating_motion: rival.map(|r| format!("{}; `dynamics excite --separate report.json` designs such a motion within the robot's limits", separating_motion(top.kind, r.kind))),
+                separating_motion: rival.map(|r| {
+                    format!(
+                        "{}{}; `dynamics excite --separate report.json` designs such a motion within the robot's limits",
+                        separating_motion(top.kind, r.kind),
+                        longer(top, r)
+                            .map(|f| format!(", on a run about {f:.1} times as long as this one (only more data narrow the breakaway excess's interval)"))
+                            .unwrap_or_default()
+                    )
+                }),
                 rival: rival.map(|r| Box::new(r.clone())),
             }
         }
@@ -70,6 +78,22 @@ fn stands(top: &Ranked, rival: &Ranked) -> bool {
         || nested_rival_stands((top.kind, &a), (rival.kind, &b))
 }
 
+/// For Coulomb against Stribeck friction at one joint, how many times as
+/// much data the Stribeck entry says would settle its breakaway excess,
+/// when more than these.
+fn longer(a: &Ranked, b: &Ranked) -> Option<f64> {
+    use EffectKind::{CoulombFriction, StribeckFriction};
+    let pair = matches!(
+        (a.kind, b.kind),
+        (CoulombFriction, StribeckFriction) | (StribeckFriction, CoulombFriction)
+    );
+    let stribeck = if a.kind == StribeckFriction { a } else { b };
+    (pair && a.joint == b.joint)
+        .then_some(stribeck.data_needed)
+        .flatten()
+        .filter(|f| *f > 1.0)
+}
+
 /// A motion that would tell `a` and `b` apart.
 fn separating_motion(a: EffectKind, b: EffectKind) -> String {
     use EffectKind::*;
@@ -89,5 +113,62 @@ fn separating_motion(a: EffectKind, b: EffectKind) -> String {
         "quick effort reversals and steps at the joint, so that the motor side rings (elasticity) or crosses its gap (backlash)".into()
     } else {
         "a richer excitation: a chirp up to 5 Hz, slow reversals and holds at several poses".into()
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::diagnose::explain::report::Parameter;
+
+    fn entry(kind: EffectKind, aicc: f64, parameters: &[(&str, f64, f64)]) -> Ranked {
+        Ranked {
+            kind,
+            joint: Some("j3".into()),
+            point: None,
+            parameters: parameters
+                .iter()
+                .map(|&(name, value, std)| Parameter {
+                    name: name.into(),
+                    value,
+                    std,
+                    note: None,
+                })
+                .collect(),
+            share: 0.9,
+            aicc,
+            delta_aicc: 500.0 - aicc,
+            holdout_share: 0.9,
+            channel: None,
+            data_needed: None,
+        }
+    }
+
+    #[test]
+    fn an_undetermined_breakaway_asks_for_a_longer_run() {
+        let coulomb = entry(EffectKind::CoulombFriction, 0.0, &[("fc", 0.0246, 4e-4)]);
+        let mut stribeck = entry(
+            EffectKind::StribeckFriction,
+            2.0,
+            &[("fc", 0.0246, 4e-4), ("fs_minus_fc", 0.0, 1.9e-3)],
+        );
+        // 2 x 1.5 x 1.9e-3 against 10 % of fc: (5.7e-3 / 2.46e-3)^2.
+        stribeck.data_needed = crate::diagnose::breakaway_data_needed(0.0246, 0.0, 1.9e-3);
+        let v = verdict(
+            &[coulomb.clone(), stribeck.clone()],
+            10.0,
+            &Options::default(),
+        );
+        assert_eq!(v.status, Status::Ambiguous);
+        let words = v.separating_motion.unwrap();
+        assert!(words.contains("5.4 times as long"), "{words}");
+        // Settled by these data (a tight interval): no rival, no words.
+        let tight = entry(
+            EffectKind::StribeckFriction,
+            2.0,
+            &[("fc", 0.0246, 4e-4), ("fs_minus_fc", 0.0, 2e-4)],
+        );
+        let v = verdict(&[coulomb, tight], 10.0, &Options::default());
+        assert_eq!(v.status, Status::Clear);
     }
 }
