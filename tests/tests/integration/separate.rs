@@ -334,6 +334,11 @@ fn run<R: Robot<N> + Clone + Sync, const N: usize>(
         opts.excitation,
         said(&before)
     );
+    // When searching, `SEPARATE_NO_DESIGN` stops at the ambiguity (a
+    // quicker search for cases).
+    if std::env::var("SEPARATE_NO_DESIGN").is_ok() {
+        return Outcome::Refused("not designed (SEPARATE_NO_DESIGN)".into());
+    }
     let m = robots::builtin::motion(&robot_name());
     let lim = limits::<N>(
         AnyRobot::by_name(&robot_name())
@@ -442,10 +447,17 @@ fn separating_motions_resolve_ambiguous_pairs() {
             continue;
         }
         let durations = list("SEPARATE_DURATIONS").unwrap_or(DURATIONS.to_vec());
+        // `SEPARATE_FROM` is the first seed searched (1 unless given);
+        // `SEPARATE_ALL` searches on past the first ambiguous case.
+        let from: u64 = std::env::var("SEPARATE_FROM")
+            .ok()
+            .and_then(|s| s.parse().ok())
+            .unwrap_or(1);
+        let all = std::env::var("SEPARATE_ALL").is_ok();
         let seeds: Vec<(f64, u64)> = if search > 0 {
             durations
                 .iter()
-                .flat_map(|&d| (1..=search).map(move |s| (d, s)))
+                .flat_map(|&d| (from..=search).map(move |s| (d, s)))
                 .collect()
         } else {
             CASES[i].into_iter().collect()
@@ -495,7 +507,7 @@ fn separating_motions_resolve_ambiguous_pairs() {
                     found = true;
                 }
             }
-            if found {
+            if found && !all {
                 break;
             }
         }

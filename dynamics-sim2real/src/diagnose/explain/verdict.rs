@@ -32,6 +32,7 @@ pub fn verdict(ranked: &[Ranked], gap: f64, options: &Options) -> Verdict {
                 },
                 separating_motion: rival.map(|r| format!("{}; `dynamics excite --separate report.json` designs such a motion within the robot's limits", separating_motion(top.kind, r.kind))),
                 rival: rival.map(|r| Box::new(r.clone())),
+                inseparable: None,
             }
         }
         _ => {
@@ -48,6 +49,7 @@ pub fn verdict(ranked: &[Ranked], gap: f64, options: &Options) -> Verdict {
                 status,
                 rival: None,
                 separating_motion: None,
+                inseparable: None,
             }
         }
     }
