@@ -563,7 +563,9 @@ fn a_first_joint_rotor_against_its_link_is_not_sent_to_a_motion() {
         }
         // The pair is still reported ambiguous (the data cannot tell them
         // apart); only the way out differs.
-        assert!(ambiguous_pairs(&json).iter().any(|(a, b)| link(a) || link(b)));
+        assert!(ambiguous_pairs(&json)
+            .iter()
+            .any(|(a, b)| link(a) || link(b)));
     }
     let robot = AnyRobot::by_name("panda").expect("robot");
     robots::each_robot!(&robot, r => check(r));
