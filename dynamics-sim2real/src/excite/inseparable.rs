@@ -6,24 +6,30 @@
 //! shows their sum (one base parameter) and only a measurement of one of
 //! them (a datasheet's rotor inertia) splits it.
 //!
-//! The test works in the base parameters' coordinates
-//! ([`BaseColumns`]: every column of the regressor is a base column or a
-//! fixed combination of them, found over random states, so the relation
-//! holds at every state and on every motion). Each effect's columns (a
-//! link's ten, the dropped ones included, written in base columns) are
-//! kept on the base columns the two effects own, the others' coordinates
-//! set aside (any motion fits those as well); the pair is inseparable when
-//! the two sets of columns share a direction there: some change of one
-//! effect acts on the efforts as some change of the other. Only effects
-//! with regressor columns are judged (Coulomb and viscous friction, an
-//! offset, rotor and link inertia); a delay, elasticity and backlash have
-//! signatures along a motion, Stribeck friction nests Coulomb friction, a
-//! spring's column is the position (which no base column holds).
+//! The same holds for a joint whose axis stays perpendicular to every
+//! joint axis before it (the shoulder of a 6R arm, after a vertical first
+//! joint): the link's inertia about that axis enters that joint's effort
+//! only, through its own acceleration, as the rotor's does. And a change
+//! of a farther link can act as the first rotor (inertia added about two
+//! axes of a link whose third is a joint axis perpendicular to the first:
+//! the classical regrouping of `YY` into `ZZ1`).
+//!
+//! The test works in the base parameters' coordinates ([`BaseColumns`]:
+//! every column of the regressor is a base column or a fixed combination
+//! of them, found over random states, so the relation holds at every state
+//! and on every motion): each effect's columns (a link's ten, the dropped
+//! ones included) written in base columns; the pair is inseparable when
+//! the two sets share a direction, some change of one acting on the
+//! efforts exactly as some change of the other (each fitted alone, as the
+//! diagnosis fits its candidates). Only effects with regressor columns are
+//! judged (Coulomb and viscous friction, an offset, rotor and link
+//! inertia); a delay, elasticity and backlash have signatures along a
+//! motion, Stribeck friction nests Coulomb friction, a spring's column is
+//! the position (which no base column holds).
 
 use nalgebra::DMatrix;
 
 use super::{BaseColumns, ExciteError, Limits, Rival};
-use crate::identify::Column;
 use dynamics_runtime::Robot;
 
 /// Relative size under which a singular value counts as zero in the rank
@@ -53,9 +59,11 @@ const RANK_TOLERANCE: f64 = 1e-6;
 /// // j1 turns about a fixed vertical axis: its rotor and l1's inertia
 /// // about that axis are one base parameter.
 /// assert!(inseparable(&arm, &limits, Rival::Armature(0), Rival::Link(0)).unwrap());
-/// // j2's axis turns with j1: l2's inertia acts on j1's effort, j2's rotor
-/// // does not.
-/// assert!(!inseparable(&arm, &limits, Rival::Armature(1), Rival::Link(1)).unwrap());
+/// // j2's axis is horizontal, perpendicular to j1's at every pose: l2's
+/// // inertia about it enters j2's effort only, as j2's rotor does.
+/// assert!(inseparable(&arm, &limits, Rival::Armature(1), Rival::Link(1)).unwrap());
+/// // Friction and an offset: a reversal tells them apart.
+/// assert!(!inseparable(&arm, &limits, Rival::Coulomb(1), Rival::Offset(1)).unwrap());
 /// ```
 pub fn inseparable<R: Robot<N>, const N: usize>(
     robot: &R,
@@ -81,29 +89,19 @@ pub fn inseparable<R: Robot<N>, const N: usize>(
 }
 
 /// Whether some combination of `a`'s columns equals some combination of
-/// `b`'s, in the base coordinates the two own.
+/// `b`'s, in base coordinates.
 fn share_a_direction<const N: usize>(columns: &BaseColumns<N>, a: Rival, b: Rival) -> bool {
-    let owned = |c: Column| a.owns(c) || b.owns(c);
-    // The base coordinates the pair owns.
-    let mine: Vec<usize> = columns
-        .kept
-        .iter()
-        .filter(|&&k| owned(columns.all[k]))
-        .copied()
-        .collect();
-    // A column of the regressor in those coordinates.
+    let k = columns.kept.len();
+    // A column of the regressor in base coordinates.
     let coordinates = |c: usize| -> Vec<f64> {
-        let mut v = vec![0.0; mine.len()];
-        let add = |v: &mut Vec<f64>, k: usize, x: f64| {
-            if let Some(p) = mine.iter().position(|&m| m == k) {
-                v[p] += x;
-            }
-        };
-        if columns.kept.contains(&c) {
-            add(&mut v, c, 1.0);
+        let mut v = vec![0.0; k];
+        if let Some(p) = columns.kept.iter().position(|&m| m == c) {
+            v[p] = 1.0;
         } else if let Some((_, combo)) = columns.dropped.iter().find(|(d, _)| *d == c) {
-            for &(k, x) in combo {
-                add(&mut v, k, x);
+            for &(m, x) in combo {
+                if let Some(p) = columns.kept.iter().position(|&q| q == m) {
+                    v[p] += x;
+                }
             }
         }
         v
@@ -116,10 +114,10 @@ fn share_a_direction<const N: usize>(columns: &BaseColumns<N>, a: Rival, b: Riva
     };
     let (ca, cb) = (of(a), of(b));
     let rank = |cols: &[Vec<f64>]| -> usize {
-        if cols.is_empty() || mine.is_empty() {
+        if cols.is_empty() {
             return 0;
         }
-        let m = DMatrix::from_fn(mine.len(), cols.len(), |r, c| cols[c][r]);
+        let m = DMatrix::from_fn(k, cols.len(), |r, c| cols[c][r]);
         let s = m.singular_values();
         let big = s.max();
         if big == 0.0 {
@@ -148,11 +146,9 @@ mod tests {
     #[test]
     fn the_first_rotor_and_link_inertia_about_its_axis_are_one_parameter() {
         // A planar 2R arm (gravity in the plane): j1's rotor inertia and
-        // l1's I_zz both multiply qdd_1 alone (the classical ZZ1R); l1's
-        // first moments feel gravity and stay apart. Its l1 columns that
-        // remain are the first moments, which gravity separates from the
-        // rotor: the pair is separable. j2's rotor against l2: l2's I_zz
-        // acts on j1's effort too, the rotor does not.
+        // l1's I_zz both multiply qdd_1 alone (the classical ZZ1R). j2's
+        // rotor against l2: l2's I_zz acts on j1's effort too (its
+        // angular velocity is qd_1 + qd_2), the rotor does not.
         let arm = Planar::default();
         let limits = Limits::<2>::new([-1.0; 2], [1.0; 2], [2.0; 2], [50.0; 2]);
         let one = |a, b| inseparable(&arm, &limits, a, b).unwrap();

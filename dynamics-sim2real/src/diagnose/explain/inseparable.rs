@@ -78,7 +78,7 @@ mod tests {
         link l1 { mass = 1.0; com = [0.5, 0.0, 0.0]; inertia = [1e-3, 0.08, 0.08]; }
         link l2 { mass = 1.0; com = [0.5, 0.0, 0.0]; inertia = [1e-3, 0.08, 0.08]; }
         joint j1 = revolute(base -> l1) { transfer = [rot_z(q)]; }
-        joint j2 = revolute(l1 -> l2) { transfer = [trans_x(1.0), rot_y(q)]; }
+        joint j2 = revolute(l1 -> l2) { transfer = [trans_x(1.0), rot_z(q)]; }
     }
 
     fn entry(kind: EffectKind, joint: &str, rival: (EffectKind, &str, bool)) -> Explained {
@@ -95,9 +95,11 @@ mod tests {
 
     #[test]
     fn the_first_rotor_against_its_link_points_at_no_motion() {
-        // j1 turns about the fixed vertical axis: its rotor and l1's
-        // inertia about it are one base parameter. j2's rotor against l2,
-        // and Coulomb friction against an offset, are separable.
+        // A 2R arm in the horizontal plane. j1 turns about the fixed
+        // vertical axis: its rotor and l1's inertia about it are one base
+        // parameter. j2's rotor against l2 (whose inertia acts on j1's
+        // effort too), and Coulomb friction against an offset, are
+        // separable.
         let arm = TwoLink::default();
         let mut verdict = Verdict {
             kind: VerdictKind::Effect(EffectKind::Armature),
