@@ -142,12 +142,13 @@ pub fn diagnose_cmd<R: Robot<N> + Clone + Sync, const N: usize>(
              account for its part together)"
         );
     }
-    if let (Some(r), Some(m)) = (&v.rival, &v.separating_motion) {
-        println!(
-            "  rival: {} {}; to separate them: {m}",
-            r.kind,
-            r.joint.clone().or(r.point.clone()).unwrap_or_default()
-        );
+    if let Some(r) = &v.rival {
+        let at = r.joint.clone().or(r.point.clone()).unwrap_or_default();
+        if let Some(why) = &v.inseparable {
+            println!("  rival: {} {at}; {why}", r.kind);
+        } else if let Some(m) = &v.separating_motion {
+            println!("  rival: {} {at}; to separate them: {m}", r.kind);
+        }
     }
     let simulation = match report.shrink.simulation_fraction {
         Some(x) => format!("-{:.1} %", 100.0 * x),
@@ -224,7 +225,11 @@ pub fn explanation_lines(report: &dynamics_sim2real::diagnose::Report) -> Vec<St
             .as_ref()
             .map(|r| {
                 let at = r.joint.clone().or(r.point.clone()).unwrap_or_default();
-                format!(" (or {} {at}: these data cannot tell them apart)", r.kind)
+                let why = r
+                    .inseparable
+                    .as_deref()
+                    .unwrap_or("these data cannot tell them apart");
+                format!(" (or {} {at}: {why})", r.kind)
             })
             .unwrap_or_default();
         lines.push(format!(

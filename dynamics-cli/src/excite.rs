@@ -156,6 +156,17 @@ pub fn plot<R: Robot<N>, const N: usize>(robot: &R, d: &excite::Design<N>) -> St
     ])
 }
 
+/// A report entry's kind and place (joint, else point).
+fn report_entry(v: &serde_json::Value) -> Option<(String, Option<String>)> {
+    let kind = v.get("kind")?.as_str()?.to_string();
+    let place = v
+        .get("joint")
+        .or_else(|| v.get("point"))
+        .and_then(|p| p.as_str())
+        .map(String::from);
+    Some((kind, place))
+}
+
 /// The ambiguous pairs of a diagnosis report (`which.verdict` with its
 /// `rival` when ambiguous; every `which.effects[]` with its
 /// `ambiguous_with`), as `((kind, place), (kind, place))`.
@@ -171,15 +182,7 @@ pub fn plot<R: Robot<N>, const N: usize>(robot: &R, d: &excite::Design<N>) -> St
 pub fn ambiguous_pairs(
     report: &serde_json::Value,
 ) -> Vec<((String, Option<String>), (String, Option<String>))> {
-    let entry = |v: &serde_json::Value| -> Option<(String, Option<String>)> {
-        let kind = v.get("kind")?.as_str()?.to_string();
-        let place = v
-            .get("joint")
-            .or_else(|| v.get("point"))
-            .and_then(|p| p.as_str())
-            .map(String::from);
-        Some((kind, place))
-    };
+    let entry = report_entry;
     let mut out = Vec::new();
     let which = &report["which"];
     let verdict = &which["verdict"];
@@ -203,7 +206,10 @@ pub fn ambiguous_pairs(
 
 /// The rival pairs of a diagnosis report that `excite --separate`
 /// separates (see [`ambiguous_pairs`]), with a label each (`kind place vs
-/// kind place`); the error names a pair it cannot separate and why.
+/// kind place`); the error names a pair it cannot separate and why. A pair
+/// the report marks `inseparable` (no motion separates it: one base
+/// parameter) is left out; when every pair is, the error gives the
+/// report's reason.
 ///
 /// ```
 /// use dynamics_cli::excite::rivals;
@@ -221,6 +227,13 @@ pub fn ambiguous_pairs(
 /// let (pairs, labels) = rivals::<Pendulum, 1>(&report).unwrap();
 /// assert_eq!(pairs, vec![(Rival::Delay, Rival::Armature(0))]);
 /// assert_eq!(labels[0], "time_delay  vs armature j");
+/// // A pair the report marks inseparable is left out.
+/// let report: serde_json::Value = serde_json::from_str(r#"{"which": {"verdict":
+///   {"kind": "armature", "status": "clear"}, "effects": [{"kind": "armature", "joint": "j",
+///    "ambiguous_with": {"kind": "inertial_parameters", "point": "rod",
+///                       "inseparable": "no motion separates them"}}]}}"#).unwrap();
+/// let why = rivals::<Pendulum, 1>(&report).unwrap_err();
+/// assert_eq!(why, "armature j vs inertial_parameters rod: no motion separates them");
 /// ```
 #[allow(clippy::type_complexity)]
 pub fn rivals<R: Robot<N>, const N: usize>(
@@ -230,9 +243,25 @@ pub fn rivals<R: Robot<N>, const N: usize>(
     if named.is_empty() {
         return Err("the report names no ambiguous pair".into());
     }
+    let marked = inseparable_pairs(report);
+    let is_marked = |a: &(String, Option<String>), b: &(String, Option<String>)| {
+        marked
+            .iter()
+            .find(|(x, y, _)| (x == a && y == b) || (x == b && y == a))
+            .map(|(_, _, why)| why.clone())
+    };
     let mut pairs = Vec::new();
     let mut labels = Vec::new();
+    let mut left_out = Vec::new();
     for ((ka, pa), (kb, pb)) in &named {
+        if let Some(why) = is_marked(&(ka.clone(), pa.clone()), &(kb.clone(), pb.clone())) {
+            left_out.push(format!(
+                "{ka} {} vs {kb} {}: {why}",
+                pa.clone().unwrap_or_default(),
+                pb.clone().unwrap_or_default()
+            ));
+            continue;
+        }
         let rival = |k: &str, p: &Option<String>| {
             excite::Rival::named(k, p.as_deref(), &R::JOINT_NAMES, R::LINK_NAMES)
         };
@@ -242,6 +271,9 @@ pub fn rivals<R: Robot<N>, const N: usize>(
             pa.clone().unwrap_or_default(),
             pb.clone().unwrap_or_default()
         ));
+    }
+    if pairs.is_empty() {
+        return Err(left_out.join("; "));
     }
     Ok((pairs, labels))
 }
@@ -286,6 +318,35 @@ pub fn data_needed(report: &serde_json::Value) -> Vec<(String, f64)> {
             if !out.iter().any(|o| o.0 == joint) {
                 out.push((joint, f));
             }
+        }
+    }
+    out
+}
+
+/// The pairs a report marks as inseparable (`which.verdict.inseparable`
+/// with its rival, `which.effects[].ambiguous_with.inseparable`), with the
+/// reason.
+#[allow(clippy::type_complexity)]
+fn inseparable_pairs(
+    report: &serde_json::Value,
+) -> Vec<((String, Option<String>), (String, Option<String>), String)> {
+    let entry = report_entry;
+    let mut out = Vec::new();
+    let which = &report["which"];
+    let verdict = &which["verdict"];
+    if let (Some(why), Some(a), Some(b)) = (
+        verdict["inseparable"].as_str(),
+        entry(verdict),
+        entry(&verdict["rival"]),
+    ) {
+        out.push((a, b, why.to_string()));
+    }
+    for e in which["effects"].as_array().into_iter().flatten() {
+        let rival = &e["ambiguous_with"];
+        if let (Some(why), Some(a), Some(b)) =
+            (rival["inseparable"].as_str(), entry(e), entry(rival))
+        {
+            out.push((a, b, why.to_string()));
         }
     }
     out

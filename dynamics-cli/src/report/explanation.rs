@@ -153,10 +153,13 @@ pub fn section(report: &Report) -> String {
         };
         let kind = match &e.ambiguous_with {
             Some(r) => format!(
-                "{} (or {} at {}: these data cannot tell them apart)",
+                "{} (or {} at {}: {})",
                 e.kind,
                 r.kind,
-                r.joint.clone().or(r.point.clone()).unwrap_or_default()
+                r.joint.clone().or(r.point.clone()).unwrap_or_default(),
+                r.inseparable
+                    .as_deref()
+                    .unwrap_or("these data cannot tell them apart")
             ),
             None => e.kind.to_string(),
         };

@@ -105,7 +105,15 @@ pub fn markdown(
                 pct(r.holdout_share),
                 r.delta_aicc
             );
-            if let (Some(rival), Some(motion)) = (&v.rival, &v.separating_motion) {
+            if let (Some(rival), Some(why)) = (&v.rival, &v.inseparable) {
+                let _ = writeln!(
+                    s,
+                    "These data cannot tell it apart from **{}** (AICc {:.1} worse only); \
+                     {why}.\n",
+                    place(rival),
+                    rival.aicc - r.aicc
+                );
+            } else if let (Some(rival), Some(motion)) = (&v.rival, &v.separating_motion) {
                 let _ = writeln!(
                     s,
                     "These data cannot tell it apart from **{}** (AICc {:.1} worse only). \

@@ -129,6 +129,7 @@ fn stages<R: Robot<N> + Clone + Sync, const N: usize>(
     let evaluation = evaluate::evaluate(robot, &records, &selection, options.hold_links);
     // The report.
     Ok(explain::report::<R, N>(
+        robot,
         &records,
         &selection,
         &evaluation,

@@ -14,6 +14,7 @@
 //! | `search.rs` | the optimiser (an evolution strategy with a fixed seed; why in its docs) |
 //! | `identifiability.rs` | [`identifiability`]: predicted standard deviation per base parameter at a stated effort noise; what stays unidentifiable |
 //! | `separate.rs` | [`Rival`], [`separation_angles`]: the smallest principal angle between two rival effects' columns (or first-order signatures: delay, elasticity, backlash), the others projected out |
+//! | `inseparable.rs` | [`inseparable`]: a pair no motion separates (their columns share a direction once the base parameters are regrouped: the first joint's rotor and its link's inertia about the axis) |
 //! | `design.rs` | [`design`], [`design_separating`], [`Options`], [`Design`]: the whole design |
 //! | `check_data.rs` | [`check_data`]: what a recorded motion can and cannot identify, in words |
 //! | `report.rs` | [`DesignReport`]: the design as JSON |
@@ -27,6 +28,7 @@ mod criterion;
 mod design;
 mod error;
 mod identifiability;
+mod inseparable;
 mod limits;
 mod report;
 mod search;
@@ -41,6 +43,7 @@ pub use criterion::{Criterion, Figures};
 pub use design::{design, design_separating, Design, Options};
 pub use error::ExciteError;
 pub use identifiability::{identifiability, Identifiability, Parameter};
+pub use inseparable::inseparable;
 pub use limits::Limits;
 pub use report::DesignReport;
 pub use separate::{separation_angles, Rival, BACKLASH_ZONE, STRIBECK_VS};

@@ -148,7 +148,7 @@ impl Rival {
 
     /// Whether base column `c` belongs to this effect (and is therefore
     /// not projected out).
-    fn owns(&self, c: Column) -> bool {
+    pub(super) fn owns(&self, c: Column) -> bool {
         match (*self, c) {
             (Rival::Coulomb(j), Column::Coulomb(i)) => i == j,
             (Rival::Viscous(j), Column::Viscous(i)) => i == j,

@@ -134,6 +134,7 @@ pub fn entries<R: Robot<N>, const N: usize>(
                     kind: c.kind(),
                     joint,
                     point,
+                    inseparable: None,
                 }
             });
             Explained {

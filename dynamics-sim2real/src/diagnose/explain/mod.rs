@@ -11,11 +11,14 @@
 //! - `verdict.rs`: the verdict on the best single effect;
 //! - `words.rs`, `friction_table.rs`: joint effects and friction in words
 //!   and as a table;
-//! - `late.rs`, `reversal.rs`: warnings and ambiguities the data leave.
+//! - `late.rs`, `reversal.rs`: warnings and ambiguities the data leave;
+//! - `inseparable.rs`: ambiguous pairs no motion separates (one base
+//!   parameter), said so instead of a separating motion.
 
 mod determinacy;
 mod entries;
 mod friction_table;
+mod inseparable;
 mod late;
 mod ranked;
 pub mod report;
@@ -25,6 +28,7 @@ mod words;
 
 pub use entries::{annotate, entries, suggested};
 pub use friction_table::friction_table;
+pub use inseparable::mark_inseparable;
 pub use late::warn_delays;
 pub use ranked::ranked_entry;
 pub use reversal::mark_reversals;
@@ -41,10 +45,11 @@ use crate::effects::Tip;
 use dynamics_runtime::Robot;
 use report::{JointGap, JointShrink, Ranked, Report, Shrink, Where, Which};
 
-/// The report of a diagnosis: where the gap is, the ranking and verdict,
+/// The report of a diagnosis of `robot`: where the gap is, the ranking and verdict,
 /// the explanation in words with its friction table, how far it shrinks
 /// the gap; the warnings of every stage in the order of the data.
 pub fn report<R: Robot<N>, const N: usize>(
+    robot: &R,
     records: &Records<N>,
     selection: &Selection,
     evaluation: &Evaluation<N>,
@@ -143,6 +148,8 @@ pub fn report<R: Robot<N>, const N: usize>(
         &R::JOINT_NAMES,
         &records.excitation,
     );
+    // Pairs no motion separates: said so, not sent to a motion.
+    mark_inseparable(robot, &records.excitation.range, &mut verdict, &mut effects);
     warnings.extend(evaluation.held_out_warnings.iter().cloned());
     let s = &evaluation.shrink;
     let shrink = Shrink {

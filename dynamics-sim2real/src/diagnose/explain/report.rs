@@ -197,6 +197,11 @@ pub struct Rival {
     /// Point, for tip effects.
     #[serde(skip_serializing_if = "Option::is_none")]
     pub point: Option<String>,
+    /// Why no motion separates the two, when none does (their columns
+    /// share a direction once the base parameters are regrouped); absent
+    /// when another motion could.
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub inseparable: Option<String>,
 }
 
 /// The held-out gap left after the first few effects of the explanation.
@@ -305,9 +310,14 @@ pub struct Verdict {
     /// The rival that these data cannot tell apart, when ambiguous.
     #[serde(skip_serializing_if = "Option::is_none")]
     pub rival: Option<Box<Ranked>>,
-    /// A motion that would separate the two, when ambiguous.
+    /// A motion that would separate the two, when ambiguous and some
+    /// motion does.
     #[serde(skip_serializing_if = "Option::is_none")]
     pub separating_motion: Option<String>,
+    /// Why no motion separates the two, when none does (in place of
+    /// `separating_motion`).
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub inseparable: Option<String>,
 }
 
 impl Verdict {
@@ -317,7 +327,8 @@ impl Verdict {
     /// ```
     /// use dynamics_sim2real::diagnose::{Status, Verdict, VerdictKind};
     /// let v = Verdict { kind: VerdictKind::Unexplained, joint: None, point: None, channel: None,
-    ///     status: Status::Unexplained, rival: None, separating_motion: None };
+    ///     status: Status::Unexplained, rival: None, separating_motion: None,
+    ///     inseparable: None };
     /// assert!(!v.names_effect());
     /// ```
     pub fn names_effect(&self) -> bool {

@@ -61,6 +61,7 @@ pub fn mark_reversals(
                 kind: o,
                 joint: e.joint.clone(),
                 point: None,
+                inseparable: None,
             });
         }
     }

@@ -40,6 +40,7 @@ pub fn verdict(ranked: &[Ranked], gap: f64, options: &Options) -> Verdict {
                     )
                 }),
                 rival: rival.map(|r| Box::new(r.clone())),
+                inseparable: None,
             }
         }
         _ => {
@@ -56,6 +57,7 @@ pub fn verdict(ranked: &[Ranked], gap: f64, options: &Options) -> Verdict {
                 status,
                 rival: None,
                 separating_motion: None,
+                inseparable: None,
             }
         }
     }
