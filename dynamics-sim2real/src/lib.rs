@@ -27,6 +27,7 @@ pub mod excite;
 pub mod explained;
 pub mod identify;
 pub mod inertial;
+pub mod regressor;
 pub mod rng;
 pub mod smoothing;
 pub mod synth;

@@ -66,7 +66,6 @@ pub mod traces;
 
 pub use crate::smoothing::SavitzkyGolay;
 pub use candidates::MotorGuess;
-pub(crate) use candidates::STRIBECK_GRID;
 pub use candidates::{payload_com, Candidate, Channel, Prepared, Unnamed};
 pub use error::DiagnoseError;
 pub use evaluate::GapWindow;

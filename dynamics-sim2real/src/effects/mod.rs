@@ -19,6 +19,7 @@ mod tip;
 mod window;
 
 pub use calibrated::{Calibrated, CalibratedError};
+pub(crate) use effect::STRIBECK_GRID;
 pub use effect::{smooth_sign, Effect, SIGN_SMOOTHING};
 pub use kind::{EffectKind, PlaceKind, UnknownEffect};
 pub use nominal_friction::nominal_friction;

@@ -12,7 +12,7 @@ use nalgebra::{DMatrix, SMatrix, SVector};
 
 use super::{ExciteError, Limits};
 use crate::effects::SIGN_SMOOTHING;
-use crate::identify::Column;
+use crate::regressor::Column;
 use crate::rng::Rng;
 use dynamics_runtime::control::Reference;
 use dynamics_runtime::Robot;
@@ -68,7 +68,7 @@ impl<const N: usize> BaseColumns<N> {
     /// them.
     pub fn of<R: Robot<N>>(robot: &R, limits: &Limits<N>, seed: u64) -> Result<Self, ExciteError> {
         limits.require_finite(&R::JOINT_NAMES)?;
-        let all = crate::identify::columns_of::<R, N>();
+        let all = crate::regressor::all::<R, N>();
         let mut rng = Rng::new(seed);
         let states: Vec<Reference<N>> = (0..400)
             .map(|_| Reference {

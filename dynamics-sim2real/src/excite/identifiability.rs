@@ -9,7 +9,7 @@ use nalgebra::{DMatrix, SVector};
 use serde::Serialize;
 
 use super::{BaseColumns, ExciteError};
-use crate::identify::Column;
+use crate::regressor::Column;
 use dynamics_runtime::control::Reference;
 use dynamics_runtime::Robot;
 

@@ -47,7 +47,7 @@
 use nalgebra::{DMatrix, SVector};
 
 use super::{BaseColumns, ExciteError};
-use crate::identify::Column;
+use crate::regressor::Column;
 use dynamics_runtime::control::Reference;
 use dynamics_runtime::Robot;
 
@@ -350,7 +350,7 @@ fn breakaway_joint(a: Rival, b: Rival) -> Option<usize> {
 /// a larger `r` is a proportionally tighter interval of the excess, which
 /// is what the diagnosis's verdict on the pair reads. `r` is the smallest
 /// over the Stribeck velocities the diagnosis searches
-/// ([`crate::diagnose::STRIBECK_GRID`]): the narrowest, 0.01 rad/s, is
+/// ([`crate::effects::STRIBECK_GRID`]): the narrowest, 0.01 rad/s, is
 /// fitted too and must be determined as well.
 ///
 /// The excess `exp(-(v/vs)^2) sign(v)` is narrow in time (crossed in
@@ -383,7 +383,7 @@ fn breakaway_separation<const N: usize>(
         return 0.0;
     }
     let v = |i: usize| states[i].qd[j];
-    crate::diagnose::STRIBECK_GRID
+    crate::effects::STRIBECK_GRID
         .iter()
         .map(|&vs| {
             let f = |u: f64| (-(u / vs).powi(2)).exp() * (u / columns.sign_zone).tanh();
@@ -691,7 +691,7 @@ mod tests {
         );
         let w = std::f64::consts::TAU / 4.0;
         let m = 400_000;
-        let share = crate::diagnose::STRIBECK_GRID
+        let share = crate::effects::STRIBECK_GRID
             .iter()
             .map(|&vs| {
                 (0..m)

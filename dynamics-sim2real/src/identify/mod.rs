@@ -19,8 +19,7 @@
 mod columns;
 mod solve;
 
-pub(crate) use columns::all as columns_of;
-pub use columns::Column;
+pub use crate::regressor::Column;
 
 use nalgebra::{DVector, SVector};
 use thiserror::Error;
@@ -175,7 +174,7 @@ pub fn identify<R: Robot<N>, const N: usize>(
     holdout: &Measured<N>,
     options: &Options,
 ) -> Result<Identification, IdentifyError> {
-    let cols = columns::all::<R, N>();
+    let cols = crate::regressor::all::<R, N>();
     let prepare = |m: &Measured<N>, which| {
         let sig = Signals::unfloored(robot, m);
         let stride = (options.row_interval / sig.dt.max(1e-12)).round().max(1.0) as usize;

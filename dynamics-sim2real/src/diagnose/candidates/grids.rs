@@ -12,7 +12,7 @@ use crate::effects::SIGN_SMOOTHING;
 /// of viscous friction.
 pub const COULOMB_WIDTHS: [f64; 3] = [SIGN_SMOOTHING, 0.05, 0.15];
 /// Stribeck velocities searched, rad/s.
-pub const STRIBECK_GRID: [f64; 4] = [0.01, 0.03, 0.1, 0.3];
+pub(crate) use crate::effects::STRIBECK_GRID;
 /// Resistance exponents searched.
 pub const ALPHA_GRID: [f64; 5] = [1.0, 1.5, 2.0, 2.5, 3.0];
 

@@ -37,7 +37,6 @@ pub use basis::Friction;
 pub use candidate::{payload_com, Candidate, Channel, Unnamed};
 pub use columns::{linear_columns, lower_bounds, whitened};
 pub use grids::EFFORT_SCALE_LIMIT;
-pub(crate) use grids::STRIBECK_GRID;
 pub use late::offer_delays;
 pub use links::{combined, delta, link_basis, regressor_columns, LinkBasis};
 pub use motor::{motor_feasible, motor_grid, signature_limit, MotorGuess};

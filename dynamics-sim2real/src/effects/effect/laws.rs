@@ -9,6 +9,10 @@ use super::Effect;
 /// equations stay smooth enough for an adaptive integrator.
 pub const SIGN_SMOOTHING: f64 = 1e-2;
 
+/// The Stribeck velocities the diagnosis searches (and the designer of
+/// separating motions measures the breakaway at), rad/s.
+pub(crate) const STRIBECK_GRID: [f64; 4] = [0.01, 0.03, 0.1, 0.3];
+
 /// The smooth sign of friction laws, `tanh(v / SIGN_SMOOTHING)`.
 ///
 /// ```

@@ -5,6 +5,7 @@
 mod laws;
 mod validate;
 
+pub(crate) use laws::STRIBECK_GRID;
 pub use laws::{smooth_sign, SIGN_SMOOTHING};
 
 use super::EffectKind;
