@@ -31,6 +31,8 @@ pub mod regressor;
 pub mod rng;
 pub mod smoothing;
 pub mod synth;
+#[cfg(test)]
+mod test_robots;
 mod warning;
 
 pub use warning::Warning;
