@@ -55,8 +55,7 @@ pub fn constrained_least_squares(x: &DMatrix<f64>, y: &DVector<f64>, nonneg: &[b
                 let r = y - &xa * &sol;
                 let sse = r.norm_squared();
                 let dof = (y.len() as f64 - cols.len() as f64).max(1.0);
-                let gram = xa.transpose() * &xa;
-                let cov = gram.clone().try_inverse();
+                let cov = (xa.transpose() * &xa).try_inverse();
                 for (n, &i) in cols.iter().enumerate() {
                     theta[i] = sol[n];
                     std[i] = cov
@@ -72,10 +71,7 @@ pub fn constrained_least_squares(x: &DMatrix<f64>, y: &DVector<f64>, nonneg: &[b
                     let xi = x.column(i);
                     let g = xa.transpose() * xi;
                     let own = xi.norm_squared();
-                    let outside = match gram.clone().cholesky() {
-                        Some(ch) => own - g.dot(&ch.solve(&g)),
-                        None => 0.0,
-                    };
+                    let outside = cov.as_ref().map_or(0.0, |c| own - g.dot(&(c * &g)));
                     std[i] = if outside > 1e-12 * own && outside.is_finite() {
                         (sigma2 / outside).sqrt()
                     } else {
