@@ -28,10 +28,13 @@
 //! resumes (`weights.rs`); where it leaves half the joints or more at
 //! [`EVERYWHERE`] x their floor (model error, not a missed effect), the
 //! search also starts from the full linear model (`eliminate.rs`) and
-//! keeps the better set. The set is read in the order of its gains
+//! keeps the better set. Each chosen effect other than joint friction is
+//! then exchanged for what the selection finds without it, where that is
+//! better (`exchange.rs`). The set is read in the order of its gains
 //! (`order.rs`).
 
 mod eliminate;
+mod exchange;
 mod order;
 mod select;
 mod strength;
@@ -169,6 +172,8 @@ pub fn explain<R: Robot<N>, const N: usize>(
             set = reweighted::<N>(pool, other, options);
         }
     }
+    // An effect that stands in for several others (`exchange.rs`).
+    set = exchange::exchange::<N>(pool, set, options);
     // The prior's strength by cross-validation of the set (`strength.rs`);
     // the selection resumes from the set under a weaker one.
     if strength::choose::<N>(pool, &set) != STRENGTHS[0] {

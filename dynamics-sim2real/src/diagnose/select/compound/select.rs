@@ -60,10 +60,16 @@ fn parsimony(
 }
 
 /// Forward selection from `set`, then the backward pass.
-pub(super) fn select<const N: usize>(
+pub(super) fn select<const N: usize>(pool: &Pool, set: Vec<usize>, options: &Options) -> Vec<usize> {
+    select_except::<N>(pool, set, options, &[])
+}
+
+/// [`select`] with the terms `banned` never added.
+pub(super) fn select_except<const N: usize>(
     pool: &Pool,
     mut set: Vec<usize>,
     options: &Options,
+    banned: &[usize],
 ) -> Vec<usize> {
     let folds = Folds::new(pool, N);
     let mut cur = crit(pool, &pool.solve(&set));
@@ -76,7 +82,7 @@ pub(super) fn select<const N: usize>(
         let mut moves: Vec<(f64, Vec<usize>, usize)> = Vec::new();
         let mut adds: Vec<(usize, f64)> = Vec::new();
         for t in 0..pool.terms.len() {
-            if set.contains(&t) {
+            if set.contains(&t) || banned.contains(&t) {
                 continue;
             }
             let fam = pool.terms[t].family();
