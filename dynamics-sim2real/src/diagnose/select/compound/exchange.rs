@@ -4,8 +4,10 @@
 //! arm's Cartesian motion, where the joints have viscous friction each)
 //! comes in first, and then none of the terms it stands in for earns its
 //! margin alone. Here each chosen effect other than joint friction is
-//! taken out and the selection resumed without it; the set found so
-//! replaces the chosen one when both its criterion (on the residual
+//! taken out and the selection resumed without it, adding joint friction
+//! only (what it may stand in for; an open selection would let other
+//! broad terms, a link correction, take its place instead); the set found
+//! so replaces the chosen one when both its criterion (on the residual
 //! computed row by row) and its cross-validated deviance are lower: the
 //! same criterion, a better optimum of it.
 
@@ -25,8 +27,8 @@ fn friction(pool: &Pool, t: usize) -> bool {
 }
 
 /// `set` with each effect other than joint friction exchanged, in turn,
-/// for what the selection finds without it, where that is better by the
-/// criterion and by cross-validation.
+/// for the joint friction the selection adds without it, where that is
+/// better by the criterion and by cross-validation.
 pub(super) fn exchange<const N: usize>(
     pool: &Pool,
     mut set: Vec<usize>,
@@ -41,7 +43,10 @@ pub(super) fn exchange<const N: usize>(
     {
         tried.push(t);
         let rest: Vec<usize> = set.iter().copied().filter(|&u| u != t).collect();
-        let other = select_except::<N>(pool, rest, options, &[t]);
+        let banned: Vec<usize> = (0..pool.terms.len())
+            .filter(|&u| u == t || (!friction(pool, u) && !rest.contains(&u)))
+            .collect();
+        let other = select_except::<N>(pool, rest, options, &banned);
         if explicit_crit(pool, &other) < explicit_crit(pool, &set) && cv(&other) < cv(&set) {
             set = other;
         }

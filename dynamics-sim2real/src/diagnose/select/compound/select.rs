@@ -60,7 +60,11 @@ fn parsimony(
 }
 
 /// Forward selection from `set`, then the backward pass.
-pub(super) fn select<const N: usize>(pool: &Pool, set: Vec<usize>, options: &Options) -> Vec<usize> {
+pub(super) fn select<const N: usize>(
+    pool: &Pool,
+    set: Vec<usize>,
+    options: &Options,
+) -> Vec<usize> {
     select_except::<N>(pool, set, options, &[])
 }
 
