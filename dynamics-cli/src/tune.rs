@@ -8,7 +8,7 @@ use clap::Args;
 
 use dynamics_runtime::{Parameters, Robot};
 use dynamics_sim2real::baseline::{self, BaselineError, Entry};
-use dynamics_sim2real::diagnose::Parameter;
+use dynamics_sim2real::diagnose::{CalibrationSpread, Parameter};
 use dynamics_sim2real::effects::{Calibrated, Effect, Window};
 use serde_json::Value;
 use thiserror::Error;
@@ -279,6 +279,108 @@ pub fn timed_baseline_from_str<R: Robot<N>, const N: usize>(
             })
         })
         .collect()
+}
+
+/// What the calibration behind the baseline file `path` could tell of
+/// each joint's friction: its report's `which.friction[]` spreads
+/// (`coulomb_std`, `viscous_std`), by joint name in `R`'s order. `None`
+/// for a baseline that is not a report with spreads (a list of
+/// `effects`): every friction correction is then a change.
+pub fn read_calibration<R: Robot<N>, const N: usize>(
+    path: &Path,
+) -> Result<Option<CalibrationSpread>, TuneError> {
+    let (file, text) = read(path)?;
+    calibration_from_str::<R, N>(&text, &file)
+}
+
+/// [`read_calibration`] on the JSON text `text`; `file` names it in
+/// errors.
+///
+/// ```
+/// use dynamics_cli::tune::calibration_from_str;
+/// dynamics_macros::robot! {
+///     pub robot Pendulum; gravity = [0.0, -9.81, 0.0];
+///     link base; link rod { mass = 1.0; com = [1.0, 0.0, 0.0]; }
+///     joint j = revolute(base -> rod) { transfer = [rot_z(q)]; }
+/// }
+/// let text = r#"{"which": {"effects": [], "friction": [{"joint": "j",
+///     "coulomb_nominal": 0.0, "coulomb": 0.3, "viscous_nominal": 0.1, "viscous": 0.1,
+///     "coulomb_std": 0.01, "viscous_std": 0.002}]}}"#;
+/// let spread = calibration_from_str::<Pendulum, 1>(text, "cal.json").unwrap().unwrap();
+/// assert_eq!((spread.coulomb[0], spread.viscous[0]), (0.01, 0.002));
+/// assert_eq!((spread.coulomb_corrected[0], spread.viscous_corrected[0]), (true, false));
+/// assert_eq!(calibration_from_str::<Pendulum, 1>(r#"{"effects": []}"#, "b.json").unwrap(), None);
+/// let bad = r#"{"which": {"friction": [{"joint": "elbow", "viscous_std": 0.1}]}}"#;
+/// let err = calibration_from_str::<Pendulum, 1>(bad, "cal.json").unwrap_err();
+/// assert!(err.to_string().contains("which.friction[0]"), "{err}");
+/// ```
+pub fn calibration_from_str<R: Robot<N>, const N: usize>(
+    text: &str,
+    file: &str,
+) -> Result<Option<CalibrationSpread>, TuneError> {
+    let doc: Value = serde_json::from_str(text).map_err(|source| TuneError::Json {
+        file: file.to_string(),
+        source,
+    })?;
+    let Some(rows) = doc.pointer("/which/friction").and_then(Value::as_array) else {
+        return Ok(None);
+    };
+    let shape = |place: String, problem: String| TuneError::Shape {
+        file: file.to_string(),
+        place,
+        problem,
+    };
+    let mut spread = CalibrationSpread {
+        coulomb: vec![f64::NAN; N],
+        viscous: vec![f64::NAN; N],
+        coulomb_corrected: vec![true; N],
+        viscous_corrected: vec![true; N],
+    };
+    let mut any = false;
+    for (i, row) in rows.iter().enumerate() {
+        let place = format!("which.friction[{i}]");
+        let joint = row.get("joint").and_then(Value::as_str).unwrap_or("");
+        let Some(j) = R::JOINT_NAMES.iter().position(|n| *n == joint) else {
+            return Err(shape(
+                place,
+                format!(
+                    "joint {joint:?} is not one of the robot's joints ({})",
+                    R::JOINT_NAMES.join(", ")
+                ),
+            ));
+        };
+        // Corrected: the calibrated level differs from the nominal one.
+        let differs = |a: &str, b: &str| match (
+            row.get(a).and_then(Value::as_f64),
+            row.get(b).and_then(Value::as_f64),
+        ) {
+            (Some(x), Some(y)) => x != y,
+            _ => true,
+        };
+        spread.coulomb_corrected[j] = differs("coulomb", "coulomb_nominal");
+        spread.viscous_corrected[j] = differs("viscous", "viscous_nominal");
+        for (name, into) in [
+            ("coulomb_std", &mut spread.coulomb),
+            ("viscous_std", &mut spread.viscous),
+        ] {
+            match row.get(name) {
+                None | Some(Value::Null) => {}
+                Some(v) => match v.as_f64().filter(|x| x.is_finite() && *x >= 0.0) {
+                    Some(x) => {
+                        into[j] = x;
+                        any = true;
+                    }
+                    None => {
+                        return Err(shape(
+                            place,
+                            format!("`{name}` must be a finite number >= 0, got {v}"),
+                        ))
+                    }
+                },
+            }
+        }
+    }
+    Ok(any.then_some(spread))
 }
 
 /// The entries of a baseline document, each with its place in it.

@@ -8,7 +8,7 @@ use dynamics_sim2real::effects::Calibrated;
 
 use super::args::{BaselineArgs, CheckArgs, ModelArgs, RobotCommand};
 use super::{RobotInfo, RobotVisitor};
-use crate::tune::{apply_set, left_out, read_baseline_timed};
+use crate::tune::{apply_set, left_out, read_baseline_timed, read_calibration};
 use crate::Res;
 
 /// The robot with `--set` applied and the `--baseline` effects folded in
@@ -125,7 +125,10 @@ pub fn run_on<R: Robot<N> + Clone + Sync, const N: usize>(
             )
         }
         RobotCommand::Diagnose(a) => {
-            let options = a.options();
+            let mut options = a.options();
+            if let Some(path) = a.baseline.baseline.as_deref() {
+                options.calibration = read_calibration::<R, N>(path)?;
+            }
             let robot = nominal(robot, &a.model, Some(&a.baseline))?;
             let (Some(train), Some(holdout)) = (a.train.clone(), a.holdout.clone()) else {
                 return Err("give --train and --holdout (data files to diagnose)".into());

@@ -73,7 +73,7 @@ pub use explain::report::*;
 pub(crate) use fit::motor_transmitted_raw;
 pub use fit::Fit;
 pub use numeric::aicc;
-pub use options::Options;
+pub use options::{CalibrationSpread, Options};
 pub use select::breakaway_data_needed;
 pub use signals::SensorNoise;
 pub(crate) use signals::Signals;
@@ -125,7 +125,7 @@ fn stages<R: Robot<N> + Clone + Sync, const N: usize>(
     // The single-effect ranking and the compound explanation.
     let selection = select::select(robot, &records.p, &records.h, fitted, options);
     // Where the gap is; the explanation on the held-out record.
-    let evaluation = evaluate::evaluate(robot, &records, &selection, options.hold_links);
+    let evaluation = evaluate::evaluate(robot, &records, &selection, options);
     // The report.
     Ok(explain::report::<R, N>(
         robot,

@@ -57,6 +57,44 @@ pub struct Options {
     /// stand in for effects of other kinds the diagnosis models more simply
     /// than the simulator (docs/diagnosis.md).
     pub hold_links: bool,
+    /// The calibration the nominal model carries (a report used as the
+    /// baseline): the spread its data left on each joint's friction. A
+    /// friction correction within what that spread and its own allow is
+    /// no change since the calibration: a suggestion, not a named effect
+    /// (`evaluate/calibration.rs`). `None`: every confirmed correction is
+    /// named.
+    pub calibration: Option<CalibrationSpread>,
+}
+
+/// Per joint (in the robot's order), the standard deviation a
+/// calibration's data left on the Coulomb level and on the viscous
+/// coefficient: a report's `which.friction[].coulomb_std` and
+/// `viscous_std` (`NaN` or a missing joint: not known, no test); and
+/// whether the calibration corrected each (its level differs from the
+/// nominal one).
+///
+/// ```
+/// use dynamics_sim2real::diagnose::{CalibrationSpread, Options};
+/// let calibration = CalibrationSpread {
+///     coulomb: vec![0.01, 0.02],
+///     viscous: vec![0.004, f64::NAN],
+///     coulomb_corrected: vec![true, true],
+///     viscous_corrected: vec![false, false],
+/// };
+/// let options = Options { calibration: Some(calibration), ..Options::default() };
+/// assert_eq!(options.calibration.unwrap().viscous.len(), 2);
+/// ```
+#[derive(Debug, Clone, PartialEq, Default)]
+pub struct CalibrationSpread {
+    /// Coulomb level per joint (N m or N).
+    pub coulomb: Vec<f64>,
+    /// Viscous coefficient per joint (N m s/rad or N s/m).
+    pub viscous: Vec<f64>,
+    /// Whether the calibration corrected the Coulomb level (else it kept
+    /// the nominal one: the data could not tell it from it).
+    pub coulomb_corrected: Vec<bool>,
+    /// The same for the viscous coefficient.
+    pub viscous_corrected: Vec<bool>,
 }
 
 impl Default for Options {
@@ -74,6 +112,7 @@ impl Default for Options {
             chunk: 0,
             noise: None,
             hold_links: false,
+            calibration: None,
         }
     }
 }

@@ -72,6 +72,10 @@ pub enum Unconfirmed {
     NotPhysical,
     /// It does not lower the held-out deviance by more than chance would.
     NotConfirmed(Confidence),
+    /// A friction correction within what the calibration of the nominal
+    /// model could tell (its spread on that friction, given): no change
+    /// since the calibration (`calibration.rs`).
+    WithinCalibration(f64),
 }
 
 /// An effect left out of the explanation: its pool term, its fit in the

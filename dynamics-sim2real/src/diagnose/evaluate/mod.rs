@@ -15,6 +15,7 @@
 //! - `shrink.rs`: how far the gap shrinks on the held-out record once the
 //!   explanation's effects are added.
 
+mod calibration;
 mod confirm;
 mod determinacy;
 mod gap_windows;
@@ -23,6 +24,7 @@ mod horizon;
 mod shrink;
 mod yardstick;
 
+pub use calibration::FrictionSpread;
 pub use confirm::{Confidence, Confirmed, Suggestion, Unconfirmed};
 pub(crate) use determinacy::held_at_zero;
 pub use determinacy::why_not;
@@ -34,6 +36,7 @@ use nalgebra::{DVector, SVector};
 
 use crate::diagnose::candidates::{regressor_columns, Records};
 use crate::diagnose::select::{effects, Selection};
+use crate::diagnose::Options;
 use crate::Warning;
 use dynamics_runtime::Robot;
 
@@ -60,6 +63,9 @@ pub struct Evaluation<'a, const N: usize> {
     pub shrink: ShrinkFigures<N>,
     /// Warnings of the held-out record's evaluation.
     pub held_out_warnings: Vec<Warning>,
+    /// The spread of each joint's friction on the training record, in the
+    /// confirmed explanation's fit (`calibration.rs`).
+    pub friction_spread: FrictionSpread<N>,
 }
 
 /// The nominal model on the training record of `records` (where the gap
@@ -68,8 +74,9 @@ pub fn evaluate<'a, R: Robot<N> + Clone + Sync, const N: usize>(
     robot: &R,
     records: &'a Records<N>,
     selection: &Selection,
-    hold_links: bool,
+    options: &Options,
 ) -> Evaluation<'a, N> {
+    let hold_links = options.hold_links;
     let (p, h) = (&records.p, &records.h);
     let mut training_warnings = Vec::new();
     let prediction = horizon::prediction_error(robot, p, &[])
@@ -91,7 +98,7 @@ pub fn evaluate<'a, R: Robot<N> + Clone + Sync, const N: usize>(
     } else {
         vec![]
     };
-    let confirmed = confirm::confirm::<R, N>(
+    let mut confirmed = confirm::confirm::<R, N>(
         p,
         h,
         &hlinks,
@@ -102,6 +109,22 @@ pub fn evaluate<'a, R: Robot<N> + Clone + Sync, const N: usize>(
         &selection.nominal,
         hold_links,
     );
+    if let Some(calibration) = &options.calibration {
+        calibration::keep_changes(
+            &mut confirmed,
+            pool,
+            calibration,
+            options.add_margin,
+            |set| {
+                if hold_links {
+                    pool.solve_physical(set, &selection.nominal)
+                } else {
+                    pool.solve(set)
+                }
+            },
+        );
+    }
+    let friction_spread = calibration::friction_spread(pool, &confirmed.explanation);
     let e = &confirmed.explanation;
     let mut hold = Holdout::new(h, &hlinks, pool, e);
     limit_to_windows(&mut hold, h, pool, e, &selection.windows);
@@ -128,6 +151,7 @@ pub fn evaluate<'a, R: Robot<N> + Clone + Sync, const N: usize>(
         rms_fraction,
         shrink,
         held_out_warnings,
+        friction_spread,
     }
 }
 

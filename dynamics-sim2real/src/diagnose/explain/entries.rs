@@ -204,6 +204,9 @@ pub fn suggested<R: Robot<N>, const N: usize>(
                 Unconfirmed::NotPhysical => {
                     "the correction the data ask for leaves no physical body (mass > 0, pseudo-inertia positive semi-definite)".into()
                 }
+                Unconfirmed::WithinCalibration(s) => format!(
+                    "refines the baseline's calibration (its spread on this friction {s:.3e}): no change that the calibration would have seen"
+                ),
                 Unconfirmed::NotConfirmed(c) => format!(
                     "helps only where it was fitted: on the held-out record it removes {} of the gap above noise, no more than noise alone could ({})",
                     share(c.gain_share),

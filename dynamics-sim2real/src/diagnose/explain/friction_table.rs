@@ -9,17 +9,19 @@
 
 use nalgebra::SVector;
 
+use crate::diagnose::evaluate::FrictionSpread;
 use crate::diagnose::explain::report::{Explained, JointFriction};
 use crate::effects::EffectKind;
 
 /// The friction of every joint (`names`) with the nominal Coulomb levels
 /// `coulomb` and viscous coefficients `viscous` and the corrections of
-/// `effects`.
+/// `effects`; `spread`: what the data tell of each.
 pub fn friction_table<const N: usize>(
     names: &[&str; N],
     coulomb: &SVector<f64, N>,
     viscous: &SVector<f64, N>,
     effects: &[Explained],
+    spread: &FrictionSpread<N>,
 ) -> Vec<JointFriction> {
     let correction = |joint: &str, kinds: &[EffectKind], name: &str| {
         let mut found = false;
@@ -56,9 +58,16 @@ pub fn friction_table<const N: usize>(
                 viscous_nominal: v0,
                 viscous: (v0 + fv).max(0.0),
                 corrected: c_named || v_named,
+                coulomb_std: known(spread.coulomb[j]),
+                viscous_std: known(spread.viscous[j]),
             }
         })
         .collect()
+}
+
+/// `x` when finite and not negative.
+fn known(x: f64) -> Option<f64> {
+    (x.is_finite() && x >= 0.0).then_some(x)
 }
 
 /// `x` when finite and not negative, else 0.
@@ -93,8 +102,17 @@ mod tests {
             &SVector::<f64, 3>::new(0.0, 0.2, 0.4),
             &SVector::<f64, 3>::new(0.8, 0.5, 0.0),
             &effects,
+            &FrictionSpread {
+                coulomb: SVector::<f64, 3>::new(0.01, f64::NAN, 0.02),
+                viscous: SVector::<f64, 3>::new(0.003, 0.004, -1.0),
+            },
         );
         assert_eq!(t[0].joint, "j1");
+        assert_eq!(
+            (t[0].coulomb_std, t[0].viscous_std),
+            (Some(0.01), Some(0.003))
+        );
+        assert_eq!((t[1].coulomb_std, t[2].viscous_std), (None, None));
         assert!((t[0].viscous - 0.0).abs() < 1e-12 && (t[0].viscous_nominal - 0.8).abs() < 1e-12);
         assert!((t[0].coulomb - 0.3).abs() < 1e-12 && t[0].corrected);
         assert!((t[1].coulomb - 0.2).abs() < 1e-12 && (t[1].viscous - 0.5).abs() < 1e-12);

@@ -183,6 +183,7 @@ pub fn report<R: Robot<N>, const N: usize>(
                 &p.basis.friction.0,
                 &p.basis.friction.1,
                 &effects,
+                &evaluation.friction_spread,
             ),
             effects,
             suggested,

@@ -96,6 +96,15 @@ pub struct JointFriction {
     /// Whether the explanation corrects the friction at this joint (else
     /// the nominal values stand).
     pub corrected: bool,
+    /// The standard deviation of the Coulomb level on these data: the
+    /// fit's where corrected, else the one a correction would have had
+    /// (what these data could tell; a later diagnosis with this report as
+    /// its baseline names a change only beyond it).
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub coulomb_std: Option<f64>,
+    /// The same for the viscous coefficient.
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub viscous_std: Option<f64>,
 }
 
 /// One effect of the compound explanation.
