@@ -180,6 +180,9 @@ fn smoothed<const R: usize, const C: usize>(
     y
 }
 
+/// K's raw values over a stretch, from its first sample on.
+type RawK<const N: usize> = (usize, Vec<SMatrix<f64, N, N>>);
+
 impl<const N: usize> Along<N> {
     /// Chunk `c`'s samples and, when some lie in the signals' range, the
     /// stretch `lo..hi` of raw values their smoothing reads.
@@ -201,7 +204,7 @@ impl<const N: usize> Along<N> {
     /// K's raw values over the stretch chunk `c`'s smoothing reads, and
     /// its first sample, its end and the stretch's first sample (none when
     /// the chunk lies outside the signals' range).
-    fn raw_k(&self, c: usize) -> (usize, usize, Option<(usize, Vec<SMatrix<f64, N, N>>)>) {
+    fn raw_k(&self, c: usize) -> (usize, usize, Option<RawK<N>>) {
         let (first, end, raw) = self.stretch(c);
         let raw = raw.map(|(lo, hi)| {
             let mut x = vec![SMatrix::zeros(); hi - lo];
