@@ -9,7 +9,7 @@ use crate::gap::DataFile;
 use crate::Res;
 
 /// Runs the diagnosis of `robot` on two data files and prints it.
-pub fn diagnose_cmd<R: Robot<N> + Clone + Sync, const N: usize>(
+pub fn diagnose_cmd<R: Robot<N> + Clone + Send + Sync + 'static, const N: usize>(
     robot: &dynamics_sim2real::effects::Calibrated<R, N>,
     train: DataFile,
     holdout: DataFile,

@@ -27,13 +27,13 @@ use dynamics_runtime::Robot;
 /// use dynamics_sim2real::diagnose::{diagnose, Options};
 /// use dynamics_sim2real::explained::traces;
 /// use dynamics_runtime::Robot;
-/// fn plot<R: Robot<3> + Clone + Sync>(robot: &R, train: &Measured<3>, holdout: &Measured<3>) {
+/// fn plot<R: Robot<3> + Clone + Send + Sync + 'static>(robot: &R, train: &Measured<3>, holdout: &Measured<3>) {
 ///     let report = diagnose(robot, train, holdout, &Options::default(), &|_, _| {}).expect("enough data");
 ///     let t = traces(robot, train, holdout, &report, &Options::default()).expect("traces");
 ///     assert_eq!(t.explained.len() + t.left_out.len(), report.which.effects.len());
 /// }
 /// ```
-pub fn traces<R: Robot<N> + Clone, const N: usize>(
+pub fn traces<R: Robot<N> + Clone + Send + Sync + 'static, const N: usize>(
     robot: &R,
     train: &Measured<N>,
     holdout: &Measured<N>,

@@ -73,7 +73,7 @@ fn compound<R: Robot<N> + Clone, const N: usize>(
 
 /// One case: Coulomb friction withheld at `joint`, or (`joint` empty) the
 /// realistic arm over `duration` seconds of training and as many held out.
-fn case<R: Robot<N> + Clone + Sync, const N: usize>(
+fn case<R: Robot<N> + Clone + Send + Sync + 'static, const N: usize>(
     c: &mut Criterion,
     name: &str,
     robot: &R,

@@ -42,7 +42,7 @@ fn window(s: &str) -> Res<Option<(f64, f64)>> {
     Ok(Some((a.parse()?, b.parse()?)))
 }
 
-fn run<R: Robot<N> + Clone + Sync, const N: usize>(robot: R, args: &[String]) -> Res<()> {
+fn run<R: Robot<N> + Clone + Send + Sync + 'static, const N: usize>(robot: R, args: &[String]) -> Res<()> {
     let map: ColumnMap = args[1].parse()?;
     let train = import(
         Path::new(&args[2]),

@@ -17,7 +17,7 @@ use super::{DataFile, GapError};
 /// report's warnings (reading and preparing the files, what the data
 /// cannot show) come back beside it as the sentences to print (a row's
 /// glitches as one: [`crate::warnings::lines`]).
-pub fn diagnose_files<R: Robot<N> + Clone + Sync, const N: usize>(
+pub fn diagnose_files<R: Robot<N> + Clone + Send + Sync + 'static, const N: usize>(
     robot: &R,
     train: &Path,
     holdout: &Path,
@@ -34,7 +34,7 @@ pub fn diagnose_files<R: Robot<N> + Clone + Sync, const N: usize>(
 }
 
 /// [`diagnose_files`] on data files of any layout ([`DataFile`]).
-pub fn diagnose_data<R: Robot<N> + Clone + Sync, const N: usize>(
+pub fn diagnose_data<R: Robot<N> + Clone + Send + Sync + 'static, const N: usize>(
     robot: &R,
     train: &DataFile,
     holdout: &DataFile,
@@ -47,7 +47,7 @@ pub fn diagnose_data<R: Robot<N> + Clone + Sync, const N: usize>(
 /// [`diagnose_data`], and what was read of each file that says more than
 /// its samples (a bag's topic, message count and time range: the lines of
 /// the report's header).
-pub fn diagnose_data_described<R: Robot<N> + Clone + Sync, const N: usize>(
+pub fn diagnose_data_described<R: Robot<N> + Clone + Send + Sync + 'static, const N: usize>(
     robot: &R,
     train: &DataFile,
     holdout: &DataFile,
@@ -62,7 +62,7 @@ pub fn diagnose_data_described<R: Robot<N> + Clone + Sync, const N: usize>(
 /// keeps apart (the sensors' effects, motor sides, effects limited to a
 /// window) undone on both records before the diagnosis
 /// ([`dynamics_sim2real::baseline::undo`]).
-pub fn diagnose_calibrated<R: Robot<N> + Clone + Sync, const N: usize>(
+pub fn diagnose_calibrated<R: Robot<N> + Clone + Send + Sync + 'static, const N: usize>(
     robot: &Calibrated<R, N>,
     train: &DataFile,
     holdout: &DataFile,
@@ -75,7 +75,7 @@ pub fn diagnose_calibrated<R: Robot<N> + Clone + Sync, const N: usize>(
 
 /// `m` with what `robot` keeps apart from its model undone (as it is when
 /// the baseline is all model).
-fn undone<R: Robot<N> + Clone, const N: usize>(
+fn undone<R: Robot<N> + Clone + Send + Sync + 'static, const N: usize>(
     robot: &Calibrated<R, N>,
     m: Measured<N>,
 ) -> Result<Measured<N>, GapError> {
@@ -87,7 +87,7 @@ fn undone<R: Robot<N> + Clone, const N: usize>(
 
 /// Reads both files, corrects each by `fix` (the record as read is dropped
 /// once corrected: a long log is not held twice) and diagnoses them.
-fn diagnose_read<R: Robot<N> + Clone + Sync, const N: usize>(
+fn diagnose_read<R: Robot<N> + Clone + Send + Sync + 'static, const N: usize>(
     robot: &R,
     fix: &dyn Fn(Measured<N>) -> Result<Measured<N>, GapError>,
     train: &DataFile,
@@ -117,7 +117,7 @@ fn diagnose_read<R: Robot<N> + Clone + Sync, const N: usize>(
 /// nothing, the chosen single effect (none when the verdict is `none`)
 /// refitted on `train` and applied to `holdout`. Example: with
 /// [`crate::report::write`].
-pub fn traces_files<R: Robot<N> + Clone, const N: usize>(
+pub fn traces_files<R: Robot<N> + Clone + Send + Sync + 'static, const N: usize>(
     robot: &R,
     train: &Path,
     holdout: &Path,
@@ -134,7 +134,7 @@ pub fn traces_files<R: Robot<N> + Clone, const N: usize>(
 }
 
 /// [`traces_files`] on data files of any layout ([`DataFile`]).
-pub fn traces_data<R: Robot<N> + Clone, const N: usize>(
+pub fn traces_data<R: Robot<N> + Clone + Send + Sync + 'static, const N: usize>(
     robot: &R,
     train: &DataFile,
     holdout: &DataFile,
@@ -149,7 +149,7 @@ pub fn traces_data<R: Robot<N> + Clone, const N: usize>(
 /// [`traces_data`] against a calibrated baseline: the records corrected
 /// as [`diagnose_calibrated`] corrects them, so that the figures show what
 /// the diagnosis saw.
-pub fn traces_calibrated<R: Robot<N> + Clone, const N: usize>(
+pub fn traces_calibrated<R: Robot<N> + Clone + Send + Sync + 'static, const N: usize>(
     robot: &Calibrated<R, N>,
     train: &DataFile,
     holdout: &DataFile,
@@ -161,7 +161,7 @@ pub fn traces_calibrated<R: Robot<N> + Clone, const N: usize>(
     traces_of(robot, &a, &b, report, options)
 }
 
-fn traces_of<R: Robot<N> + Clone, const N: usize>(
+fn traces_of<R: Robot<N> + Clone + Send + Sync + 'static, const N: usize>(
     robot: &R,
     a: &Measured<N>,
     b: &Measured<N>,

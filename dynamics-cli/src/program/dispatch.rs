@@ -62,7 +62,7 @@ fn model_alone<R: Robot<N>, const N: usize>(
 }
 
 /// Runs `command` on `robot`.
-pub fn run_on<R: Robot<N> + Clone + Sync, const N: usize>(
+pub fn run_on<R: Robot<N> + Clone + Send + Sync + 'static, const N: usize>(
     robot: R,
     info: &RobotInfo,
     command: RobotCommand,
@@ -190,7 +190,11 @@ pub struct Run(pub RobotCommand);
 
 impl RobotVisitor for Run {
     type Output = Res;
-    fn visit<R: Robot<N> + Clone + Sync, const N: usize>(self, robot: R, info: &RobotInfo) -> Res {
+    fn visit<R: Robot<N> + Clone + Send + Sync + 'static, const N: usize>(
+        self,
+        robot: R,
+        info: &RobotInfo,
+    ) -> Res {
         run_on(robot, info, self.0)
     }
 }
@@ -201,7 +205,7 @@ pub struct CheckIfReference<'a>(pub &'a CheckArgs);
 
 impl RobotVisitor for CheckIfReference<'_> {
     type Output = Result<Option<bool>, Box<dyn std::error::Error>>;
-    fn visit<R: Robot<N> + Clone + Sync, const N: usize>(
+    fn visit<R: Robot<N> + Clone + Send + Sync + 'static, const N: usize>(
         self,
         robot: R,
         info: &RobotInfo,

@@ -21,7 +21,7 @@ pub trait RobotVisitor {
     /// What it returns.
     type Output;
     /// Does it with `robot`.
-    fn visit<R: Robot<N> + Clone + Sync, const N: usize>(
+    fn visit<R: Robot<N> + Clone + Send + Sync + 'static, const N: usize>(
         self,
         robot: R,
         info: &RobotInfo,
@@ -82,13 +82,13 @@ fn finish(result: Res) -> ExitCode {
 ///     dynamics_cli::run(Pendulum::default())
 /// }
 /// ```
-pub fn run<R: Robot<N> + Clone + Sync, const N: usize>(robot: R) -> ExitCode {
+pub fn run<R: Robot<N> + Clone + Send + Sync + 'static, const N: usize>(robot: R) -> ExitCode {
     run_with(robot, RobotInfo::default())
 }
 
 /// [`run`] with what the program should know about the robot besides its
 /// model (reference states, its motion for `synth` and `simulate`).
-pub fn run_with<R: Robot<N> + Clone + Sync, const N: usize>(
+pub fn run_with<R: Robot<N> + Clone + Send + Sync + 'static, const N: usize>(
     robot: R,
     mut info: RobotInfo,
 ) -> ExitCode {

@@ -45,7 +45,7 @@ pub struct Entry {
 /// use dynamics_sim2real::data::Measured;
 /// use dynamics_sim2real::diagnose::{diagnose, Options};
 /// use dynamics_runtime::Robot;
-/// fn entries<R: Robot<3> + Clone + Sync>(robot: &R, train: &Measured<3>, holdout: &Measured<3>) {
+/// fn entries<R: Robot<3> + Clone + Send + Sync + 'static>(robot: &R, train: &Measured<3>, holdout: &Measured<3>) {
 ///     let report = diagnose(robot, train, holdout, &Options::default(), &|_, _| {}).expect("enough data");
 ///     let back: Vec<Entry> = report.which.effects.iter().map(Entry::from).collect();
 ///     assert_eq!(back.len(), report.which.effects.len());

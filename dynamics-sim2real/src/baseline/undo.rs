@@ -95,7 +95,7 @@ pub enum UndoError {
 ///     assert!((m.tau[k][0] - fixed.tau[k][0] - taken).abs() < 1e-12);
 /// }
 /// ```
-pub fn undo<R: Robot<N> + Clone, const N: usize>(
+pub fn undo<R: Robot<N> + Clone + Send + Sync + 'static, const N: usize>(
     robot: &Calibrated<R, N>,
     m: &Measured<N>,
 ) -> Result<Measured<N>, UndoError> {
@@ -168,7 +168,7 @@ fn guess(e: &Effect) -> Option<(usize, MotorGuess, bool)> {
 
 /// `m` with the effort of every motor side's joint replaced by what its
 /// motor side passes to the link (see [`undo`]).
-fn transmitted<R: Robot<N> + Clone, const N: usize>(
+fn transmitted<R: Robot<N> + Clone + Send + Sync + 'static, const N: usize>(
     robot: &Calibrated<R, N>,
     mut m: Measured<N>,
 ) -> Result<Measured<N>, UndoError> {
@@ -210,7 +210,7 @@ fn transmitted<R: Robot<N> + Clone, const N: usize>(
 /// measured motion of `m`, taken out of its effort inside their windows:
 /// each effort is what the effect alone adds to `nominal`'s inverse
 /// dynamics.
-fn windowed_forces<R: Robot<N> + Clone, const N: usize>(
+fn windowed_forces<R: Robot<N> + Clone + Send + Sync + 'static, const N: usize>(
     nominal: &R,
     forces: &[(Effect, Window)],
     m: &mut Measured<N>,

@@ -91,11 +91,11 @@ use dynamics_runtime::Robot;
 /// use dynamics_sim2real::diagnose::{diagnose, Options, Report};
 /// use dynamics_runtime::Robot;
 /// use dynamics_sim2real::data::Measured;
-/// fn run<R: Robot<3> + Clone + Sync>(robot: &R, train: &Measured<3>, holdout: &Measured<3>) -> Report {
+/// fn run<R: Robot<3> + Clone + Send + Sync + 'static>(robot: &R, train: &Measured<3>, holdout: &Measured<3>) -> Report {
 ///     diagnose(robot, train, holdout, &Options::default(), &|_, _| {}).expect("enough data")
 /// }
 /// ```
-pub fn diagnose<R: Robot<N> + Clone + Sync, const N: usize>(
+pub fn diagnose<R: Robot<N> + Clone + Send + Sync + 'static, const N: usize>(
     robot: &R,
     train: &Measured<N>,
     holdout: &Measured<N>,
@@ -110,7 +110,7 @@ pub fn diagnose<R: Robot<N> + Clone + Sync, const N: usize>(
 }
 
 /// The stages of [`diagnose`], in the order of the data.
-fn stages<R: Robot<N> + Clone + Sync, const N: usize>(
+fn stages<R: Robot<N> + Clone + Send + Sync + 'static, const N: usize>(
     robot: &R,
     train: &Measured<N>,
     holdout: &Measured<N>,

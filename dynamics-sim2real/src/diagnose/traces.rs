@@ -103,14 +103,14 @@ pub struct Traces {
 /// use dynamics_sim2real::data::Measured;
 /// use dynamics_sim2real::diagnose::{diagnose, traces::traces, Options};
 /// use dynamics_runtime::Robot;
-/// fn plot<R: Robot<3> + Clone + Sync>(robot: &R, train: &Measured<3>, holdout: &Measured<3>) {
+/// fn plot<R: Robot<3> + Clone + Send + Sync + 'static>(robot: &R, train: &Measured<3>, holdout: &Measured<3>) {
 ///     let report = diagnose(robot, train, holdout, &Options::default(), &|_, _| {}).expect("enough data");
 ///     let chosen = report.which.verdict.names_effect().then(|| &report.which.ranked[0]);
 ///     let t = traces(robot, train, holdout, chosen, &Options::default()).expect("a candidate of this robot");
 ///     assert_eq!(t.train.joints.len(), 3);
 /// }
 /// ```
-pub fn traces<R: Robot<N> + Clone, const N: usize>(
+pub fn traces<R: Robot<N> + Clone + Send + Sync + 'static, const N: usize>(
     robot: &R,
     train: &Measured<N>,
     holdout: &Measured<N>,

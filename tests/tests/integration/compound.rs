@@ -141,7 +141,7 @@ fn place<R: Robot<N>, const N: usize>(e: &Effect) -> String {
 }
 
 /// Synthesises, diagnoses and scores one case on `robot`.
-fn case_on<R: Robot<N> + Clone + Sync, const N: usize>(
+fn case_on<R: Robot<N> + Clone + Send + Sync + 'static, const N: usize>(
     robot: &R,
     name: &'static str,
     case: CompoundCase,

@@ -46,7 +46,10 @@ fn units(effects: &[Value]) -> BTreeSet<String> {
 }
 
 /// The named units of the diagnosis of case `dir` on `robot`.
-fn named<R: Robot<N> + Clone + Sync, const N: usize>(robot: &R, dir: &Path) -> BTreeSet<String> {
+fn named<R: Robot<N> + Clone + Send + Sync + 'static, const N: usize>(
+    robot: &R,
+    dir: &Path,
+) -> BTreeSet<String> {
     let read = |name: &str| {
         DataFile::csv(dir.join(name))
             .read(&R::JOINT_NAMES)

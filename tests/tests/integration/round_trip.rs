@@ -79,7 +79,7 @@ fn named(report: &Report) -> Vec<String> {
 /// The report of `train`/`holdout` on `robot`, then the report of the same
 /// records against the first as the baseline: the first's named effects,
 /// those refused as a baseline (with the reason), the second's.
-fn round_trip<R: Robot<N> + Clone + Sync, const N: usize>(
+fn round_trip<R: Robot<N> + Clone + Send + Sync + 'static, const N: usize>(
     robot: &R,
     train: &Measured<N>,
     holdout: &Measured<N>,

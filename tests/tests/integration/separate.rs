@@ -292,7 +292,7 @@ fn said(report: &Report) -> String {
 }
 
 /// Runs the case of `kind` with `seed`.
-fn run<R: Robot<N> + Clone + Sync, const N: usize>(
+fn run<R: Robot<N> + Clone + Send + Sync + 'static, const N: usize>(
     robot: &R,
     kind: &PairKind,
     duration: f64,
@@ -561,7 +561,7 @@ fn separating_motions_resolve_ambiguous_pairs() {
 /// pair out.
 #[test]
 fn a_first_joint_rotor_against_its_link_is_not_sent_to_a_motion() {
-    fn check<R: Robot<N> + Clone + Sync, const N: usize>(robot: &R) {
+    fn check<R: Robot<N> + Clone + Send + Sync + 'static, const N: usize>(robot: &R) {
         let (opts, hold, effect) = case(robot, "panda", &KINDS[2], 3.0, 9).expect("drawn");
         assert_eq!(effect.kind(), EffectKind::Armature);
         assert_eq!(effect.joint(), Some(0));

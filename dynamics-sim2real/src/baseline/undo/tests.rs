@@ -27,7 +27,12 @@ fn options(windows: Vec<Option<Window>>) -> SynthOptions<2> {
 /// RMS over the fit rows of joint `j`'s smoothed residual (measured effort
 /// less `robot`'s inverse dynamics along the measured motion), over its
 /// noise floor.
-fn gap<R: Robot<2>>(robot: &R, m: &Measured<2>, j: usize, inside: impl Fn(f64) -> bool) -> f64 {
+fn gap<R: Robot<2> + Clone + Send + Sync + 'static>(
+    robot: &R,
+    m: &Measured<2>,
+    j: usize,
+    inside: impl Fn(f64) -> bool,
+) -> f64 {
     let p = Prepared::new(robot, m);
     let rows: Vec<usize> = p
         .rows

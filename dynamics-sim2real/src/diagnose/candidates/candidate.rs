@@ -6,7 +6,7 @@
 
 use nalgebra::SVector;
 
-use super::basis::Basis;
+use super::basis::{Basis, Frame};
 use super::grids::{ALPHA_GRID, COULOMB_WIDTHS, STRIBECK_GRID};
 use super::row_series::{coulomb_law, stribeck_law};
 use crate::diagnose::candidates::shift::{late_effort_column, late_motion_column};
@@ -341,7 +341,8 @@ impl Candidate {
             }
             Candidate::Armature(j) => c[0][j] = basis.series.qdd(sig, k, j),
             Candidate::Payload => {
-                c[0] = basis.jac[k].transpose() * (basis.tip_acc[k] - basis.gravity)
+                let t = basis.tip_at(k);
+                c[0] = t.jac.transpose() * (t.acc - basis.gravity)
             }
             // A point at r = R c off the tip's origin o moves with
             // a = a_o + alpha x r + w x (w x r), and its Jacobian is
@@ -349,35 +350,32 @@ impl Candidate {
             // the first moment m c, adds J_o^T (alpha x r + w x (w x r))
             // + J_w^T (r x (a_o - g)) per unit of it.
             Candidate::PayloadCom => {
-                let f = basis.tip_acc[k] - basis.gravity;
-                c[0] = basis.jac[k].transpose() * f;
-                let frame = (
-                    basis.tip_rot.get(k),
-                    basis.jac_w.get(k),
-                    basis.tip_alpha.get(k),
-                );
-                if let (Some(r), Some(jw), Some(alpha)) = frame {
-                    let w = jw * qd;
+                let t = basis.tip_at(k);
+                let f = t.acc - basis.gravity;
+                c[0] = t.jac.transpose() * f;
+                if let Some(Frame { rot, jac_w, alpha }) = t.frame {
+                    let w = jac_w * qd;
                     for i in 0..3 {
-                        let u = r.column(i).into_owned();
+                        let u = rot.column(i).into_owned();
                         let lin = alpha.cross(&u) + w.cross(&w.cross(&u));
-                        c[i + 1] = basis.jac[k].transpose() * lin + jw.transpose() * u.cross(&f);
+                        c[i + 1] = t.jac.transpose() * lin + jac_w.transpose() * u.cross(&f);
                     }
                 }
             }
             Candidate::Environment(alpha) => {
-                let v = basis.jac[k] * qd;
+                let jac = basis.tip_at(k).jac;
+                let v = jac * qd;
                 let s = v.norm();
                 if s > 0.0 {
-                    c[0] = basis.jac[k].transpose() * (v * s.powf(alpha - 1.0));
+                    c[0] = jac.transpose() * (v * s.powf(alpha - 1.0));
                 }
             }
-            Candidate::EncoderOffset(j) => c[0] = -basis.k[k].column(j),
+            Candidate::EncoderOffset(j) => c[0] = -basis.k_column(k, j),
             // The motion d late: the model misses d times the effort's rate.
             Candidate::TimeDelay => c[0] = late_motion_column(sig, k),
             // Positions d late: the model is evaluated at q - d qd, and
             // misses d K qd.
-            Candidate::LatePositions => c[0] = basis.k[k] * qd,
+            Candidate::LatePositions => c[0] = basis.k(k) * qd,
             // The effort d late: the model's effort d earlier, which misses
             // -d times its rate.
             Candidate::LateEffort(d) => c[0] = late_effort_column(sig, k, d),

@@ -54,7 +54,7 @@ pub fn offer<const N: usize>(records: &mut Records<N>, options: &Options) -> Vec
     // fitted (the centre a note where the data do not place it), as a
     // mass held at the frame's origin is biased by the ratio of the lever
     // arms; a point tip has no frame to place a centre in.
-    let frame = !records.p.basis.tip_rot.is_empty();
+    let frame = records.p.basis.framed();
     let all = Candidate::all::<N>(&options.kinds)
         .into_iter()
         .filter(|c| match c {

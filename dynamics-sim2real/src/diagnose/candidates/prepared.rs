@@ -32,14 +32,14 @@ pub struct Prepared<const N: usize> {
 
 impl<const N: usize> Prepared<N> {
     /// Prepares `m` for `robot`.
-    pub fn new<R: Robot<N>>(robot: &R, m: &Measured<N>) -> Self {
+    pub fn new<R: Robot<N> + Clone + Send + Sync + 'static>(robot: &R, m: &Measured<N>) -> Self {
         Self::with_noise(robot, m, None)
     }
 
     /// Prepares `m` for `robot`; the torque residual's noise floor is what
     /// sensor noise of `levels` (q, qd, tau per joint) makes of it, the
     /// levels estimated from the data when not known (`noise.rs`).
-    pub fn with_noise<R: Robot<N>>(
+    pub fn with_noise<R: Robot<N> + Clone + Send + Sync + 'static>(
         robot: &R,
         m: &Measured<N>,
         levels: Option<&[SVector<f64, N>; 3]>,
@@ -55,11 +55,11 @@ impl<const N: usize> Prepared<N> {
     /// use dynamics_runtime::Robot;
     /// use dynamics_sim2real::data::Measured;
     /// use dynamics_sim2real::diagnose::Prepared;
-    /// fn ready<R: Robot<3>>(robot: &R, m: &Measured<3>) -> Prepared<3> {
+    /// fn ready<R: Robot<3> + Clone + Send + Sync + 'static>(robot: &R, m: &Measured<3>) -> Prepared<3> {
     ///     Prepared::chunked(robot, m, None, 512)
     /// }
     /// ```
-    pub fn chunked<R: Robot<N>>(
+    pub fn chunked<R: Robot<N> + Clone + Send + Sync + 'static>(
         robot: &R,
         m: &Measured<N>,
         levels: Option<&[SVector<f64, N>; 3]>,

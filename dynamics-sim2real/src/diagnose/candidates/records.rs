@@ -61,7 +61,7 @@ impl<'a, const N: usize> Records<'a, N> {
     /// prepared already), at the sensor noise `options` states (else
     /// estimated from each record); refused when a record is too short,
     /// an effort column's sign is flipped, or nothing moves.
-    pub fn new<R: Robot<N> + Sync>(
+    pub fn new<R: Robot<N> + Clone + Send + Sync + 'static>(
         robot: &R,
         train: &'a Measured<N>,
         holdout: &'a Measured<N>,

@@ -72,6 +72,8 @@ pub fn select<R: Robot<N> + Clone + Sync, const N: usize>(
         nominal.clear();
     }
     let mut pool = Pool::new(&fitted.fits, &plinks, &nominal, p);
+    // The pool holds the links' combinations: their columns are done.
+    drop(plinks);
     pool.limit_to_windows(&fitted.windows, p);
     let explanation = compound::explain::<R, N>(&mut pool, p, options);
     let best = rank::rank(fitted.fits, p, h, &fitted.windows, options);

@@ -9,9 +9,12 @@
 //! if the noise were white, came out 1.27-1.34 times the true floor on a
 //! control (the propagated one: 0.93-0.99).
 
+use std::collections::VecDeque;
+
 use nalgebra::{DMatrix, DVector, SVector};
 
 use crate::data::Measured;
+use crate::diagnose::along::{chunks, inverse_dynamics};
 use crate::diagnose::signals::{robust_std, Signals};
 use crate::diagnose::DiagnoseError;
 use crate::synth::Rng;
@@ -77,6 +80,11 @@ impl SensorNoise {
 /// The noise floor of the smoothed torque residual per joint that sensor
 /// noise of `levels` (q, qd, tau) makes: the RMS, over the samples in use,
 /// of how far one draw of it added to the data moves `sig`'s residual.
+///
+/// The noisy twin of the record is drawn sample by sample and its
+/// residual made a chunk at a time (the smoothing's windows and the
+/// inverse dynamics, as [`Signals::unfloored`] makes them over the whole
+/// record), so that neither the twin nor its signals are held whole.
 pub fn known_floor<R: Robot<N>, const N: usize>(
     robot: &R,
     m: &Measured<N>,
@@ -84,20 +92,67 @@ pub fn known_floor<R: Robot<N>, const N: usize>(
     levels: &[SVector<f64, N>; 3],
 ) -> SVector<f64, N> {
     let mut rng = Rng::new(0x5e_0015e);
-    let mut noisy = m.clone();
-    for k in 0..noisy.len() {
-        noisy.q[k] += rng.normal_vec(&levels[0]);
-        noisy.qd[k] += rng.normal_vec(&levels[1]);
-        noisy.tau[k] += rng.normal_vec(&levels[2]);
-    }
-    let shaken = Signals::unfloored(robot, &noisy);
+    let n = m.len();
+    let sg = &sig.sg;
+    let h = sg.half();
     let (a, z) = sig.range;
+    // The twin's samples (q, qd, tau) drawn so far, from sample `from` on.
+    let mut twin: VecDeque<[SVector<f64, N>; 3]> = VecDeque::new();
+    let (mut from, mut drawn) = (0usize, 0usize);
     let mut sum = SVector::<f64, N>::zeros();
     let mut count = 0usize;
-    for k in (a..z).filter(|&k| sig.mask.usable(k)) {
-        let d = shaken.residual[k] - sig.residual[k];
-        sum += d.component_mul(&d);
-        count += 1;
+    for c in chunks(a..z, 0) {
+        // The stretch the chunk's windows read (one more sample before it:
+        // the held effort averages a sample with the previous one).
+        let (lo, hi) = (c.start.saturating_sub(h + 1), (c.end + h).min(n));
+        while drawn < hi {
+            let q = m.q[drawn] + rng.normal_vec(&levels[0]);
+            let qd = m.qd[drawn] + rng.normal_vec(&levels[1]);
+            let tau = m.tau[drawn] + rng.normal_vec(&levels[2]);
+            twin.push_back([q, qd, tau]);
+            drawn += 1;
+        }
+        while from < lo {
+            twin.pop_front();
+            from += 1;
+        }
+        let len = c.len();
+        let mut motion = [
+            vec![SVector::<f64, N>::zeros(); len],
+            vec![SVector::zeros(); len],
+            vec![SVector::zeros(); len],
+        ];
+        let mut tau = vec![SVector::<f64, N>::zeros(); len];
+        for j in 0..N {
+            let col = |x: usize| -> Vec<f64> { (lo..hi).map(|i| twin[i - from][x][j]).collect() };
+            let (qj, vj) = (col(0), col(1));
+            let held: Vec<f64> = (lo..hi)
+                .map(|i| {
+                    let prev = i.saturating_sub(1).max(from);
+                    0.5 * (twin[prev - from][2][j] + twin[i - from][2][j])
+                })
+                .collect();
+            for (i, k) in c.clone().enumerate() {
+                let at = |x: &[f64], d: usize| sg.at(x, d, k - lo);
+                motion[0][i][j] = at(&qj, 0);
+                (motion[1][i][j], motion[2][i][j]) = if m.qd_measured {
+                    (at(&vj, 0), at(&vj, 1))
+                } else {
+                    (at(&qj, 1), at(&qj, 2))
+                };
+                tau[i][j] = at(&held, 0);
+            }
+        }
+        let mut model = vec![SVector::<f64, N>::zeros(); len];
+        let [q, qd, qdd] = &motion;
+        inverse_dynamics(robot, [q, qd, qdd], 0..len, len, &mut model);
+        for (i, k) in c.enumerate() {
+            if sig.mask.usable(k) {
+                let d = (tau[i] - model[i]) - sig.residual[k];
+                sum += d.component_mul(&d);
+                count += 1;
+            }
+        }
     }
     (sum / count.max(1) as f64).map(|s| s.sqrt().max(1e-12))
 }
@@ -192,3 +247,6 @@ fn effort_sensor_noise<const N: usize>(m: &Measured<N>, sig: &Signals<N>) -> SVe
         }
     })
 }
+
+#[cfg(test)]
+mod tests;

@@ -25,7 +25,23 @@ impl Pool {
         nominal: &[SVector<f64, 10>],
         p: &Prepared<N>,
     ) -> Pool {
-        let mut cols: Vec<Vec<f64>> = Vec::new();
+        // The columns one after another (column-major, as the matrix
+        // takes them), room made once for the most there can be: each
+        // column is freed as it is copied in, never held twice.
+        let n = p.n();
+        let most = fits
+            .iter()
+            .map(|f| match f.motor {
+                Some(_) => 1,
+                None => f.candidate.linear_parameters().len(),
+            })
+            .sum::<usize>()
+            + links.iter().map(|lc| lc.len()).sum::<usize>();
+        let mut cols = Columns {
+            flat: Vec::with_capacity(n * most),
+            n,
+            count: 0,
+        };
         let mut terms = Vec::new();
         for f in fits {
             if !f.sse.is_finite() {
@@ -37,7 +53,7 @@ impl Pool {
                 if col.iter().all(|x| *x == 0.0) {
                     continue;
                 }
-                cols.push(col);
+                cols.push(&col);
                 terms.push(Term {
                     fit: f.clone(),
                     cols: vec![],
@@ -53,7 +69,9 @@ impl Pool {
                     continue;
                 }
                 let at = cols.len();
-                cols.extend(new);
+                for c in new {
+                    cols.push(&c);
+                }
                 terms.push(Term {
                     fit: f.clone(),
                     cols: (at..cols.len()).collect(),
@@ -81,7 +99,9 @@ impl Pool {
             let new = combined(lc, &basis);
             let at = cols.len();
             let r = new.len();
-            cols.extend(new);
+            for c in new {
+                cols.push(&c);
+            }
             terms.push(Term {
                 fit: Fit {
                     candidate: Candidate::Inertial(l),
@@ -100,12 +120,12 @@ impl Pool {
                 link: Some(basis),
             });
         }
-        let n = p.n();
-        let x = DMatrix::from_fn(n, cols.len(), |r, c| cols[c][r]);
+        let m = cols.len();
+        let x = DMatrix::from_vec(n, m, cols.flat);
         let y = DVector::from_vec(whitened(p, |k| p.sig.residual[k]));
         let xty = x.tr_mul(&y);
         let yy = y.norm_squared();
-        let prior = prior::Prior::new(&terms, cols.len(), nominal);
+        let prior = prior::Prior::new(&terms, m, nominal);
         let strength = prior::STRENGTHS[0];
         let gram = penalised(&x, &prior, yy, strength);
         Pool {
@@ -119,5 +139,26 @@ impl Pool {
             prior,
             strength,
         }
+    }
+}
+
+/// Whitened columns of `n` rows, one after another.
+struct Columns {
+    flat: Vec<f64>,
+    n: usize,
+    count: usize,
+}
+
+impl Columns {
+    /// Appends `col` (`n` rows).
+    fn push(&mut self, col: &[f64]) {
+        debug_assert_eq!(col.len(), self.n);
+        self.flat.extend_from_slice(col);
+        self.count += 1;
+    }
+
+    /// How many columns.
+    fn len(&self) -> usize {
+        self.count
     }
 }
