@@ -29,7 +29,7 @@ use thiserror::Error;
 use dispatch::Kernel;
 pub use dispatch::Level;
 
-use crate::lanes::{Lanes, MAX_WIDTH};
+use crate::lanes::Lanes;
 use crate::linearize::ForwardDerivatives;
 use crate::{DynamicsError, MotionTerms, PerturbationJacobians, Robot};
 
@@ -85,20 +85,16 @@ fn gather<L: Lanes, const N: usize>(x: &[SVector<f64, N>], start: usize) -> [L; 
 }
 
 /// Writes the lanes of `values` into the states of `out` (at most
-/// `WIDTH`), each state's part `field` of it: `values` in that part's
-/// memory order (a vector's entries; a matrix's columns, column-major).
+/// `WIDTH`), each state's part `field` of it: a matrix's columns
+/// (`values[column][row]`, column-major as nalgebra's storage), a vector
+/// as one column.
 #[inline(always)]
-fn store<L: Lanes, T>(
-    values: &[L],
+fn store<L: Lanes, T, const R: usize, const C: usize>(
+    values: &[[L; R]; C],
     out: &mut [T],
-    field: impl for<'a> Fn(&'a mut T) -> &'a mut [f64],
+    field: impl Fn(&mut T) -> &mut [[f64; R]; C],
 ) {
-    let mut slots: [&mut [f64]; MAX_WIDTH] = core::array::from_fn(|_| &mut [][..]);
-    let m = out.len();
-    for (slot, o) in slots.iter_mut().zip(out.iter_mut()) {
-        *slot = field(o);
-    }
-    L::store_states(values, &mut slots[..m]);
+    L::store_states(values, out, field);
 }
 
 /// `Q(0) + (Qqt1 + Qqt2) + tau` (the scalar code's order).
@@ -369,7 +365,9 @@ pub fn inverse_dynamics<R: Robot<N>, const N: usize>(
                     &gather(qd, s),
                     &gather(qdd, s),
                 );
-                store(&tau, &mut self.out[s..s + m], |o| o.as_mut_slice());
+                store(core::array::from_ref(&tau), &mut self.out[s..s + m], |o| {
+                    &mut o.data.0
+                });
             }
         }
     }
@@ -422,9 +420,7 @@ pub fn mass_matrix<R: Robot<N>, const N: usize>(
             for s in (0..self.q.len()).step_by(L::WIDTH) {
                 let m = L::WIDTH.min(self.q.len() - s);
                 let a = self.robot.mass_matrix_lanes(&gather::<L, N>(self.q, s));
-                store(a.as_flattened(), &mut self.out[s..s + m], |o| {
-                    o.as_mut_slice()
-                });
+                store(&a, &mut self.out[s..s + m], |o| &mut o.data.0);
             }
         }
     }
@@ -477,9 +473,9 @@ pub fn motion_terms<R: Robot<N>, const N: usize>(
                     .robot
                     .motion_terms_lanes(&gather::<L, N>(q, s), &gather(qd, s));
                 let out = &mut self.out[s..s + m];
-                store(a.as_flattened(), out, |o| o.a.as_mut_slice());
-                store(&qqt, out, |o| o.qqt.as_mut_slice());
-                store(&q0, out, |o| o.q0.as_mut_slice());
+                store(&a, out, |o| &mut o.a.data.0);
+                store(core::array::from_ref(&qqt), out, |o| &mut o.qqt.data.0);
+                store(core::array::from_ref(&q0), out, |o| &mut o.q0.data.0);
             }
         }
     }
@@ -546,8 +542,8 @@ pub fn perturbation_jacobians<R: Robot<N>, const N: usize>(
                     &gather(qdd, s),
                 );
                 let out = &mut self.out[s..s + m];
-                store(k.as_flattened(), out, |o| o.k.as_mut_slice());
-                store(d.as_flattened(), out, |o| o.d.as_mut_slice());
+                store(&k, out, |o| &mut o.k.data.0);
+                store(&d, out, |o| &mut o.d.data.0);
             }
         }
     }
@@ -645,9 +641,9 @@ pub fn forward_dynamics_derivatives<R: Robot<N>, const N: usize>(
                     f.solve_in_place(&mut ddq_dv[c], -1.0);
                 }
                 let out = &mut self.out[s..s + m];
-                store(&qdd, out, |o| o.qdd.as_mut_slice());
-                store(ddq_dq.as_flattened(), out, |o| o.ddq_dq.as_mut_slice());
-                store(ddq_dv.as_flattened(), out, |o| o.ddq_dv.as_mut_slice());
+                store(core::array::from_ref(&qdd), out, |o| &mut o.qdd.data.0);
+                store(&ddq_dq, out, |o| &mut o.ddq_dq.data.0);
+                store(&ddq_dv, out, |o| &mut o.ddq_dv.data.0);
                 let probe = finite_probe(&qdd)
                     + finite_probe(ddq_dq.as_flattened())
                     + finite_probe(ddq_dv.as_flattened());
@@ -739,7 +735,7 @@ pub fn forward_dynamics<R: Robot<N>, const N: usize>(
                 let (f, ok) = ldlt::Ldlt::new(&a);
                 let qdd = f.solve(&rhs(&q0, &qqt, &t));
                 let out = &mut self.out[s..s + m];
-                store(&qdd, out, |o| o.as_mut_slice());
+                store(core::array::from_ref(&qdd), out, |o| &mut o.data.0);
                 let probe = finite_probe(&qdd);
                 for (i, v) in out.iter_mut().enumerate() {
                     *v = if ok & (1 << i) != 0 && probe.lane(i) == 0.0 {

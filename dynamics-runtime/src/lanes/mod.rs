@@ -98,10 +98,16 @@ pub trait Lanes:
     /// of `shifted` selects and signs `s` and `c`, with bit masks.
     #[doc(hidden)]
     fn by_quadrant(shifted: Self, s: Self, c: Self) -> (Self, Self);
-    /// Writes lane `i` of every value of `values` into `states[i]` (whose
-    /// length is `values.len()`), for the first `states.len()` lanes.
+    /// Writes lane `i` of every value of `values` into `field(&mut
+    /// states[i])` (the same shape), for the first `states.len()` lanes
+    /// (at most `WIDTH`). The shapes are types, so that the bounds of
+    /// every write are known when the function is compiled.
     #[doc(hidden)]
-    fn store_states(values: &[Self], states: &mut [&mut [f64]]);
+    fn store_states<T, const R: usize, const C: usize>(
+        values: &[[Self; R]; C],
+        states: &mut [T],
+        field: impl Fn(&mut T) -> &mut [[f64; R]; C],
+    );
 }
 
 impl Lanes for f64 {
@@ -161,9 +167,13 @@ impl Lanes for f64 {
         )
     }
     #[inline(always)]
-    fn store_states(values: &[Self], states: &mut [&mut [f64]]) {
+    fn store_states<T, const R: usize, const C: usize>(
+        values: &[[Self; R]; C],
+        states: &mut [T],
+        field: impl Fn(&mut T) -> &mut [[f64; R]; C],
+    ) {
         if let [state] = states {
-            state.copy_from_slice(values);
+            *field(state) = *values;
         }
     }
 }
@@ -385,15 +395,19 @@ mod tests {
     #[test]
     fn stores_of_whole_and_partial_lanes_give_each_state_its_values() {
         fn check<L: Lanes>() {
-            // 11 values: whole blocks and a tail, for 1..=WIDTH states.
-            let values: [L; 11] = core::array::from_fn(|k| L::from_fn(|i| (100 * k + i) as f64));
+            // 11 x 2 values: whole blocks and a tail, for 1..=WIDTH states.
+            let values: [[L; 11]; 2] = core::array::from_fn(|c| {
+                core::array::from_fn(|k| L::from_fn(|i| (1000 * c + 100 * k + i) as f64))
+            });
             for m in 1..=L::WIDTH {
-                let mut states = vec![vec![0.0; 11]; m];
-                let mut slots: Vec<&mut [f64]> = states.iter_mut().map(|s| &mut s[..]).collect();
-                L::store_states(&values, &mut slots);
+                let mut states = vec![[[0.0; 11]; 2]; m];
+                L::store_states(&values, &mut states, |s| s);
                 for (i, s) in states.iter().enumerate() {
-                    for (k, x) in s.iter().enumerate() {
-                        assert_eq!(*x, (100 * k + i) as f64, "{m} states, state {i}, value {k}");
+                    for (c, column) in s.iter().enumerate() {
+                        for (k, x) in column.iter().enumerate() {
+                            let expected = (1000 * c + 100 * k + i) as f64;
+                            assert_eq!(*x, expected, "{m} states, state {i}, value {c} {k}");
+                        }
                     }
                 }
             }

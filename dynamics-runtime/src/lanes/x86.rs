@@ -153,10 +153,20 @@ macro_rules! vector_lanes {
             }
             #[inline(always)]
             fn sin_cos_n<const K: usize>(x: [Self; K]) -> ([Self; K], [Self; K]) {
+                // One test of every lane of every value, one branch.
+                let limit = Self::splat(trig::REDUCE_LIMIT);
+                let mut below = true;
+                for v in &x {
+                    below &= Self::all_below(v.abs(), limit);
+                }
+                if !below {
+                    return Self::cold_sin_cos_n(x);
+                }
                 let mut s = [Self::splat(0.0); K];
                 let mut c = [Self::splat(0.0); K];
                 for k in 0..K {
-                    (s[k], c[k]) = x[k].sin_cos();
+                    let (shifted, sk, ck) = super::reduced(x[k]);
+                    (s[k], c[k]) = Self::by_quadrant(shifted, sk, ck);
                 }
                 (s, c)
             }
@@ -189,7 +199,12 @@ macro_rules! vector_lanes {
                 }
             }
             #[inline(always)]
-            fn store_states(values: &[Self], states: &mut [&mut [f64]]) {
+            fn store_states<T, const R: usize, const C: usize>(
+                values: &[[Self; R]; C],
+                states: &mut [T],
+                field: impl Fn(&mut T) -> &mut [[f64; R]; C],
+            ) {
+                let values = values.as_flattened();
                 let mut k = 0;
                 // Whole lanes: blocks of $width values turned by a register
                 // transpose into $width runs of one state each, one vector
@@ -198,7 +213,8 @@ macro_rules! vector_lanes {
                     while k + $width <= values.len() {
                         let rows = Self::transpose(&values[k..k + $width]);
                         for (state, row) in states.iter_mut().zip(rows) {
-                            state[k..k + $width].copy_from_slice(&row.to_array());
+                            field(state).as_flattened_mut()[k..k + $width]
+                                .copy_from_slice(&row.to_array());
                         }
                         k += $width;
                     }
@@ -206,7 +222,7 @@ macro_rules! vector_lanes {
                 for (j, v) in values.iter().enumerate().skip(k) {
                     let lanes = v.to_array();
                     for (state, x) in states.iter_mut().zip(lanes) {
-                        state[j] = x;
+                        field(state).as_flattened_mut()[j] = x;
                     }
                 }
             }
@@ -220,6 +236,20 @@ macro_rules! vector_lanes {
             fn cold_sin_cos(x: Self) -> (Self, Self) {
                 let (s, c) = trig::sin_cos_n(x.to_array());
                 (Self::from_array(s), Self::from_array(c))
+            }
+
+            /// `sin_cos_n` when a lane of a value is huge or not finite:
+            /// every lane by the scalar kernel (no vector instruction, as
+            /// this function is compiled without the lanes' features).
+            #[cold]
+            #[inline(never)]
+            fn cold_sin_cos_n<const K: usize>(x: [Self; K]) -> ([Self; K], [Self; K]) {
+                let mut s = [[0.0; $width]; K];
+                let mut c = [[0.0; $width]; K];
+                for k in 0..K {
+                    (s[k], c[k]) = trig::sin_cos_n(x[k].to_array());
+                }
+                (s.map(Self::from_array), c.map(Self::from_array))
             }
         }
     };
