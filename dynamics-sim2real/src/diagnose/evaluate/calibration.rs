@@ -95,6 +95,21 @@ pub fn friction_spread<const N: usize>(pool: &Pool, e: &Explanation) -> Friction
     out
 }
 
+/// The calibration's spread on the friction term `c` corrects, and whether
+/// it corrected that friction (`None`: not friction, or no spread known).
+fn calibrated(c: Candidate, calibration: &CalibrationSpread) -> Option<(f64, bool)> {
+    let (j, l) = law(c)?;
+    let (spread, corrected) = match l {
+        Law::Coulomb => (&calibration.coulomb, &calibration.coulomb_corrected),
+        Law::Viscous => (&calibration.viscous, &calibration.viscous_corrected),
+    };
+    let s = spread
+        .get(j)
+        .copied()
+        .filter(|s| s.is_finite() && *s >= 0.0)?;
+    Some((s, corrected.get(j).copied().unwrap_or(true)))
+}
+
 /// Whether a friction correction `value` (spread `std`) of term `c` is a
 /// change since a calibration of spread `calibration`, at the held-out
 /// test's per-effect chance `level` (`z` the normal quantile at
@@ -110,24 +125,11 @@ pub fn changed(
     level: f64,
     naming: f64,
 ) -> bool {
-    let Some((j, l)) = law(c) else {
-        return true;
-    };
-    let (spread, corrected) = match l {
-        Law::Coulomb => (
-            calibration.coulomb.get(j),
-            calibration.coulomb_corrected.get(j),
-        ),
-        Law::Viscous => (
-            calibration.viscous.get(j),
-            calibration.viscous_corrected.get(j),
-        ),
-    };
-    let Some(&s_cal) = spread.filter(|s| s.is_finite() && **s >= 0.0) else {
+    let Some((s_cal, corrected)) = calibrated(c, calibration) else {
         return true;
     };
     let z = normal_upper(0.5 * level);
-    if corrected.copied().unwrap_or(true) {
+    if corrected {
         value.abs() > z * (s_cal * s_cal + std * std).sqrt()
     } else {
         value.abs() - z * std > naming * s_cal
@@ -159,16 +161,13 @@ pub fn keep_changes(
             keep.push(i);
             continue;
         }
-        let j = c.joint().unwrap_or(0);
-        let s_cal = match c {
-            Candidate::Viscous(_) => calibration.viscous.get(j),
-            _ => calibration.coulomb.get(j),
-        };
         confirmed.suggested.push(Suggestion {
             term: t,
             theta: e.sol.theta[i].clone(),
             std: e.sol.std[i].clone(),
-            why: Unconfirmed::WithinCalibration(s_cal.copied().unwrap_or(f64::NAN)),
+            why: Unconfirmed::WithinCalibration(
+                calibrated(c, calibration).map_or(f64::NAN, |(s, _)| s),
+            ),
         });
     }
     if keep.len() == e.set.len() {
