@@ -30,6 +30,7 @@ fn main() -> Res<()> {
         "kuka" => run(robots::Kuka::default(), &args),
         "kuka-no-friction" => run(robots::KukaNoFriction::default(), &args),
         "panda-arm" => run(robots::PandaArm::default(), &args),
+        "panda-hand" => run(robots::PandaHand::default(), &args),
         other => Err(format!("unknown robot `{other}`").into()),
     }
 }
