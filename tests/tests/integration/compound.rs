@@ -14,7 +14,9 @@
 //! at least 0.9, every control names nothing, median held-out shrink at
 //! least 0.9. `COMPOUND_CASES=N` scores more cases, `COMPOUND_SEED_BASE=B`
 //! draws others, `COMPOUND_ONLY=3,17` runs only those cases (the targets
-//! are then not asserted).
+//! are then not asserted). `COMPOUND_HOLD_LINKS=1` diagnoses with
+//! [`Options::hold_links`] (link corrections held to the nearest physical
+//! body) and scores that.
 //!
 //! `COMPOUND_MOTION=designed` drives every training run with a motion
 //! designed once per robot by `dynamics_sim2real::excite` (6 s, the
@@ -204,7 +206,11 @@ fn case_on<R: Robot<N> + Clone + Send + Sync + 'static, const N: usize>(
         through_csv(&train, "train"),
         through_csv(&holdout, "holdout"),
     );
-    let report: Report = diagnose(robot, &train, &holdout, &Options::default(), &|_, _| {})
+    let options = Options {
+        hold_links: env("COMPOUND_HOLD_LINKS", 0) == 1,
+        ..Options::default()
+    };
+    let report: Report = diagnose(robot, &train, &holdout, &options, &|_, _| {})
         .map_err(|e| e.to_string())?;
     // Only now the truth: which effects are large enough to be seen
     // (friction on every joint of a realistic arm is, at 2-8 % of the
