@@ -263,7 +263,13 @@ mod tests {
         assert!(z > a + 2 * sig.sg.half());
         for j in 0..2 {
             let mj: Vec<f64> = (0..sig.model.len())
-                .map(|k| if k >= a && k < z { sig.model[k][j] } else { f64::NAN })
+                .map(|k| {
+                    if k >= a && k < z {
+                        sig.model[k][j]
+                    } else {
+                        f64::NAN
+                    }
+                })
                 .collect();
             let whole = sig.sg.apply(&mj, 1);
             let mut finite = 0;
