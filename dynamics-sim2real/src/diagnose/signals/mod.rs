@@ -166,7 +166,9 @@ impl<const N: usize> Signals<N> {
     /// smoothing fit over the samples with a full window (`range`), NaN
     /// where the filter's window reaches outside them. Made where asked
     /// (a late channel's fallback, `shift.rs`) rather than kept for every
-    /// sample.
+    /// sample, from these signals' `model` (a working copy whose model
+    /// carries other effects, `without_others`, would give that model's
+    /// rate; no late column is made on one).
     pub fn model_rate(&self, k: usize) -> SVector<f64, N> {
         let h = self.sg.half();
         let (a, z) = self.range;
