@@ -195,7 +195,7 @@ pub(crate) fn data_series<R: Robot<N>, const N: usize>(
         .map(|j| {
             let col =
                 |v: &[SVector<f64, N>]| -> Vec<f64> { v[a..z].iter().map(|x| x[j]).collect() };
-            let measured = col(&p.sig.tau);
+            let measured: Vec<f64> = (a..z).map(|k| p.sig.tau_at(k, j)).collect();
             let nominal = col(&p.sig.model);
             let residual = col(&p.sig.residual);
             let residual_after = after.as_deref().map(col).unwrap_or(residual.clone());

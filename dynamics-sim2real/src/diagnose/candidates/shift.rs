@@ -24,7 +24,7 @@ pub fn effort_after<const N: usize>(
         return None;
     }
     let s = x - i as f64;
-    let v = sig.tau[i] * (1.0 - s) + sig.tau[i + 1] * s;
+    let v = sig.tau(i) * (1.0 - s) + sig.tau(i + 1) * s;
     v.iter().all(|c| c.is_finite()).then_some(v)
 }
 
@@ -43,10 +43,11 @@ pub fn late_effort_column<const N: usize>(
 ) -> SVector<f64, N> {
     let d = delay.max(sig.dt);
     if let Some(after) = effort_after(sig, k, d) {
-        return -(after - sig.tau[k]) / d;
+        return -(after - sig.tau(k)) / d;
     }
-    if sig.model_rate[k].iter().all(|x| x.is_finite()) {
-        -sig.model_rate[k]
+    let rate = sig.model_rate(k);
+    if rate.iter().all(|x| x.is_finite()) {
+        -rate
     } else {
         SVector::zeros()
     }
@@ -66,13 +67,14 @@ pub fn late_effort_column<const N: usize>(
 pub fn late_motion_column<const N: usize>(sig: &Signals<N>, k: usize) -> SVector<f64, N> {
     let (a, z) = sig.range;
     if k > a && k + 1 < z && sig.mask.clear(k - 1, k + 2) {
-        let v = (sig.tau[k + 1] - sig.tau[k - 1]) / (sig.t[k + 1] - sig.t[k - 1]);
+        let v = (sig.tau(k + 1) - sig.tau(k - 1)) / (sig.t[k + 1] - sig.t[k - 1]);
         if v.iter().all(|c| c.is_finite()) {
             return v;
         }
     }
-    if sig.model_rate[k].iter().all(|x| x.is_finite()) {
-        sig.model_rate[k]
+    let rate = sig.model_rate(k);
+    if rate.iter().all(|x| x.is_finite()) {
+        rate
     } else {
         SVector::zeros()
     }

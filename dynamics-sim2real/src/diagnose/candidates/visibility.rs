@@ -110,10 +110,10 @@ pub fn effort_sign<const N: usize>(
     for j in 0..N {
         let n = p.rows.len().max(1) as f64;
         let mean = |f: &dyn Fn(usize) -> f64| p.rows.iter().map(|&k| f(k)).sum::<f64>() / n;
-        let (mt, mm) = (mean(&|k| p.sig.tau[k][j]), mean(&|k| p.sig.model[k][j]));
+        let (mt, mm) = (mean(&|k| p.sig.tau_at(k, j)), mean(&|k| p.sig.model[k][j]));
         let (mut sxy, mut sxx, mut syy) = (0.0, 0.0, 0.0);
         for &k in &p.rows {
-            let (x, y) = (p.sig.model[k][j] - mm, p.sig.tau[k][j] - mt);
+            let (x, y) = (p.sig.model[k][j] - mm, p.sig.tau_at(k, j) - mt);
             sxy += x * y;
             sxx += x * x;
             syy += y * y;
@@ -145,7 +145,7 @@ fn coefficient<const N: usize>(p: &Prepared<N>, j: usize) -> Option<f64> {
         let v = p.sig.qd[k][j];
         let x = SVector::<f64, 5>::new(p.sig.model[k][j], smooth_sign(v), v, p.sig.q[k][j], 1.0);
         xtx += x * x.transpose();
-        xty += x * p.sig.tau[k][j];
+        xty += x * p.sig.tau_at(k, j);
     }
     let svd = xtx.svd(true, true);
     let eps = 1e-12 * svd.singular_values.max();

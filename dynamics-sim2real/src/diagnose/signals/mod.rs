@@ -48,12 +48,8 @@ pub struct Signals<const N: usize> {
     pub qd_light: Arc<[SVector<f64, N>]>,
     /// Measured efforts, raw.
     pub tau_raw: Arc<[SVector<f64, N>]>,
-    /// Measured efforts, smoothed.
-    pub tau: Arc<[SVector<f64, N>]>,
     /// The nominal model's efforts along the smoothed motion.
     pub model: Vec<SVector<f64, N>>,
-    /// Rate of the model efforts (derivative of their smoothing fit).
-    pub model_rate: Arc<[SVector<f64, N>]>,
     /// `tau - model`.
     pub residual: Vec<SVector<f64, N>>,
     /// Noise floor of the smoothed residual per joint: what the sensors'
@@ -110,20 +106,11 @@ impl<const N: usize> Signals<N> {
         let sg = SavitzkyGolay::analysis(dt);
         let half = sg.half();
         let zero = vec![SVector::<f64, N>::zeros(); n];
-        let (mut q, mut qd, mut qdd, mut tau) =
-            (zero.clone(), zero.clone(), zero.clone(), zero.clone());
+        let (mut q, mut qd, mut qdd) = (zero.clone(), zero.clone(), zero.clone());
         let mut qd_light = zero.clone();
         let light = SavitzkyGolay::new(((LIGHT_HALF_WIDTH / dt).round() as usize).max(2), dt);
         for j in 0..N {
             let qj = column(&m.q, j);
-            // Efforts are held from each sample to the next (zero-order
-            // hold): centred on a sample, the held signal averages this
-            // sample's value and the previous one's (half a sample late
-            // otherwise, a delay the fit would read as an effect).
-            let raw = column(&m.tau, j);
-            let tj: Vec<f64> = (0..n)
-                .map(|k| 0.5 * (raw[k.saturating_sub(1)] + raw[k]))
-                .collect();
             set_column(&mut q, j, &sg.apply(&qj, 0));
             if m.qd_measured {
                 let vj = column(&m.qd, j);
@@ -135,32 +122,18 @@ impl<const N: usize> Signals<N> {
                 set_column(&mut qd, j, &sg.apply(&qj, 1));
                 set_column(&mut qdd, j, &sg.apply(&qj, 2));
             }
-            set_column(&mut tau, j, &sg.apply(&tj, 0));
         }
         let range = (half, n.saturating_sub(half));
         let mut model = zero.clone();
         let mut residual = zero;
         along::inverse_dynamics(robot, [&q, &qd, &qdd], range.0..range.1, chunk, &mut model);
+        let tau_raw: Arc<[SVector<f64, N>]> = m.tau.as_slice().into();
         for k in range.0..range.1 {
-            residual[k] = tau[k] - model[k];
-        }
-        let mut model_rate = vec![SVector::<f64, N>::zeros(); n];
-        for j in 0..N {
-            let mj: Vec<f64> = (0..n)
-                .map(|k| {
-                    if k >= range.0 && k < range.1 {
-                        model[k][j]
-                    } else {
-                        f64::NAN
-                    }
-                })
-                .collect();
-            set_column(&mut model_rate, j, &sg.apply(&mj, 1));
+            residual[k] = smoothed_effort(&sg, &tau_raw, k) - model[k];
         }
         let mask = Mask::new(m, half, range);
         Signals {
             mask,
-            model_rate: model_rate.into(),
             dt,
             range,
             t: m.t.as_slice().into(),
@@ -169,8 +142,7 @@ impl<const N: usize> Signals<N> {
             qdd: qdd.into(),
             qd_measured: m.qd_measured,
             qd_light: qd_light.into(),
-            tau_raw: m.tau.as_slice().into(),
-            tau: tau.into(),
+            tau_raw,
             model,
             residual,
             floor: SVector::zeros(),
@@ -178,10 +150,81 @@ impl<const N: usize> Signals<N> {
         }
     }
 
+    /// The measured efforts smoothed by the filter at sample `k` (NaN
+    /// where its window does not fit), made where asked from the raw
+    /// efforts rather than kept for every sample.
+    pub fn tau(&self, k: usize) -> SVector<f64, N> {
+        smoothed_effort(&self.sg, &self.tau_raw, k)
+    }
+
+    /// Joint `j` of [`Signals::tau`].
+    pub fn tau_at(&self, k: usize, j: usize) -> f64 {
+        smoothed_effort_at(&self.sg, &self.tau_raw, k, j)
+    }
+
+    /// Rate of the model efforts at sample `k`: the derivative of their
+    /// smoothing fit over the samples with a full window (`range`), NaN
+    /// where the filter's window reaches outside them. Made where asked
+    /// (a late channel's fallback, `shift.rs`) rather than kept for every
+    /// sample, from these signals' `model` (a working copy whose model
+    /// carries other effects, `without_others`, would give that model's
+    /// rate; no late column is made on one).
+    pub fn model_rate(&self, k: usize) -> SVector<f64, N> {
+        let h = self.sg.half();
+        let (a, z) = self.range;
+        let w = self.sg.weights(1);
+        SVector::from_fn(|j, _| {
+            if k < h || k + h >= self.model.len() {
+                return f64::NAN;
+            }
+            w.iter()
+                .zip(k - h..=k + h)
+                .map(|(w, i)| {
+                    w * if i >= a && i < z {
+                        self.model[i][j]
+                    } else {
+                        f64::NAN
+                    }
+                })
+                .sum()
+        })
+    }
+
     /// Number of samples with a full window.
     pub fn valid(&self) -> usize {
         self.range.1.saturating_sub(self.range.0)
     }
+}
+
+/// Joint `j` of the measured efforts `raw` smoothed by `sg` at sample
+/// `k` (NaN where its window does not fit). Efforts are held from each
+/// sample to the next (zero-order hold): centred on a sample, the held
+/// signal averages this sample's value and the previous one's (half a
+/// sample late otherwise, a delay the fit would read as an effect).
+fn smoothed_effort_at<const N: usize>(
+    sg: &SavitzkyGolay,
+    raw: &[SVector<f64, N>],
+    k: usize,
+    j: usize,
+) -> f64 {
+    let h = sg.half();
+    if k < h || k + h >= raw.len() {
+        return f64::NAN;
+    }
+    sg.weights(0)
+        .iter()
+        .zip(k - h..=k + h)
+        .map(|(w, i)| w * (0.5 * (raw[i.saturating_sub(1)][j] + raw[i][j])))
+        .sum()
+}
+
+/// [`smoothed_effort_at`] at every joint.
+fn smoothed_effort<const N: usize>(
+    sg: &SavitzkyGolay,
+    raw: &[SVector<f64, N>],
+    k: usize,
+) -> SVector<f64, N> {
+    SVector::from_fn(|j, _| smoothed_effort_at(sg, raw, k, j))
 }
 
 /// 1.4826 x median absolute deviation from the median.
@@ -195,4 +238,92 @@ pub fn robust_std(x: &[f64]) -> f64 {
     let mut dev: Vec<f64> = v.iter().map(|a| (a - med).abs()).collect();
     dev.sort_by(f64::total_cmp);
     1.4826 * dev[dev.len() / 2]
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::effects::Effect;
+    use crate::synth::{synthesize, SynthOptions};
+    use crate::test_robots::Arm2;
+
+    /// The model's rate at every sample, made where asked, is the whole
+    /// record's filter output to the bit (NaN where the window leaves the
+    /// samples with a full window).
+    #[test]
+    fn the_model_rate_at_a_sample_is_the_whole_records() {
+        let robot = Arm2::default();
+        let opts = SynthOptions {
+            duration: 2.0,
+            seed: 4,
+            ..Default::default()
+        };
+        let effects = [Effect::ViscousFriction { joint: 1, fv: 0.3 }];
+        let m = synthesize(&robot, &effects, &opts).expect("a generated record");
+        let sig = Signals::unfloored(&robot, &m);
+        let (a, z) = sig.range;
+        assert!(z > a + 2 * sig.sg.half());
+        for j in 0..2 {
+            let mj: Vec<f64> = (0..sig.model.len())
+                .map(|k| {
+                    if k >= a && k < z {
+                        sig.model[k][j]
+                    } else {
+                        f64::NAN
+                    }
+                })
+                .collect();
+            let whole = sig.sg.apply(&mj, 1);
+            let mut finite = 0;
+            for (k, w) in whole.iter().enumerate() {
+                let at = sig.model_rate(k)[j];
+                assert_eq!(at.is_nan(), w.is_nan(), "sample {k}");
+                if w.is_finite() {
+                    assert_eq!(at.to_bits(), w.to_bits(), "sample {k}");
+                    finite += 1;
+                }
+            }
+            assert!(finite > 1000, "{finite}");
+        }
+    }
+
+    /// The smoothed effort at every sample, made where asked, is the
+    /// whole record's held and filtered effort to the bit, and the residual
+    /// is it minus the model.
+    #[test]
+    fn the_smoothed_effort_at_a_sample_is_the_whole_records() {
+        let robot = Arm2::default();
+        let opts = SynthOptions {
+            duration: 2.0,
+            seed: 6,
+            ..Default::default()
+        };
+        let effects = [Effect::CoulombFriction {
+            joint: 0,
+            fc: 0.4,
+            vw: 0.01,
+        }];
+        let m = synthesize(&robot, &effects, &opts).expect("a generated record");
+        let sig = Signals::unfloored(&robot, &m);
+        let (a, z) = sig.range;
+        for j in 0..2 {
+            let raw: Vec<f64> = m.tau.iter().map(|x| x[j]).collect();
+            let held: Vec<f64> = (0..raw.len())
+                .map(|k| 0.5 * (raw[k.saturating_sub(1)] + raw[k]))
+                .collect();
+            let whole = sig.sg.apply(&held, 0);
+            for (k, w) in whole.iter().enumerate() {
+                let at = sig.tau_at(k, j);
+                assert_eq!(at.is_nan(), w.is_nan(), "sample {k}");
+                assert_eq!(sig.tau(k)[j].to_bits(), at.to_bits(), "sample {k}");
+                if w.is_finite() {
+                    assert_eq!(at.to_bits(), w.to_bits(), "sample {k}");
+                }
+                if k >= a && k < z {
+                    let r = w - sig.model[k][j];
+                    assert_eq!(sig.residual[k][j].to_bits(), r.to_bits(), "sample {k}");
+                }
+            }
+        }
+    }
 }

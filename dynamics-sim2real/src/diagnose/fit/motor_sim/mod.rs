@@ -164,8 +164,8 @@ fn lanes<const N: usize, const L: usize, const B: bool>(
         g.map(|g| g.damping),
         g.map(|g| g.half_width),
     );
+    // One buffer per guess (the copies filling the lanes store nothing).
     let mut out = nan();
-    let mut lane_out: [Vec<f64>; L] = std::array::from_fn(|_| vec![f64::NAN; n]);
     let load = sig.model[a][j];
     // State per lane: motor angle, motor rate, link angle, link rate.
     let mut x = [[0.0f64; L]; 4];
@@ -189,9 +189,8 @@ fn lanes<const N: usize, const L: usize, const B: bool>(
     // A multiply, not a divide, on the integration's dependent chain.
     let inv_jm = g.map(|g| 1.0 / g.jm);
     for k in a..z {
-        for l in 0..L {
-            lane_out[l][k - a] =
-                force::<L, B>(k_[l], c_[l], w_[l], x[0][l] - x[2][l], x[1][l] - x[3][l]);
+        for (l, o) in out.iter_mut().enumerate() {
+            o[k - a] = force::<L, B>(k_[l], c_[l], w_[l], x[0][l] - x[2][l], x[1][l] - x[3][l]);
         }
         if k + 1 >= z {
             break;
@@ -258,8 +257,8 @@ fn lanes<const N: usize, const L: usize, const B: bool>(
         }
     }
     for (l, o) in out.iter_mut().enumerate() {
-        if !dead[l] {
-            std::mem::swap(o, &mut lane_out[l]);
+        if dead[l] {
+            o.fill(f64::NAN);
         }
     }
     out

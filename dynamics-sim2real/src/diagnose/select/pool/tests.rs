@@ -197,3 +197,24 @@ fn a_link_correction_is_held_to_a_body() {
     let (a, z) = (fine.solve(&[0, 1]), fine.solve_physical(&[0, 1], &[rod]));
     assert_eq!(a.theta, z.theta);
 }
+
+/// The Gram matrix formed from one triangle is `tr_mul`'s to the bit, on a
+/// whole matrix and on a block of its rows.
+#[test]
+fn the_gram_from_one_triangle_is_tr_muls() {
+    let mut rng = crate::synth::Rng::new(17);
+    let x = DMatrix::from_fn(203, 9, |_, _| rng.normal() * 1e3);
+    for (a, n) in [(0, 203), (5, 97), (100, 1)] {
+        let xb = x.rows(a, n);
+        let (g, t) = (gram_of(&xb), xb.tr_mul(&xb));
+        assert_eq!(g.shape(), t.shape());
+        for (u, v) in g.iter().zip(t.iter()) {
+            assert_eq!(u.to_bits(), v.to_bits());
+        }
+    }
+    let (g, t) = (gram_of(&x), x.tr_mul(&x));
+    assert!(g
+        .iter()
+        .zip(t.iter())
+        .all(|(u, v)| u.to_bits() == v.to_bits()));
+}
