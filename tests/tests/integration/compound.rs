@@ -210,8 +210,8 @@ fn case_on<R: Robot<N> + Clone + Send + Sync + 'static, const N: usize>(
         hold_links: env("COMPOUND_HOLD_LINKS", 0) == 1,
         ..Options::default()
     };
-    let report: Report = diagnose(robot, &train, &holdout, &options, &|_, _| {})
-        .map_err(|e| e.to_string())?;
+    let report: Report =
+        diagnose(robot, &train, &holdout, &options, &|_, _| {}).map_err(|e| e.to_string())?;
     // Only now the truth: which effects are large enough to be seen
     // (friction on every joint of a realistic arm is, at 2-8 % of the
     // peak effort against noise of at most 0.4 %).
