@@ -14,29 +14,11 @@ use dynamics_runtime::batch::{self, Level};
 use dynamics_runtime::{linearize, Robot};
 use nalgebra::SVector;
 
-const STATES: usize = 1000;
-
 #[path = "support/cpu_time.rs"]
 mod cpu_time;
-
-/// Deterministic states in the reference sampling box (q in [-pi, pi],
-/// v and a in [-2, 2]), as `benches/dynamics.rs`.
-fn states<const N: usize>() -> [Vec<SVector<f64, N>>; 3] {
-    let mut x: u64 = 0x9E37_79B9_7F4A_7C15;
-    let mut next = move |lo: f64, hi: f64| {
-        x ^= x << 13;
-        x ^= x >> 7;
-        x ^= x << 17;
-        lo + (hi - lo) * ((x >> 11) as f64 / (1u64 << 53) as f64)
-    };
-    let mut out: [Vec<SVector<f64, N>>; 3] = Default::default();
-    for _ in 0..STATES {
-        out[0].push(SVector::from_fn(|_, _| next(-3.1, 3.1)));
-        out[1].push(SVector::from_fn(|_, _| next(-2.0, 2.0)));
-        out[2].push(SVector::from_fn(|_, _| next(-2.0, 2.0)));
-    }
-    out
-}
+#[path = "support/states.rs"]
+mod states;
+use states::{states, STATES};
 
 fn bench_robot<R: Robot<N>, const N: usize, M: Measurement>(
     c: &mut Criterion<M>,

@@ -18,29 +18,13 @@ use dynamics_runtime::{linearize, Robot};
 use nalgebra::SVector;
 use rustix::time::{clock_gettime, ClockId};
 
-const STATES: usize = 1000;
+#[path = "support/states.rs"]
+mod states;
+use states::{states, STATES};
 
 fn now_ns() -> u64 {
     let t = clock_gettime(ClockId::ThreadCPUTime);
     t.tv_sec as u64 * 1_000_000_000 + t.tv_nsec as u64
-}
-
-/// Deterministic states in the reference sampling box, as `benches/batch.rs`.
-fn states<const N: usize>() -> [Vec<SVector<f64, N>>; 3] {
-    let mut x: u64 = 0x9E37_79B9_7F4A_7C15;
-    let mut next = move |lo: f64, hi: f64| {
-        x ^= x << 13;
-        x ^= x >> 7;
-        x ^= x << 17;
-        lo + (hi - lo) * ((x >> 11) as f64 / (1u64 << 53) as f64)
-    };
-    let mut out: [Vec<SVector<f64, N>>; 3] = Default::default();
-    for _ in 0..STATES {
-        out[0].push(SVector::from_fn(|_, _| next(-3.1, 3.1)));
-        out[1].push(SVector::from_fn(|_, _| next(-2.0, 2.0)));
-        out[2].push(SVector::from_fn(|_, _| next(-2.0, 2.0)));
-    }
-    out
 }
 
 /// One timed variant: a name and the work of one run over the states.
