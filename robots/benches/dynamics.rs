@@ -12,30 +12,22 @@ use criterion::{criterion_group, criterion_main, Criterion};
 use dynamics_runtime::{linearize, Robot};
 use nalgebra::SVector;
 
-const STATES: usize = 1000;
-
-/// Deterministic states in the reference sampling box (q in [-pi, pi],
-/// v and a in [-2, 2]).
+/// The batch benches' states (`support/states.rs`), one `[q, v, a]` per
+/// state.
 fn states<const N: usize>() -> Vec<[SVector<f64, N>; 3]> {
-    let mut x: u64 = 0x9E37_79B9_7F4A_7C15;
-    let mut next = move |lo: f64, hi: f64| {
-        x ^= x << 13;
-        x ^= x >> 7;
-        x ^= x << 17;
-        lo + (hi - lo) * ((x >> 11) as f64 / (1u64 << 53) as f64)
-    };
-    (0..STATES)
-        .map(|_| {
-            let q = SVector::from_fn(|_, _| next(-3.1, 3.1));
-            let v = SVector::from_fn(|_, _| next(-2.0, 2.0));
-            let a = SVector::from_fn(|_, _| next(-2.0, 2.0));
-            [q, v, a]
-        })
+    let [q, v, a] = states::states::<N>();
+    q.into_iter()
+        .zip(v)
+        .zip(a)
+        .map(|((q, v), a)| [q, v, a])
         .collect()
 }
 
 #[path = "support/cpu_time.rs"]
 mod cpu_time;
+#[path = "support/states.rs"]
+mod states;
+use states::STATES;
 
 fn bench_robot<R: Robot<N>, const N: usize, M: Measurement>(
     c: &mut Criterion<M>,

@@ -1,6 +1,6 @@
-//! The states the batch benches evaluate: deterministic, in the reference
-//! sampling box (q in [-3.1, 3.1], v and a in [-2, 2]), as
-//! `benches/dynamics.rs` draws them.
+//! The states the benches evaluate (`dynamics`, `batch`, `batch_min`):
+//! deterministic, in the reference sampling box (q in [-3.1, 3.1], v and a
+//! in [-2, 2]).
 
 use nalgebra::SVector;
 
