@@ -41,7 +41,7 @@ pub use late::offer_delays;
 pub use links::{combined, delta, link_basis, regressor_columns, LinkBasis};
 pub use motor::{motor_feasible, motor_grid, signature_limit, MotorGuess};
 pub use prepared::Prepared;
-pub use records::Records;
+pub use records::{Record, Records};
 pub use visibility::{identifiable, Excitation};
 
 use crate::diagnose::Options;

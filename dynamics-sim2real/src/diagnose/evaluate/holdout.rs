@@ -26,7 +26,7 @@ fn raw_residual<const N: usize>(h: &Prepared<N>) -> Vec<f64> {
     let mut out = Vec::with_capacity(h.n());
     for &k in &h.rows {
         for j in 0..N {
-            let x = h.sig.tau_raw[k][j] - h.sig.model[k][j];
+            let x = h.sig.tau_raw()[k][j] - h.sig.model[k][j];
             out.push(if x.is_finite() { x } else { 0.0 });
         }
     }
