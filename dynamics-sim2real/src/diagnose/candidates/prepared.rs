@@ -116,6 +116,19 @@ impl<const N: usize> Prepared<N> {
             .sum()
     }
 
+    /// [`Prepared::sse`] of `r` given at the rows (one entry a row, in
+    /// their order).
+    pub fn sse_rows(&self, r: &[SVector<f64, N>]) -> f64 {
+        r.iter()
+            .take(self.rows.len())
+            .map(|v| {
+                (0..N)
+                    .map(|j| (v[j] / self.sig.floor[j]).powi(2))
+                    .sum::<f64>()
+            })
+            .sum()
+    }
+
     /// RMS of joint `j` of `r` over the rows in use.
     pub fn rms(&self, r: &[SVector<f64, N>], j: usize) -> f64 {
         let s: f64 = self.rows.iter().map(|&k| r[k][j].powi(2)).sum();
