@@ -14,7 +14,7 @@ use dynamics_cli::RobotInfo;
 use dynamics_runtime::linearize::{self, BlockMatrix, DiscretizeError};
 use dynamics_runtime::{DynamicsError, Parameters, Robot};
 use dynamics_sim2real::data::{read_csv_str, Measured};
-use dynamics_sim2real::diagnose::{diagnose, Options, Report};
+use dynamics_sim2real::diagnose::{diagnose_owned, Options, Report};
 use dynamics_sim2real::effects::Calibrated;
 use dynamics_sim2real::identify::{identify, Options as IdentifyOptions};
 use nalgebra::{SMatrix, SVector};
@@ -581,10 +581,10 @@ where
         progress: &(dyn Fn(usize, usize) + Sync),
     ) -> Result<(Report, Vec<String>), GapError> {
         // What `dynamics_cli::gap::diagnose_data` does, with sources that
-        // may be in memory.
+        // may be in memory (handed over to the diagnosis, not copied).
         let a = train.read(&R::JOINT_NAMES)?;
         let b = holdout.read(&R::JOINT_NAMES)?;
-        let report = diagnose(&self.0, &a, &b, options, progress)?;
+        let report = diagnose_owned(&self.0, a, b, options, progress)?;
         let warnings = dynamics_cli::warnings::lines(&report.warnings);
         Ok((report, warnings))
     }

@@ -7,7 +7,7 @@ use dynamics_runtime::Robot;
 use dynamics_sim2real::baseline::undo;
 use dynamics_sim2real::data::Measured;
 use dynamics_sim2real::diagnose::traces::{traces, Traces};
-use dynamics_sim2real::diagnose::{diagnose, Options, Report};
+use dynamics_sim2real::diagnose::{diagnose_owned, Options, Report};
 use dynamics_sim2real::effects::Calibrated;
 use dynamics_sim2real::explained;
 
@@ -86,7 +86,8 @@ fn undone<R: Robot<N> + Clone + Send + Sync + 'static, const N: usize>(
 }
 
 /// Reads both files, corrects each by `fix` (the record as read is dropped
-/// once corrected: a long log is not held twice) and diagnoses them.
+/// once corrected: a long log is not held twice) and diagnoses them,
+/// handing the records over (the diagnosis shares them, not copies them).
 fn diagnose_read<R: Robot<N> + Clone + Send + Sync + 'static, const N: usize>(
     robot: &R,
     fix: &dyn Fn(Measured<N>) -> Result<Measured<N>, GapError>,
@@ -99,7 +100,7 @@ fn diagnose_read<R: Robot<N> + Clone + Send + Sync + 'static, const N: usize>(
     let a = fix(a)?;
     let (b, about_b) = holdout.read_described(&R::JOINT_NAMES)?;
     let b = fix(b)?;
-    let report = diagnose(robot, &a, &b, options, progress)?;
+    let report = diagnose_owned(robot, a, b, options, progress)?;
     let warnings = crate::warnings::lines(&report.warnings);
     let about = [
         about_a.map(|s| format!("training data: {s}")),

@@ -38,7 +38,7 @@ pub fn design<R: Robot<N>, const N: usize>(
     let mut series: Vec<Option<Vec<f64>>> = vec![None; columns.len() * N];
     let mut coulomb = vec![SVector::<f64, N>::zeros(); n];
     for (k, c) in coulomb.iter_mut().enumerate() {
-        *c = sig.qd_light[k].map(|v| (v / sign_zone).tanh());
+        *c = sig.qd_light(k).map(|v| (v / sign_zone).tanh());
     }
     for k in a..z {
         let have = robot

@@ -9,9 +9,17 @@ use super::prepared::Prepared;
 
 /// Whitened column of the rows of `p` from per-sample efforts `f`.
 pub fn whitened<const N: usize>(p: &Prepared<N>, f: impl Fn(usize) -> SVector<f64, N>) -> Vec<f64> {
+    whitened_rows(p, |_, k| f(k))
+}
+
+/// [`whitened`] of `f(i, k)` at row `i` (sample `k`) of `p`.
+pub fn whitened_rows<const N: usize>(
+    p: &Prepared<N>,
+    f: impl Fn(usize, usize) -> SVector<f64, N>,
+) -> Vec<f64> {
     let mut out = Vec::with_capacity(p.n());
-    for &k in &p.rows {
-        let v = f(k);
+    for (i, &k) in p.rows.iter().enumerate() {
+        let v = f(i, k);
         for j in 0..N {
             let x = v[j] / p.sig.floor[j];
             out.push(if x.is_finite() { x } else { 0.0 });

@@ -66,6 +66,28 @@ impl<const N: usize> Prepared<N> {
         chunk: usize,
     ) -> Self {
         let (sig, levels) = Signals::new(robot, m, levels, chunk);
+        Self::of_signals(robot, sig, levels, chunk)
+    }
+
+    /// [`Prepared::chunked`] on a record handed over, which the signals
+    /// share ([`Signals::shared`]) rather than copy what they read of it.
+    pub(crate) fn shared<R: Robot<N> + Clone + Send + Sync + 'static>(
+        robot: &R,
+        m: &Arc<Measured<N>>,
+        levels: Option<&[SVector<f64, N>; 3]>,
+        chunk: usize,
+    ) -> Self {
+        let (sig, levels) = Signals::shared(robot, m, levels, chunk);
+        Self::of_signals(robot, sig, levels, chunk)
+    }
+
+    /// The rows and the column cache of `sig`.
+    fn of_signals<R: Robot<N> + Clone + Send + Sync + 'static>(
+        robot: &R,
+        sig: Signals<N>,
+        levels: [SVector<f64, N>; 3],
+        chunk: usize,
+    ) -> Self {
         let h = sig.sg.half();
         let (a, z) = sig.range;
         let rows: Vec<usize> = (a + h..z.saturating_sub(h))
@@ -89,6 +111,19 @@ impl<const N: usize> Prepared<N> {
             .map(|&k| {
                 (0..N)
                     .map(|j| (r[k][j] / self.sig.floor[j]).powi(2))
+                    .sum::<f64>()
+            })
+            .sum()
+    }
+
+    /// [`Prepared::sse`] of `r` given at the rows (one entry a row, in
+    /// their order).
+    pub fn sse_rows(&self, r: &[SVector<f64, N>]) -> f64 {
+        r.iter()
+            .take(self.rows.len())
+            .map(|v| {
+                (0..N)
+                    .map(|j| (v[j] / self.sig.floor[j]).powi(2))
                     .sum::<f64>()
             })
             .sum()

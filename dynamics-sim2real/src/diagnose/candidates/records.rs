@@ -3,7 +3,8 @@
 //! floor and column cache ([`Prepared`]), and what the training record can
 //! show ([`Excitation`]).
 
-use std::borrow::Cow;
+use std::ops::Deref;
+use std::sync::Arc;
 
 use super::prepared::Prepared;
 use super::visibility::{effort_sign, excitation, Excitation};
@@ -11,14 +12,36 @@ use crate::data::{prepare, DataError, Measured};
 use crate::diagnose::{DiagnoseError, Options};
 use crate::Warning;
 use dynamics_runtime::Robot;
+use nalgebra::SVector;
+
+/// A record as the caller gave it: lent (the signals then copy what they
+/// read of it), or handed over (shared with the signals, not copied).
+#[derive(Debug, Clone)]
+pub enum Record<'a, const N: usize> {
+    /// Lent by the caller.
+    Lent(&'a Measured<N>),
+    /// Handed over, shared.
+    Shared(Arc<Measured<N>>),
+}
+
+impl<const N: usize> Deref for Record<'_, N> {
+    type Target = Measured<N>;
+
+    fn deref(&self) -> &Measured<N> {
+        match self {
+            Record::Lent(m) => m,
+            Record::Shared(m) => m,
+        }
+    }
+}
 
 /// The training and held-out records, prepared.
 #[derive(Debug, Clone)]
 pub struct Records<'a, const N: usize> {
     /// The training record as recorded (prepared).
-    pub train: Cow<'a, Measured<N>>,
+    pub train: Record<'a, N>,
     /// The held-out record as recorded (prepared).
-    pub holdout: Cow<'a, Measured<N>>,
+    pub holdout: Record<'a, N>,
     /// The training record made ready for fitting.
     pub p: Prepared<N>,
     /// The held-out record made ready for fitting.
@@ -44,16 +67,27 @@ fn check<const N: usize>(m: &Measured<N>, which: &'static str) -> Result<(), Dia
     Ok(())
 }
 
-/// `m` prepared (`data::prepare`) unless it is already.
-fn prepared<'a, const N: usize>(
-    m: &'a Measured<N>,
-    which: &str,
-) -> Result<Cow<'a, Measured<N>>, DataError> {
+/// `m` prepared (`data::prepare`) unless it is already (a record
+/// prepared here is the diagnosis's own, shared with its signals).
+fn prepared<'a, const N: usize>(m: Record<'a, N>, which: &str) -> Result<Record<'a, N>, DataError> {
     Ok(if m.prepared {
-        Cow::Borrowed(m)
+        m
     } else {
-        Cow::Owned(prepare(m, which)?)
+        Record::Shared(Arc::new(prepare(&m, which)?))
     })
+}
+
+/// `m` made ready for fitting, its signals sharing it when handed over.
+fn ready<R: Robot<N> + Clone + Send + Sync + 'static, const N: usize>(
+    robot: &R,
+    m: &Record<'_, N>,
+    levels: Option<&[SVector<f64, N>; 3]>,
+    chunk: usize,
+) -> Prepared<N> {
+    match m {
+        Record::Lent(m) => Prepared::chunked(robot, m, levels, chunk),
+        Record::Shared(m) => Prepared::shared(robot, m, levels, chunk),
+    }
 }
 
 impl<'a, const N: usize> Records<'a, N> {
@@ -63,8 +97,8 @@ impl<'a, const N: usize> Records<'a, N> {
     /// an effort column's sign is flipped, or nothing moves.
     pub fn new<R: Robot<N> + Clone + Send + Sync + 'static>(
         robot: &R,
-        train: &'a Measured<N>,
-        holdout: &'a Measured<N>,
+        train: Record<'a, N>,
+        holdout: Record<'a, N>,
         options: &Options,
     ) -> Result<Self, DiagnoseError> {
         let train = prepared(train, "training")?;
@@ -77,8 +111,8 @@ impl<'a, const N: usize> Records<'a, N> {
             .map(|n| n.per_joint::<N>())
             .transpose()?;
         let (p, h) = rayon::join(
-            || Prepared::chunked(robot, &train, levels.as_ref(), options.chunk),
-            || Prepared::chunked(robot, &holdout, levels.as_ref(), options.chunk),
+            || ready(robot, &train, levels.as_ref(), options.chunk),
+            || ready(robot, &holdout, levels.as_ref(), options.chunk),
         );
         let mut warnings: Vec<Warning> = train.warnings.clone();
         warnings.extend(holdout.warnings.iter().cloned());

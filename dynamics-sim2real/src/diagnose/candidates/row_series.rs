@@ -68,18 +68,37 @@ fn interval_mean(f: &impl Fn(f64) -> f64, prev: f64, v: f64, next: f64) -> f64 {
     0.5 * (half(0.5 * (prev + v), v) + half(v, 0.5 * (v + next)))
 }
 
-/// Law `i` of joint `j`'s lightly smoothed velocity, averaged over sample
-/// `k`'s interval ([`interval_mean`]); zero where the velocity is not
-/// finite, a neighbour that is not standing in for itself.
-fn raw<const N: usize>(sig: &Signals<N>, i: usize, k: usize, j: usize) -> f64 {
-    let v = &sig.qd_light;
-    let x = v[k][j];
+/// Joint `j`'s lightly smoothed velocity ([`Signals::qd_light_at`]) over
+/// samples `from..to` and the sample either side of them that the record
+/// has: the first sample's index and the values.
+fn light<const N: usize>(sig: &Signals<N>, j: usize, from: usize, to: usize) -> Light {
+    let first = from.saturating_sub(1);
+    let end = to.saturating_add(1).min(sig.t.len());
+    Light {
+        first,
+        v: (first..end).map(|k| sig.qd_light_at(k, j)).collect(),
+    }
+}
+
+/// A stretch of one joint's lightly smoothed velocity ([`light`]).
+struct Light {
+    first: usize,
+    v: Vec<f64>,
+}
+
+/// Law `i` of the lightly smoothed velocity `v` (a stretch holding samples
+/// `k - 1..=k + 1`, those the record has), averaged over sample `k`'s
+/// interval ([`interval_mean`]); zero where the velocity is not finite, a
+/// neighbour that is not (or is past the record's end) standing in for
+/// itself.
+fn raw(v: &Light, i: usize, k: usize) -> f64 {
+    let x = v.v[k - v.first];
     if !x.is_finite() {
         return 0.0;
     }
     let near = |i: Option<usize>| {
-        i.and_then(|i| v.get(i))
-            .map(|y| y[j])
+        i.and_then(|i| v.v.get(i - v.first))
+            .copied()
             .filter(|y| y.is_finite())
             .unwrap_or(x)
     };
@@ -154,8 +173,9 @@ impl<const N: usize> RowSeries<N> {
                 at_rows[r][0][j] = smoothed_qdd(sig, k, j);
             }
         }
-        for i in 0..LAWS {
-            for j in 0..N {
+        for j in 0..N {
+            let v = light(sig, j, 0, n);
+            for i in 0..LAWS {
                 let mut carry = Carry::default();
                 let mut next = 0;
                 let mut running = Vec::with_capacity(n);
@@ -164,7 +184,7 @@ impl<const N: usize> RowSeries<N> {
                         carries[next][i][j] = carry;
                         next += 1;
                     }
-                    running.push(carry.step(raw(sig, i, k, j), sig.dt, sig.qd_measured));
+                    running.push(carry.step(raw(&v, i, k), sig.dt, sig.qd_measured));
                 }
                 let col = sig.sg.apply(&running, order(sig));
                 for (r, &k) in rows.iter().enumerate() {
@@ -232,8 +252,9 @@ impl<const N: usize> RowSeries<N> {
         let end = first.saturating_add(self.chunk).min(n);
         let (from, to) = (first.saturating_sub(h), end.saturating_add(h).min(n));
         let mut carry = self.carries[c][i][j];
+        let v = light(sig, j, from, to);
         let running: Vec<f64> = (from..to)
-            .map(|k| carry.step(raw(sig, i, k, j), sig.dt, sig.qd_measured))
+            .map(|k| carry.step(raw(&v, i, k), sig.dt, sig.qd_measured))
             .collect();
         let col = sig.sg.apply(&running, order(sig));
         (first, col[first - from..end - from].to_vec())

@@ -26,7 +26,7 @@ fn raw_residual<const N: usize>(h: &Prepared<N>) -> Vec<f64> {
     let mut out = Vec::with_capacity(h.n());
     for &k in &h.rows {
         for j in 0..N {
-            let x = h.sig.tau_raw[k][j] - h.sig.model[k][j];
+            let x = h.sig.tau_raw()[k][j] - h.sig.model[k][j];
             out.push(if x.is_finite() { x } else { 0.0 });
         }
     }
@@ -36,7 +36,14 @@ fn raw_residual<const N: usize>(h: &Prepared<N>) -> Vec<f64> {
 impl<'a, const N: usize> Holdout<'a, N> {
     /// The columns of the chosen set on `h`.
     pub fn new(h: &'a Prepared<N>, links: &[Vec<Vec<f64>>], pool: &Pool, e: &Explanation) -> Self {
-        let hm = without_others(h, pool, &e.set, &e.sol, None);
+        // The record with the others' effort in its model, which a motor
+        // side's column is simulated against: made (a copy of the model and
+        // the residual at every sample) only when the set has one.
+        let fixed = e.set.iter().any(|&t| {
+            let term = &pool.terms[t];
+            term.link.is_none() && term.fixed.is_some()
+        });
+        let hm = fixed.then(|| without_others(h, pool, &e.set, &e.sol, None));
         let cols = e
             .set
             .iter()
@@ -49,12 +56,11 @@ impl<'a, const N: usize> Holdout<'a, N> {
                         .unwrap_or_else(|| vec![vec![0.0; h.n()]; b.v.ncols()]);
                     return (cols.into_iter().map(DVector::from_vec).collect(), None);
                 }
-                match term.fixed {
-                    Some(_) => (
-                        vec![],
-                        Some(DVector::from_vec(fixed_column(&term.fit, &hm))),
-                    ),
-                    None => (
+                match (term.fixed.as_ref(), hm.as_ref()) {
+                    (Some(_), Some(hm)) => {
+                        (vec![], Some(DVector::from_vec(fixed_column(&term.fit, hm))))
+                    }
+                    _ => (
                         linear_columns(term.fit.candidate, h)
                             .into_iter()
                             .map(DVector::from_vec)

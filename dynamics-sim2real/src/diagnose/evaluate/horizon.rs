@@ -83,7 +83,7 @@ pub fn prediction_error<R: Robot<N> + Clone + Sync, const N: usize>(
             sim.advance(
                 plant,
                 sig.t[k + 1],
-                &Effect::applied_effort(&sensor, &sig.tau_raw[k + e]),
+                &Effect::applied_effort(&sensor, &sig.tau_raw()[k + e]),
                 tol,
             )
             .map_err(|e| format!("the window from t = {:.3} s: {e}", sig.t[k0]))?;

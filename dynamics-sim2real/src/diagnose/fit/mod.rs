@@ -31,7 +31,8 @@ use dynamics_runtime::Robot;
 pub(crate) use motor_sim::transmitted::motor_transmitted_raw;
 pub use one::{fixed_column, Fit};
 pub use window::{
-    corrected, corrected_in, fit_windowed, holdout_window_in, inside, window_of, windowed, Windows,
+    corrected, corrected_in, corrected_rows, fit_windowed, holdout_window_in, inside, window_of,
+    windowed, Windows,
 };
 
 /// Fits `c` to the residual of `p`.

@@ -4,7 +4,7 @@
 use nalgebra::SVector;
 
 use super::motor_sim::transmitted::motor_transmitted;
-use crate::diagnose::candidates::{whitened, Candidate, MotorGuess, Prepared};
+use crate::diagnose::candidates::{whitened_rows, Candidate, MotorGuess, Prepared};
 use crate::diagnose::numeric::aicc;
 use crate::effects::Effect;
 
@@ -103,24 +103,67 @@ impl Fit {
     pub fn corrected<const N: usize>(&self, p: &Prepared<N>) -> Vec<SVector<f64, N>> {
         let mut r = p.sig.residual.clone();
         let (a, z) = p.sig.range;
+        let motor = self.transmitted(p);
+        for (k, rk) in r.iter_mut().enumerate().take(z).skip(a) {
+            *rk = self.corrected_at(p, motor.as_ref(), k);
+        }
+        r
+    }
+
+    /// [`Fit::corrected`] at the rows of `p` only, one entry a row: the
+    /// same values, the candidate's columns made at the rows alone (a
+    /// motor side is still simulated over the whole record).
+    pub fn corrected_rows<const N: usize>(&self, p: &Prepared<N>) -> Vec<SVector<f64, N>> {
+        let (a, z) = p.sig.range;
+        let motor = self.transmitted(p);
+        p.rows
+            .iter()
+            .map(|&k| {
+                if k >= a && k < z {
+                    self.corrected_at(p, motor.as_ref(), k)
+                } else {
+                    p.sig.residual[k]
+                }
+            })
+            .collect()
+    }
+
+    /// A motor side's joint and the effort its transmission carries there
+    /// along `p` (NaN outside the range); `None` for the other fits.
+    fn transmitted<const N: usize>(&self, p: &Prepared<N>) -> Option<(usize, Vec<f64>)> {
         match (self.candidate, self.motor) {
             (Candidate::Elasticity(j), Some(g))
             | (Candidate::Backlash(j), Some(g))
             | (Candidate::Armature(j), Some(g)) => {
                 let backlash = matches!(self.candidate, Candidate::Backlash(_));
                 let t = motor_transmitted(&p.sig, j, &g, backlash, &p.basis.compliance);
-                for k in a..z {
-                    if t[k].is_finite() {
-                        r[k][j] = t[k] - p.sig.model[k][j];
-                    }
+                Some((j, t))
+            }
+            _ => None,
+        }
+    }
+
+    /// The residual at sample `k` of the range once this effect is added:
+    /// a motor side's transmitted effort `motor` ([`Fit::transmitted`])
+    /// in place of the model's at its joint where finite, else the
+    /// columns times the parameters taken away.
+    fn corrected_at<const N: usize>(
+        &self,
+        p: &Prepared<N>,
+        motor: Option<&(usize, Vec<f64>)>,
+        k: usize,
+    ) -> SVector<f64, N> {
+        let mut r = p.sig.residual[k];
+        match motor {
+            Some((j, t)) => {
+                if t[k].is_finite() {
+                    r[*j] = t[k] - p.sig.model[k][*j];
                 }
             }
-            (c, _) => {
-                for (k, rk) in r.iter_mut().enumerate().take(z).skip(a) {
-                    let cols = c.columns(&p.sig, &p.basis, k);
-                    for (i, th) in self.theta.iter().enumerate() {
-                        *rk -= cols[i] * *th;
-                    }
+            None => {
+                let cols = self.candidate.columns(&p.sig, &p.basis, k);
+                for (i, th) in self.theta.iter().enumerate() {
+                    r -= cols[i] * *th;
                 }
             }
         }
@@ -136,8 +179,8 @@ impl Fit {
 /// The fixed column of a motor-side fit on the rows of `p`: the residual
 /// minus the residual it leaves.
 pub fn fixed_column<const N: usize>(f: &Fit, p: &Prepared<N>) -> Vec<f64> {
-    let after = f.corrected(p);
-    whitened(p, |k| p.sig.residual[k] - after[k])
+    let after = f.corrected_rows(p);
+    whitened_rows(p, |i, k| p.sig.residual[k] - after[i])
 }
 
 /// Joint `j`'s whitening weight, the nominal model's whitened SSE over all
@@ -151,4 +194,74 @@ pub fn whitened_nominal<const N: usize>(p: &Prepared<N>, j: usize) -> (f64, f64,
         .map(|&k| (p.sig.residual[k][j] * w).powi(2))
         .sum();
     (w, p.sse(&p.sig.residual), own)
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::effects::{Effect, SIGN_SMOOTHING};
+    use crate::synth::{synthesize, SynthOptions};
+    use crate::test_robots::Arm2;
+
+    fn fit(candidate: Candidate, theta: Vec<f64>, motor: Option<MotorGuess>) -> Fit {
+        Fit {
+            candidate,
+            std: vec![0.0; theta.len()],
+            theta,
+            motor,
+            motor_std: None,
+            sse: 0.0,
+            k: 1,
+        }
+    }
+
+    /// The residual a fit leaves, made at the rows alone, is the whole
+    /// record's at the rows to the bit (a linear fit, a sign-smoothed one,
+    /// a motor side); the whitened sum of squares from the rows is the
+    /// whole record's; and a motor side's fixed column is the difference
+    /// of the whole residuals.
+    #[test]
+    fn the_residual_at_the_rows_is_the_whole_records() {
+        let robot = Arm2::default();
+        let opts = SynthOptions {
+            duration: 3.0,
+            seed: 12,
+            ..Default::default()
+        };
+        let effects = [Effect::ViscousFriction { joint: 1, fv: 0.4 }];
+        let m = synthesize(&robot, &effects, &opts).expect("a generated record");
+        let p = Prepared::new(&robot, &m);
+        assert!(p.rows.len() > 50);
+        let guess = MotorGuess {
+            jm: 0.05,
+            stiffness: 3000.0,
+            damping: 2.0,
+            half_width: 0.0,
+        };
+        let fits = [
+            fit(Candidate::Viscous(1), vec![0.35], None),
+            fit(Candidate::Coulomb(0, SIGN_SMOOTHING), vec![0.2], None),
+            fit(Candidate::Elasticity(1), vec![], Some(guess)),
+        ];
+        for f in &fits {
+            let whole = f.corrected(&p);
+            let rows = f.corrected_rows(&p);
+            assert_eq!(rows.len(), p.rows.len());
+            for (r, &k) in rows.iter().zip(&p.rows) {
+                for j in 0..2 {
+                    assert_eq!(r[j].to_bits(), whole[k][j].to_bits(), "{f:?} sample {k}");
+                }
+            }
+            assert_eq!(p.sse_rows(&rows).to_bits(), p.sse(&whole).to_bits());
+        }
+        let whole = fits[2].corrected(&p);
+        let col = fixed_column(&fits[2], &p);
+        let direct = crate::diagnose::candidates::whitened(&p, |k| p.sig.residual[k] - whole[k]);
+        assert_eq!(col.len(), direct.len());
+        assert!(col
+            .iter()
+            .zip(&direct)
+            .all(|(a, b)| a.to_bits() == b.to_bits()));
+        assert!(col.iter().any(|x| *x != 0.0));
+    }
 }

@@ -26,7 +26,7 @@ pub use pool::{Pool, Solution};
 use nalgebra::SVector;
 
 use crate::diagnose::candidates::{regressor_columns, Prepared};
-use crate::diagnose::fit::{corrected, Fit, Fitted, Windows};
+use crate::diagnose::fit::{corrected_rows, Fit, Fitted, Windows};
 use crate::diagnose::Options;
 use crate::effects::EffectKind;
 use dynamics_runtime::Robot;
@@ -91,6 +91,6 @@ pub fn select<R: Robot<N> + Clone + Sync, const N: usize>(
 /// training record, not refitted; a windowed effect limited to the window
 /// found on `h`): `n ln(sse / n)` of the whitened residual it leaves.
 pub fn held_out_deviance<const N: usize>(f: &Fit, h: &Prepared<N>, windows: &Windows) -> f64 {
-    let (hs, hn) = (h.sse(&corrected(f, h, windows)), h.n() as f64);
+    let (hs, hn) = (h.sse_rows(&corrected_rows(f, h, windows)), h.n() as f64);
     hn * (hs.max(1e-300) / hn).ln()
 }

@@ -6,6 +6,7 @@
 mod noise;
 mod segments;
 
+use std::ops::Deref;
 use std::sync::Arc;
 
 use nalgebra::SVector;
@@ -23,7 +24,11 @@ pub const LIGHT_HALF_WIDTH: f64 = 0.004;
 
 /// One data set, prepared. The per-sample signals that do not change once
 /// made are shared (`Arc`) by the copies of a record (the compound
-/// explanation's, which change the model's efforts and the residual only).
+/// explanation's, which change the model's efforts and the residual only);
+/// what they read of the record as recorded (its times, raw efforts and
+/// the velocities the light smoother reads) is the record itself, shared
+/// with the diagnosis's own when it was handed over
+/// ([`Signals::shared`]), else a copy of those fields.
 #[derive(Debug, Clone)]
 pub struct Signals<const N: usize> {
     /// Sample interval.
@@ -31,7 +36,7 @@ pub struct Signals<const N: usize> {
     /// First and one-past-last sample with a full filter window.
     pub range: (usize, usize),
     /// Times.
-    pub t: Arc<[f64]>,
+    pub t: Times<N>,
     /// Smoothed positions.
     pub q: Arc<[SVector<f64, N>]>,
     /// Smoothed velocities.
@@ -42,12 +47,13 @@ pub struct Signals<const N: usize> {
     /// the first derivative of their smoothing fit; else the second of
     /// the positions').
     pub qd_measured: bool,
-    /// Velocities smoothed only lightly (over [`LIGHT_HALF_WIDTH`]): the
-    /// argument of effects that are nonlinear in the velocity, whose
-    /// columns are then filtered as the residual shows them.
-    pub qd_light: Arc<[SVector<f64, N>]>,
-    /// Measured efforts, raw.
-    pub tau_raw: Arc<[SVector<f64, N>]>,
+    /// The light smoother of [`Signals::qd_light`] (over
+    /// [`LIGHT_HALF_WIDTH`]).
+    pub light: SavitzkyGolay,
+    /// The record as recorded, as far as these signals read it: times,
+    /// raw efforts, and the velocities (measured) or else positions the
+    /// light smoother reads.
+    pub record: Arc<Measured<N>>,
     /// The nominal model's efforts along the smoothed motion.
     pub model: Vec<SVector<f64, N>>,
     /// `tau - model`.
@@ -59,6 +65,45 @@ pub struct Signals<const N: usize> {
     pub sg: SavitzkyGolay,
     /// Which samples a fit may use (holes and filled samples excluded).
     pub mask: Mask,
+}
+
+/// A record's sample times, read from the record itself (shared, not
+/// copied, by the signals of the record and their copies).
+#[derive(Debug, Clone)]
+pub struct Times<const N: usize>(Arc<Measured<N>>);
+
+impl<const N: usize> Times<N> {
+    /// The times of `record`.
+    pub fn of(record: &Arc<Measured<N>>) -> Self {
+        Times(Arc::clone(record))
+    }
+}
+
+impl<const N: usize> Deref for Times<N> {
+    type Target = [f64];
+
+    fn deref(&self) -> &[f64] {
+        &self.0.t
+    }
+}
+
+/// What [`Signals`] read of `m` as recorded, copied: its times, raw
+/// efforts, and the velocities (when measured) or else positions the
+/// light smoother reads (the other fields empty).
+fn kept<const N: usize>(m: &Measured<N>) -> Measured<N> {
+    let (q, qd) = if m.qd_measured {
+        (Vec::new(), m.qd.clone())
+    } else {
+        (m.q.clone(), Vec::new())
+    };
+    Measured {
+        t: m.t.clone(),
+        q,
+        qd,
+        tau: m.tau.clone(),
+        qd_measured: m.qd_measured,
+        ..Default::default()
+    }
 }
 
 fn column<const N: usize>(v: &[SVector<f64, N>], j: usize) -> Vec<f64> {
@@ -82,7 +127,31 @@ impl<const N: usize> Signals<N> {
         levels: Option<&[SVector<f64, N>; 3]>,
         chunk: usize,
     ) -> (Self, [SVector<f64, N>; 3]) {
-        let mut sig = Self::unfloored_chunked(robot, m, chunk);
+        Self::floored(robot, m, Arc::new(kept(m)), levels, chunk)
+    }
+
+    /// [`Signals::new`] on a record handed over: the signals read its
+    /// times, raw efforts and velocities from `m` itself, shared, rather
+    /// than from a copy.
+    pub fn shared<R: Robot<N>>(
+        robot: &R,
+        m: &Arc<Measured<N>>,
+        levels: Option<&[SVector<f64, N>; 3]>,
+        chunk: usize,
+    ) -> (Self, [SVector<f64, N>; 3]) {
+        Self::floored(robot, m, Arc::clone(m), levels, chunk)
+    }
+
+    /// [`Signals::new`], reading `record` (`m`, or what [`kept`] copies of
+    /// it) where they read the record as recorded.
+    fn floored<R: Robot<N>>(
+        robot: &R,
+        m: &Measured<N>,
+        record: Arc<Measured<N>>,
+        levels: Option<&[SVector<f64, N>; 3]>,
+        chunk: usize,
+    ) -> (Self, [SVector<f64, N>; 3]) {
+        let mut sig = Self::made(robot, m, record, chunk);
         let levels = match levels {
             Some(l) => *l,
             None => sensor_levels(m, &sig),
@@ -101,13 +170,23 @@ impl<const N: usize> Signals<N> {
     /// [`Signals::unfloored`], the model evaluated `chunk` samples at a
     /// time (`along.rs`; 0: the default).
     pub fn unfloored_chunked<R: Robot<N>>(robot: &R, m: &Measured<N>, chunk: usize) -> Self {
+        Self::made(robot, m, Arc::new(kept(m)), chunk)
+    }
+
+    /// [`Signals::unfloored_chunked`], reading `record` (`m`, or what
+    /// [`kept`] copies of it) where they read the record as recorded.
+    fn made<R: Robot<N>>(
+        robot: &R,
+        m: &Measured<N>,
+        record: Arc<Measured<N>>,
+        chunk: usize,
+    ) -> Self {
         let n = m.len();
         let dt = m.sample_interval();
         let sg = SavitzkyGolay::analysis(dt);
         let half = sg.half();
         let zero = vec![SVector::<f64, N>::zeros(); n];
         let (mut q, mut qd, mut qdd) = (zero.clone(), zero.clone(), zero.clone());
-        let mut qd_light = zero.clone();
         let light = SavitzkyGolay::new(((LIGHT_HALF_WIDTH / dt).round() as usize).max(2), dt);
         for j in 0..N {
             let qj = column(&m.q, j);
@@ -116,9 +195,7 @@ impl<const N: usize> Signals<N> {
                 let vj = column(&m.qd, j);
                 set_column(&mut qd, j, &sg.apply(&vj, 0));
                 set_column(&mut qdd, j, &sg.apply(&vj, 1));
-                set_column(&mut qd_light, j, &light.apply(&vj, 0));
             } else {
-                set_column(&mut qd_light, j, &light.apply(&qj, 1));
                 set_column(&mut qd, j, &sg.apply(&qj, 1));
                 set_column(&mut qdd, j, &sg.apply(&qj, 2));
             }
@@ -127,22 +204,21 @@ impl<const N: usize> Signals<N> {
         let mut model = zero.clone();
         let mut residual = zero;
         along::inverse_dynamics(robot, [&q, &qd, &qdd], range.0..range.1, chunk, &mut model);
-        let tau_raw: Arc<[SVector<f64, N>]> = m.tau.as_slice().into();
         for k in range.0..range.1 {
-            residual[k] = smoothed_effort(&sg, &tau_raw, k) - model[k];
+            residual[k] = smoothed_effort(&sg, &record.tau, k) - model[k];
         }
         let mask = Mask::new(m, half, range);
         Signals {
             mask,
             dt,
             range,
-            t: m.t.as_slice().into(),
+            t: Times(Arc::clone(&record)),
             q: q.into(),
             qd: qd.into(),
             qdd: qdd.into(),
             qd_measured: m.qd_measured,
-            qd_light: qd_light.into(),
-            tau_raw,
+            light,
+            record,
             model,
             residual,
             floor: SVector::zeros(),
@@ -150,16 +226,51 @@ impl<const N: usize> Signals<N> {
         }
     }
 
+    /// Measured efforts, raw (the record's own).
+    pub fn tau_raw(&self) -> &[SVector<f64, N>] {
+        &self.record.tau
+    }
+
     /// The measured efforts smoothed by the filter at sample `k` (NaN
     /// where its window does not fit), made where asked from the raw
     /// efforts rather than kept for every sample.
     pub fn tau(&self, k: usize) -> SVector<f64, N> {
-        smoothed_effort(&self.sg, &self.tau_raw, k)
+        smoothed_effort(&self.sg, &self.record.tau, k)
     }
 
     /// Joint `j` of [`Signals::tau`].
     pub fn tau_at(&self, k: usize, j: usize) -> f64 {
-        smoothed_effort_at(&self.sg, &self.tau_raw, k, j)
+        smoothed_effort_at(&self.sg, &self.record.tau, k, j)
+    }
+
+    /// Velocities smoothed only lightly (by [`Signals::light`]) at sample
+    /// `k`, NaN where its window does not fit: the argument of effects
+    /// that are nonlinear in the velocity, whose columns are then
+    /// filtered as the residual shows them. Made where asked from the
+    /// measured velocities (else the rate of the measured positions),
+    /// the same values as the filter over the whole record, rather than
+    /// kept for every sample.
+    pub fn qd_light(&self, k: usize) -> SVector<f64, N> {
+        SVector::from_fn(|j, _| self.qd_light_at(k, j))
+    }
+
+    /// Joint `j` of [`Signals::qd_light`].
+    pub fn qd_light_at(&self, k: usize, j: usize) -> f64 {
+        let (x, d) = if self.qd_measured {
+            (&self.record.qd, 0)
+        } else {
+            (&self.record.q, 1)
+        };
+        let h = self.light.half();
+        if k < h || k + h >= x.len() {
+            return f64::NAN;
+        }
+        self.light
+            .weights(d)
+            .iter()
+            .zip(&x[k - h..=k + h])
+            .map(|(w, v)| w * v[j])
+            .sum()
     }
 
     /// Rate of the model efforts at sample `k`: the derivative of their
@@ -284,6 +395,82 @@ mod tests {
                 }
             }
             assert!(finite > 1000, "{finite}");
+        }
+    }
+
+    /// The lightly smoothed velocity at every sample, made where asked,
+    /// is the light filter's output over the whole record to the bit
+    /// (NaN where its window does not fit), from the measured velocities
+    /// or else the rate of the positions.
+    #[test]
+    fn the_light_velocity_at_a_sample_is_the_whole_records() {
+        let robot = Arm2::default();
+        let opts = SynthOptions {
+            duration: 1.0,
+            seed: 8,
+            ..Default::default()
+        };
+        let effects = [Effect::ViscousFriction { joint: 0, fv: 0.2 }];
+        let made = synthesize(&robot, &effects, &opts).expect("a generated record");
+        for measured in [true, false] {
+            let m = Measured {
+                qd_measured: measured,
+                ..made.clone()
+            };
+            let sig = Signals::unfloored(&robot, &m);
+            let mut finite = 0;
+            for j in 0..2 {
+                let whole = if measured {
+                    sig.light.apply(&column(&m.qd, j), 0)
+                } else {
+                    sig.light.apply(&column(&m.q, j), 1)
+                };
+                assert_eq!(whole.len(), m.len());
+                for (k, w) in whole.iter().enumerate() {
+                    let at = sig.qd_light_at(k, j);
+                    assert_eq!(sig.qd_light(k)[j].to_bits(), at.to_bits(), "sample {k}");
+                    assert_eq!(at.is_nan(), w.is_nan(), "sample {k}");
+                    if w.is_finite() {
+                        assert_eq!(at.to_bits(), w.to_bits(), "sample {k}");
+                        finite += 1;
+                    }
+                }
+                assert!(sig.qd_light_at(m.len() + 3, j).is_nan());
+            }
+            assert!(finite > 1900, "{finite}");
+        }
+    }
+
+    /// Signals of a record handed over read its times and efforts from
+    /// the record itself, and are the same as those of the record lent.
+    #[test]
+    fn signals_of_a_record_handed_over_share_it() {
+        let robot = Arm2::default();
+        let opts = SynthOptions {
+            duration: 1.0,
+            seed: 9,
+            ..Default::default()
+        };
+        let effects = [Effect::ViscousFriction { joint: 1, fv: 0.3 }];
+        let m = synthesize(&robot, &effects, &opts).expect("a generated record");
+        let (lent, levels) = Signals::new(&robot, &m, None, 64);
+        let handed = Arc::new(m.clone());
+        let (shared, shared_levels) = Signals::shared(&robot, &handed, None, 64);
+        assert!(Arc::ptr_eq(&shared.record, &handed));
+        assert_eq!(shared.t.as_ptr(), handed.t.as_ptr());
+        assert_eq!(shared.tau_raw().as_ptr(), handed.tau.as_ptr());
+        assert!(!Arc::ptr_eq(&lent.record, &handed));
+        assert_eq!(levels, shared_levels);
+        assert_eq!(lent.floor, shared.floor);
+        assert_eq!(&lent.t[..], &shared.t[..]);
+        assert_eq!(lent.tau_raw(), shared.tau_raw());
+        assert_eq!(lent.model, shared.model);
+        assert_eq!(lent.residual, shared.residual);
+        for k in 0..m.len() {
+            for j in 0..2 {
+                let (a, b) = (lent.qd_light_at(k, j), shared.qd_light_at(k, j));
+                assert_eq!(a.to_bits(), b.to_bits(), "sample {k}");
+            }
         }
     }
 

@@ -45,7 +45,8 @@ fn chunks_and_rows_give_the_whole_records_values() {
             .map(|i| {
                 (0..2)
                     .map(|j| {
-                        let f: Vec<f64> = (0..n).map(|k| raw(&sig, i, k, j)).collect();
+                        let v = light(&sig, j, 0, n);
+                        let f: Vec<f64> = (0..n).map(|k| raw(&v, i, k)).collect();
                         through_motion(&sig.sg, &f, sig.dt, sig.qd_measured)
                     })
                     .collect()

@@ -188,6 +188,7 @@ fn lanes<const N: usize, const L: usize, const B: bool>(
     const SUB: usize = 2;
     // A multiply, not a divide, on the integration's dependent chain.
     let inv_jm = g.map(|g| 1.0 / g.jm);
+    let (t, tau_raw) = (&sig.t[..], sig.tau_raw());
     for k in a..z {
         for (l, o) in out.iter_mut().enumerate() {
             o[k - a] = force::<L, B>(k_[l], c_[l], w_[l], x[0][l] - x[2][l], x[1][l] - x[3][l]);
@@ -202,8 +203,8 @@ fn lanes<const N: usize, const L: usize, const B: bool>(
             sig.qdd[k + 1][j],
             sig.model[k + 1][j],
         );
-        let h = (sig.t[k + 1] - sig.t[k]) / SUB as f64;
-        let tau = sig.tau_raw[k][j];
+        let h = (t[k + 1] - t[k]) / SUB as f64;
+        let tau = tau_raw[k][j];
         // The link's response to its own effort.
         let inv_i = compliance[j];
         // The measured motion and the model's effort at fraction s of the

@@ -1,8 +1,11 @@
 //! The lanes against the simulation of one guess at a time.
 
 use super::*;
+use crate::data::Measured;
+use crate::diagnose::signals::Times;
 use crate::smoothing::SavitzkyGolay;
 use nalgebra::SVector;
+use std::sync::Arc;
 
 /// The simulation of one guess as it was written before lanes: the
 /// reference each lane must reproduce bit for bit.
@@ -61,7 +64,7 @@ fn one_at_a_time<const N: usize>(
             sig.model[k + 1][j],
         );
         let h = (sig.t[k + 1] - sig.t[k]) / SUB as f64;
-        let tau = sig.tau_raw[k][j];
+        let tau = sig.tau_raw()[k][j];
         let inv_i = compliance[j];
         // State derivative of (motor angle, motor rate, link angle, link
         // rate) at fraction s of the interval: the link follows the
@@ -131,16 +134,23 @@ pub(super) fn swinging(seconds: f64) -> Signals<1> {
         .zip(&qd)
         .map(|(m, w)| m + v(0.3 * w[0].signum() + 0.02 * rng.normal()))
         .collect();
+    let record = Arc::new(Measured {
+        t,
+        qd: qd.clone(),
+        tau: tau_raw,
+        qd_measured: true,
+        ..Default::default()
+    });
     Signals {
         dt,
         range: (40, n - 40),
-        t: t.into(),
+        t: Times::of(&record),
         q: q.into(),
-        qd: qd.clone().into(),
+        qd: qd.into(),
         qdd: qdd.into(),
         qd_measured: true,
-        qd_light: qd.into(),
-        tau_raw: tau_raw.into(),
+        light: SavitzkyGolay::new(4, dt),
+        record,
         model: model.clone(),
         residual: model,
         floor: v(1.0),

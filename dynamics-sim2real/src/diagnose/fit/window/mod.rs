@@ -205,6 +205,42 @@ pub fn corrected<const N: usize>(
     corrected_in(f, h, holdout_window(f.candidate, h, theta))
 }
 
+/// [`corrected`] at the rows of `h` only, one entry a row: the same
+/// values, the columns made at the rows alone.
+pub fn corrected_rows<const N: usize>(
+    f: &Fit,
+    h: &Prepared<N>,
+    windows: &Windows,
+) -> Vec<SVector<f64, N>> {
+    if window_of(windows, f.candidate).is_none() {
+        return f.corrected_rows(h);
+    }
+    let theta = f.theta.first().copied().unwrap_or(0.0);
+    let w = holdout_window(f.candidate, h, theta);
+    h.rows
+        .iter()
+        .map(|&k| corrected_in_at(f, h, w, k))
+        .collect()
+}
+
+/// Sample `k` of [`corrected_in`].
+fn corrected_in_at<const N: usize>(
+    f: &Fit,
+    p: &Prepared<N>,
+    w: Option<Window>,
+    k: usize,
+) -> SVector<f64, N> {
+    let mut r = p.sig.residual[k];
+    let (a, z) = p.sig.range;
+    if w.is_some_and(|w| k >= a && k < z && w.contains(p.sig.t[k])) {
+        let cols = f.candidate.columns(&p.sig, &p.basis, k);
+        for (col, th) in cols.iter().zip(&f.theta) {
+            r -= col * *th;
+        }
+    }
+    r
+}
+
 /// The smoothed residual of `p` once windowed fit `f` is added within
 /// window `w` (`None`: nowhere).
 pub fn corrected_in<const N: usize>(
@@ -213,15 +249,63 @@ pub fn corrected_in<const N: usize>(
     w: Option<Window>,
 ) -> Vec<SVector<f64, N>> {
     let mut r = p.sig.residual.clone();
-    let Some(w) = w else { return r };
+    if w.is_none() {
+        return r;
+    }
     let (a, z) = p.sig.range;
     for (k, rk) in r.iter_mut().enumerate().take(z).skip(a) {
-        if w.contains(p.sig.t[k]) {
-            let cols = f.candidate.columns(&p.sig, &p.basis, k);
-            for (col, th) in cols.iter().zip(&f.theta) {
-                *rk -= col * *th;
-            }
-        }
+        *rk = corrected_in_at(f, p, w, k);
     }
     r
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::diagnose::candidates::Candidate;
+    use crate::effects::Effect;
+    use crate::synth::{synthesize, SynthOptions};
+    use crate::test_robots::Arm2;
+
+    /// A windowed fit's residual, made sample by sample at the rows, is the
+    /// whole record's at the rows to the bit, inside and outside the window.
+    #[test]
+    fn a_windowed_residual_at_a_row_is_the_whole_records() {
+        let robot = Arm2::default();
+        let opts = SynthOptions {
+            duration: 3.0,
+            seed: 13,
+            ..Default::default()
+        };
+        let effects = [Effect::ViscousFriction { joint: 0, fv: 0.3 }];
+        let m = synthesize(&robot, &effects, &opts).expect("a generated record");
+        let p = Prepared::new(&robot, &m);
+        let f = Fit {
+            candidate: Candidate::Viscous(0),
+            theta: vec![0.25],
+            std: vec![0.0],
+            motor: None,
+            motor_std: None,
+            sse: 0.0,
+            k: 1,
+        };
+        let w = Window {
+            start: 1.0,
+            end: 2.0,
+        };
+        for w in [Some(w), None] {
+            let whole = corrected_in(&f, &p, w);
+            let mut inside = 0;
+            for &k in &p.rows {
+                let at = corrected_in_at(&f, &p, w, k);
+                for j in 0..2 {
+                    assert_eq!(at[j].to_bits(), whole[k][j].to_bits(), "sample {k}");
+                }
+                if w.is_some_and(|w| w.contains(p.sig.t[k])) && at != p.sig.residual[k] {
+                    inside += 1;
+                }
+            }
+            assert_eq!(inside > 10, w.is_some(), "{inside}");
+        }
+    }
 }

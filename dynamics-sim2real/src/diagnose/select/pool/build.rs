@@ -138,6 +138,7 @@ impl Pool {
             weights: vec![1.0; N],
             prior,
             strength,
+            blocks: Default::default(),
         }
     }
 }

@@ -11,6 +11,8 @@
 //! `X^T X`, `X^T y` and `y^T y` built once, without touching the rows
 //! again (`solve.rs`); the pool is built in `build.rs`.
 
+use std::sync::{Mutex, MutexGuard};
+
 use nalgebra::{DMatrix, DVector, Dyn, Matrix, Storage};
 
 use crate::diagnose::candidates::{Candidate, LinkBasis};
@@ -99,6 +101,33 @@ pub struct Pool {
     /// worth ([`STRENGTHS`](crate::diagnose::select::pool::prior::STRENGTHS), chosen by cross-validation:
     /// `strength.rs`).
     strength: f64,
+    /// The Gram matrices of blocks of rows formed so far
+    /// ([`Pool::rows_gram`]) of the columns and residual as they are.
+    blocks: Blocks,
+}
+
+/// Most blocks' Gram matrices a pool keeps (the cross-validation's
+/// folds ask for the same four blocks every time).
+const BLOCKS: usize = 8;
+
+/// Gram matrices of blocks of rows `(a, z)` already formed, emptied
+/// whenever the columns or the residual change (`Pool::changed`): the
+/// cross-validation's folds are cut afresh at every step of the selection
+/// from the same rows.
+#[derive(Debug, Default)]
+struct Blocks(Mutex<Vec<(usize, usize, RowsGram)>>);
+
+impl Blocks {
+    fn held(&self) -> MutexGuard<'_, Vec<(usize, usize, RowsGram)>> {
+        // A panic while holding the lock left whole entries or none.
+        self.0.lock().unwrap_or_else(|e| e.into_inner())
+    }
+}
+
+impl Clone for Blocks {
+    fn clone(&self) -> Self {
+        Blocks(Mutex::new(self.held().clone()))
+    }
 }
 
 /// The Gram matrix of a block of rows: `X_b^T X_b`, `X_b^T y_b`,
@@ -148,6 +177,17 @@ impl Pool {
         self.yy = self.y.norm_squared();
         self.gram = penalised(&self.x, &self.prior, self.yy, self.strength);
         self.weights = w.to_vec();
+        self.changed();
+    }
+
+    /// Forgets the blocks' Gram matrices once the columns or the residual
+    /// changed.
+    fn changed(&mut self) {
+        self.blocks
+            .0
+            .get_mut()
+            .unwrap_or_else(|e| e.into_inner())
+            .clear();
     }
 
     /// Per joint RMS of the residual `r` (of this pool's rows) in units of
@@ -178,6 +218,7 @@ impl Pool {
         self.gram.set_row(c, &v.transpose());
         self.xty[c] = self.x.column(c).dot(&self.y);
         self.terms[t].fit = fit;
+        self.changed();
     }
 
     /// Sets the prior's strength (the Gram matrix follows).
@@ -221,15 +262,25 @@ impl Pool {
         self.strength
     }
 
-    /// The Gram matrix of rows `a..z`.
+    /// The Gram matrix of rows `a..z` (formed once for the columns and
+    /// residual as they are, then kept).
     pub fn rows_gram(&self, a: usize, z: usize) -> RowsGram {
+        if let Some((.., g)) = self.blocks.held().iter().find(|b| (b.0, b.1) == (a, z)) {
+            return g.clone();
+        }
         let xb = self.x.rows(a, z - a);
         let yb = self.y.rows(a, z - a);
-        RowsGram {
+        let g = RowsGram {
             gram: gram_of(&xb),
             xty: xb.tr_mul(&yb),
             yy: yb.norm_squared(),
+        };
+        let mut held = self.blocks.held();
+        if held.len() >= BLOCKS {
+            held.remove(0);
         }
+        held.push((a, z, g.clone()));
+        g
     }
 
     /// The pool of every row but those of `rows` (`n - removed` rows), from
@@ -246,6 +297,7 @@ impl Pool {
             weights: self.weights.clone(),
             prior: self.prior.clone(),
             strength: self.strength,
+            blocks: Blocks::default(),
         }
     }
 
@@ -363,6 +415,7 @@ pub(crate) fn test_pool(x: DMatrix<f64>, y: DVector<f64>, terms: Vec<Term>, join
         weights: vec![1.0; joints],
         prior: Prior::none(),
         strength: crate::diagnose::select::pool::prior::STRENGTHS[0],
+        blocks: Blocks::default(),
     }
 }
 

@@ -175,6 +175,7 @@ mod tests {
             weights: vec![1.0],
             prior,
             strength: STRENGTHS[0],
+            blocks: Default::default(),
         }
     }
 

@@ -218,3 +218,58 @@ fn the_gram_from_one_triangle_is_tr_muls() {
         .zip(t.iter())
         .all(|(u, v)| u.to_bits() == v.to_bits()));
 }
+
+/// A block's Gram matrix kept by the pool is the one its rows give as they
+/// are, to the bit: the same when asked again, and formed again once a
+/// fixed column is replaced or the rows reweighted.
+#[test]
+fn a_blocks_gram_kept_is_its_rows_as_they_are() {
+    let mut rng = crate::synth::Rng::new(23);
+    let n = 120;
+    let x = DMatrix::from_fn(n, 3, |_, _| rng.normal());
+    let y = DVector::from_fn(n, |_, _| rng.normal());
+    let terms = vec![
+        term(Candidate::Viscous(0), vec![0], vec![false], None),
+        term(Candidate::EffortOffset(1), vec![1], vec![false], None),
+        term(Candidate::Elasticity(1), vec![], vec![], Some(2)),
+    ];
+    let mut pool = test_pool(x, y, terms, 2);
+    let fresh = |pool: &Pool, a: usize, z: usize| {
+        let xb = pool.x.rows(a, z - a);
+        let yb = pool.y.rows(a, z - a);
+        (gram_of(&xb), xb.tr_mul(&yb), yb.norm_squared())
+    };
+    let same = |g: &RowsGram, f: &(DMatrix<f64>, DVector<f64>, f64)| {
+        g.gram
+            .iter()
+            .zip(f.0.iter())
+            .all(|(u, v)| u.to_bits() == v.to_bits())
+            && g.xty
+                .iter()
+                .zip(f.1.iter())
+                .all(|(u, v)| u.to_bits() == v.to_bits())
+            && g.yy.to_bits() == f.2.to_bits()
+    };
+    let first = pool.rows_gram(30, 60);
+    assert!(same(&first, &fresh(&pool, 30, 60)));
+    assert!(same(&pool.rows_gram(30, 60), &fresh(&pool, 30, 60)));
+    assert!(same(&pool.rows_gram(0, 30), &fresh(&pool, 0, 30)));
+    // A fixed column searched again.
+    let col: Vec<f64> = (0..n).map(|i| (i as f64 * 0.1).sin()).collect();
+    let fit = pool.terms[2].fit.clone();
+    pool.set_fixed(2, fit, col);
+    let after = pool.rows_gram(30, 60);
+    assert!(same(&after, &fresh(&pool, 30, 60)));
+    assert_ne!(after.gram[(2, 2)].to_bits(), first.gram[(2, 2)].to_bits());
+    // The joints' rows reweighted.
+    pool.reweight(&[0.5, 2.0]);
+    let reweighted = pool.rows_gram(30, 60);
+    assert!(same(&reweighted, &fresh(&pool, 30, 60)));
+    assert_ne!(reweighted.yy.to_bits(), after.yy.to_bits());
+    // A clone keeps what it was given, and its own changes are its own.
+    let mut other = pool.clone();
+    assert!(same(&other.rows_gram(30, 60), &fresh(&pool, 30, 60)));
+    other.reweight(&[1.0, 1.0]);
+    assert!(same(&other.rows_gram(30, 60), &fresh(&other, 30, 60)));
+    assert!(same(&pool.rows_gram(30, 60), &fresh(&pool, 30, 60)));
+}

@@ -33,5 +33,6 @@ impl Pool {
             pool.terms[t].k += 2;
             pool.terms[t].fit.k = pool.terms[t].k;
         }
+        pool.changed();
     }
 }

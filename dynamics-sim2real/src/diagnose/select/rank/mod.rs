@@ -140,12 +140,11 @@ pub fn within_floor<const N: usize>(f: &Fit, p: &Prepared<N>, ratio: f64) -> boo
     let Some(j) = f.candidate.joint() else {
         return false;
     };
-    let r = f.corrected(p);
+    let r = f.corrected_rows(p);
     let rows = p.rows.len().max(1) as f64;
-    let ms = p
-        .rows
+    let ms = r
         .iter()
-        .map(|&k| (r[k][j] / p.sig.floor[j]).powi(2))
+        .map(|v| (v[j] / p.sig.floor[j]).powi(2))
         .sum::<f64>()
         / rows;
     ms.is_finite() && ms.sqrt() <= ratio
