@@ -32,7 +32,7 @@ use super::determinacy::undetermined;
 use super::holdout::{limit_to_windows, Holdout};
 use crate::diagnose::candidates::{delta, Candidate, Excitation, LinkBasis, Prepared};
 use crate::diagnose::fit::Windows;
-use crate::diagnose::select::{joint_fit, leaves_a_body, Explanation, Pool};
+use crate::diagnose::select::{joint_fit, leaves_a_body, per_joint, Explanation, Pool};
 use crate::effects::Effect;
 use dynamics_runtime::{JointKind, Robot};
 
@@ -76,6 +76,31 @@ pub enum Unconfirmed {
     /// model could tell (its spread on that friction, given): no change
     /// since the calibration (`calibration.rs`).
     WithinCalibration(f64),
+    /// A delay the joints do not share: with its column split by joint
+    /// (a lag per joint, the rest refitted), a joint whose own lag the
+    /// common delay (`common`, s) would make worse ([`joints_disagree`]).
+    JointsDisagree {
+        /// The common delay as fitted, s.
+        common: f64,
+        /// Every joint's own lag.
+        lags: Vec<JointLag>,
+    },
+}
+
+/// One joint's own lag, the delay's column split by joint.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct JointLag {
+    /// Joint index.
+    pub joint: usize,
+    /// Its lag, s (the delay's sign: positive where the joint is late as
+    /// the common delay says).
+    pub lag: f64,
+    /// Its standard deviation, s (rows counted as the noise through the
+    /// smoothing leaves them independent).
+    pub std: f64,
+    /// Whether the common delay makes this joint's fit worse: its lag
+    /// below half the common one by more than two standard deviations.
+    pub against: bool,
 }
 
 /// An effect left out of the explanation: its pool term, its fit in the
@@ -154,6 +179,78 @@ fn physical(b: &LinkBasis, theta: &[f64], nominal: Option<&SVector<f64, 10>>) ->
     nominal.is_none_or(|nom| leaves_a_body(nom, &delta(b, theta), &b.free_combinations()))
 }
 
+/// Every joint's own lag when the delay at position `at` of `set`
+/// (fitted there as `common`, s, > 0) is split by joint and the set
+/// refitted on the training record `p` ([`Pool::split_by_joint`]), when a
+/// joint contradicts the common delay; `None` when every joint agrees (or
+/// the split cannot be made).
+///
+/// A late stream shifts every joint's effort alike: each joint's own lag
+/// is the common one. At joint `j` of lag `d_j`, a common delay `d`
+/// lowers the sum of squares by `w_j (d_j^2 - (d_j - d)^2) = w_j d (2 d_j
+/// - d)`: it helps that joint only where `d_j > d / 2`. A joint whose lag
+/// is below half the common one (or of the other sign) by more than two
+/// standard deviations is made worse by it: the delay is then not one
+/// stream's but the sum of what some joints show (a friction that lags a
+/// velocity reversal at one joint, a phase at another). A joint that does
+/// not determine its lag (standard deviation above a quarter of the
+/// delay) cannot contradict.
+#[allow(clippy::too_many_arguments)]
+fn joints_disagree<const N: usize>(
+    p: &Prepared<N>,
+    pool: &Pool,
+    set: &[usize],
+    at: usize,
+    common: f64,
+    nominal: &[SVector<f64, 10>],
+    hold_links: bool,
+) -> Option<Vec<JointLag>> {
+    if !(common > 0.0 && common.is_finite()) {
+        return None;
+    }
+    let (split, sset, which) = pool.split_by_joint(set, at)?;
+    let sol = if hold_links {
+        split.solve_physical(&sset, nominal)
+    } else {
+        split.solve(&sset)
+    };
+    let spacing = p.rows.windows(2).map(|w| w[1] - w[0]).min().unwrap_or(1);
+    let inflate = correlation_time(p.sig.sg.weights(0), spacing).sqrt();
+    let lags: Vec<JointLag> = per_joint(&sol, &which)
+        .into_iter()
+        .map(|(joint, lag, std)| {
+            let std = std * inflate;
+            JointLag {
+                joint,
+                lag,
+                std,
+                against: lag + 2.0 * std < 0.5 * common,
+            }
+        })
+        .collect();
+    if std::env::var_os("DELAY27_DEBUG").is_some() {
+        let words: Vec<String> = lags
+            .iter()
+            .map(|l| {
+                format!(
+                    "j{} {:+.3} +- {:.3} ms{}",
+                    l.joint,
+                    l.lag * 1e3,
+                    l.std * 1e3,
+                    if l.against { " AGAINST" } else { "" }
+                )
+            })
+            .collect();
+        eprintln!(
+            "DELAY27 {:?} common {:.3} ms: {}",
+            pool.terms[set[at]].fit.candidate,
+            common * 1e3,
+            words.join(", ")
+        );
+    }
+    lags.iter().any(|l| l.against).then_some(lags)
+}
+
 /// The explanation `e` over `pool` confirmed on the held-out record `h`
 /// (`hlinks`: its link regressor columns; `windows`: the training windows
 /// of the windowed effects); `p` the training record, `excitation` what it
@@ -207,6 +304,11 @@ pub fn confirm<R: Robot<N>, const N: usize>(
             let std = f.parameters().first().map_or(0.0, |p| p.2);
             if delay.abs() - 2.0 * std.min(delay.abs()) <= 0.5 * p.sig.dt {
                 within_sample = Some((delay, p.sig.dt));
+                continue;
+            }
+            let common = e.sol.theta[i].first().copied().unwrap_or(0.0);
+            if let Some(lags) = joints_disagree(p, pool, &e.set, i, common, nominal, hold_links) {
+                suggested.push(suggest(i, Unconfirmed::JointsDisagree { common, lags }));
                 continue;
             }
         }

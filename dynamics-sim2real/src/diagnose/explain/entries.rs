@@ -10,7 +10,7 @@ use super::ranked::ranked_entry;
 use super::report::{self, EffectWindow, Explained, Parameter, Rival, ShrinkStep, Suggested};
 use super::words::{add_direction_words, link_words, nominal_words};
 use crate::diagnose::candidates::{delta, Candidate, Friction, LinkBasis};
-use crate::diagnose::evaluate::{fraction, Confidence, Holdout, Suggestion, Unconfirmed};
+use crate::diagnose::evaluate::{fraction, Confidence, Holdout, JointLag, Suggestion, Unconfirmed};
 use crate::diagnose::fit::{window_of, Windows};
 use crate::diagnose::select::{joint_fit, Explanation, Pool, Solution};
 use crate::inertial::{check, complete, describe};
@@ -207,6 +207,9 @@ pub fn suggested<R: Robot<N>, const N: usize>(
                 Unconfirmed::WithinCalibration(s) => format!(
                     "refines the baseline's calibration (its spread on this friction {s:.3e}): no change that the calibration would have seen"
                 ),
+                Unconfirmed::JointsDisagree { common, lags } => {
+                    disagreeing_words::<R, N>(*common, lags)
+                }
                 Unconfirmed::NotConfirmed(c) => format!(
                     "helps only where it was fitted: on the held-out record it removes {} of the gap above noise, no more than noise alone could ({})",
                     share(c.gain_share),
@@ -232,11 +235,38 @@ pub fn suggested<R: Robot<N>, const N: usize>(
                 joint,
                 point,
                 parameters,
+                channel: c.channel(),
                 status: "suggested",
                 reason,
             }
         })
         .collect()
+}
+
+/// Why a delay the joints do not share is not named, in words: the
+/// common delay and every joint's own lag, those it would make worse
+/// marked.
+fn disagreeing_words<R: Robot<N>, const N: usize>(common: f64, lags: &[JointLag]) -> String {
+    let ms = |x: f64| format!("{:+.2}", 1e3 * x);
+    let each: Vec<String> = lags
+        .iter()
+        .map(|l| {
+            format!(
+                "{} {} +- {:.2}{}",
+                R::JOINT_NAMES.get(l.joint).copied().unwrap_or("?"),
+                ms(l.lag),
+                1e3 * l.std,
+                if l.against { " (against)" } else { "" }
+            )
+        })
+        .collect();
+    format!(
+        "not one lag of the whole stream: split by joint, the joints' own lags (ms) are {}; \
+         the common {:.2} ms would worsen the joints marked against (their lag below half of it by more than two standard deviations), \
+         as a lag at some joints alone does (a friction that lags its velocity reversals), not a late stream",
+        each.join(", "),
+        1e3 * common
+    )
 }
 
 /// A link correction's parameters and its words: the change along the

@@ -20,7 +20,7 @@ mod rank;
 
 pub use compound::{effects, joint_fit, without_others, Explanation};
 pub use nesting::{breakaway_data_needed, nested_rival_stands};
-pub(in crate::diagnose) use pool::leaves_a_body;
+pub(in crate::diagnose) use pool::{leaves_a_body, per_joint};
 pub use pool::{Pool, Solution};
 
 use nalgebra::SVector;

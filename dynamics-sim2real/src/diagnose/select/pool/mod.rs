@@ -21,9 +21,11 @@ mod build;
 mod physical;
 pub mod prior;
 mod solve;
+mod split;
 mod windows;
 pub(in crate::diagnose) use physical::leaves_a_body;
 pub(in crate::diagnose) use solve::independent;
+pub(in crate::diagnose) use split::per_joint;
 
 /// One term of the pool: a fitted single candidate and its columns.
 #[derive(Debug, Clone)]
