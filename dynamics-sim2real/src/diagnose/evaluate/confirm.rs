@@ -30,9 +30,11 @@ use nalgebra::SVector;
 
 use super::determinacy::undetermined;
 use super::holdout::{limit_to_windows, Holdout};
-use crate::diagnose::candidates::{delta, Candidate, Excitation, LinkBasis, Prepared};
+use crate::diagnose::candidates::{
+    delta, model_part, whitened, Candidate, Excitation, LinkBasis, Prepared,
+};
 use crate::diagnose::fit::Windows;
-use crate::diagnose::select::{joint_fit, leaves_a_body, per_joint, Explanation, Pool};
+use crate::diagnose::select::{joint_fit, leaves_a_body, Explanation, Parts, Pool, Solution};
 use crate::effects::Effect;
 use dynamics_runtime::{JointKind, Robot};
 
@@ -76,31 +78,17 @@ pub enum Unconfirmed {
     /// model could tell (its spread on that friction, given): no change
     /// since the calibration (`calibration.rs`).
     WithinCalibration(f64),
-    /// A delay the joints do not share: with its column split by joint
-    /// (a lag per joint, the rest refitted), a joint whose own lag the
-    /// common delay (`common`, s) would make worse ([`joints_disagree`]).
-    JointsDisagree {
+    /// A delay the model's own effort does not show: its column split
+    /// into the part the model's effort carries and the rest (the rest of
+    /// the set refitted with both), a common delay that would worsen the
+    /// model's part ([`model_lag`], [`worsens`]).
+    NotTheWholeEffort {
         /// The common delay as fitted, s.
         common: f64,
-        /// Every joint's own lag.
-        lags: Vec<JointLag>,
+        /// The split's lags: the model effort's part and the rest, each
+        /// with its standard deviation, s.
+        lags: Parts,
     },
-}
-
-/// One joint's own lag, the delay's column split by joint.
-#[derive(Debug, Clone, Copy, PartialEq)]
-pub struct JointLag {
-    /// Joint index.
-    pub joint: usize,
-    /// Its lag, s (the delay's sign: positive where the joint is late as
-    /// the common delay says).
-    pub lag: f64,
-    /// Its standard deviation, s (rows counted as the noise through the
-    /// smoothing leaves them independent).
-    pub std: f64,
-    /// Whether the common delay makes this joint's fit worse: its lag
-    /// below half the common one by more than two standard deviations.
-    pub against: bool,
 }
 
 /// An effect left out of the explanation: its pool term, its fit in the
@@ -179,76 +167,35 @@ fn physical(b: &LinkBasis, theta: &[f64], nominal: Option<&SVector<f64, 10>>) ->
     nominal.is_none_or(|nom| leaves_a_body(nom, &delta(b, theta), &b.free_combinations()))
 }
 
-/// Every joint's own lag when the delay at position `at` of `set`
-/// (fitted there as `common`, s, > 0) is split by joint and the set
-/// refitted on the training record `p` ([`Pool::split_by_joint`]), when a
-/// joint contradicts the common delay; `None` when every joint agrees (or
-/// the split cannot be made).
-///
-/// A late stream shifts every joint's effort alike: each joint's own lag
-/// is the common one. At joint `j` of lag `d_j`, a common delay `d`
-/// lowers the sum of squares by `w_j (d_j^2 - (d_j - d)^2) = w_j d (2 d_j
-/// - d)`: it helps that joint only where `d_j > d / 2`. A joint whose lag
-/// is below half the common one (or of the other sign) by more than two
-/// standard deviations is made worse by it: the delay is then not one
-/// stream's but the sum of what some joints show (a friction that lags a
-/// velocity reversal at one joint, a phase at another). A joint that does
-/// not determine its lag (standard deviation above a quarter of the
-/// delay) cannot contradict.
-#[allow(clippy::too_many_arguments)]
-fn joints_disagree<const N: usize>(
-    p: &Prepared<N>,
+/// Whether a common delay `common` (> 0) worsens a part of the delay's
+/// column whose own lag is `lag` (standard deviation `std`): a part of
+/// weight `w` fitted with lag `d_p` has its sum of squares lowered by the
+/// common delay `d` by `w (d_p^2 - (d_p - d)^2) = w d (2 d_p - d)`, which
+/// is positive only for `d_p > d / 2`. Worsened: the part's lag below half
+/// the common one (or of the other sign) by more than two standard
+/// deviations.
+pub fn worsens(lag: f64, std: f64, common: f64) -> bool {
+    lag + 2.0 * std < 0.5 * common
+}
+
+/// The lags of the two parts of the delay at position `at` of `set`
+/// (column split into `part`, whitened over the pool's rows, and the rest;
+/// [`Pool::split_off`]), the set refitted by `solve`, their standard
+/// deviations times `inflate` (the rows counted as the noise through the
+/// smoothing leaves them independent).
+pub fn model_lag(
     pool: &Pool,
     set: &[usize],
     at: usize,
-    common: f64,
-    nominal: &[SVector<f64, 10>],
-    hold_links: bool,
-) -> Option<Vec<JointLag>> {
-    if !(common > 0.0 && common.is_finite()) {
-        return None;
-    }
-    let (split, sset, which) = pool.split_by_joint(set, at)?;
-    let sol = if hold_links {
-        split.solve_physical(&sset, nominal)
-    } else {
-        split.solve(&sset)
-    };
-    let spacing = p.rows.windows(2).map(|w| w[1] - w[0]).min().unwrap_or(1);
-    let inflate = correlation_time(p.sig.sg.weights(0), spacing).sqrt();
-    let lags: Vec<JointLag> = per_joint(&sol, &which)
-        .into_iter()
-        .map(|(joint, lag, std)| {
-            let std = std * inflate;
-            JointLag {
-                joint,
-                lag,
-                std,
-                against: lag + 2.0 * std < 0.5 * common,
-            }
-        })
-        .collect();
-    if std::env::var_os("DELAY27_DEBUG").is_some() {
-        let words: Vec<String> = lags
-            .iter()
-            .map(|l| {
-                format!(
-                    "j{} {:+.3} +- {:.3} ms{}",
-                    l.joint,
-                    l.lag * 1e3,
-                    l.std * 1e3,
-                    if l.against { " AGAINST" } else { "" }
-                )
-            })
-            .collect();
-        eprintln!(
-            "DELAY27 {:?} common {:.3} ms: {}",
-            pool.terms[set[at]].fit.candidate,
-            common * 1e3,
-            words.join(", ")
-        );
-    }
-    lags.iter().any(|l| l.against).then_some(lags)
+    part: &[f64],
+    inflate: f64,
+    solve: impl Fn(&Pool, &[usize]) -> Solution,
+) -> Option<Parts> {
+    let parts = pool.split_off(set, at, part, solve)?;
+    Some(Parts {
+        part: (parts.part.0, parts.part.1 * inflate),
+        rest: (parts.rest.0, parts.rest.1 * inflate),
+    })
 }
 
 /// The explanation `e` over `pool` confirmed on the held-out record `h`
@@ -282,19 +229,22 @@ pub fn confirm<R: Robot<N>, const N: usize>(
         std: e.sol.std[i].clone(),
         why,
     };
-    let solve = |set: &[usize]| {
-        if hold_links {
-            pool.solve_physical(set, nominal)
-        } else {
-            pool.solve(set)
-        }
-    };
     // The link corrections judged: as fitted, or held to bodies.
     let allowed = if hold_links {
         pool.solve_physical(&e.set, nominal)
     } else {
         e.sol.clone()
     };
+    let solve_in = |q: &Pool, set: &[usize]| {
+        if hold_links {
+            q.solve_physical(set, nominal)
+        } else {
+            q.solve(set)
+        }
+    };
+    let spacing = p.rows.windows(2).map(|w| w[1] - w[0]).min().unwrap_or(1);
+    let inflate = correlation_time(p.sig.sg.weights(0), spacing).sqrt();
+    let solve = |set: &[usize]| solve_in(pool, set);
     // Positions into `e.set` still in the explanation.
     let mut keep: Vec<usize> = Vec::new();
     for (i, &t) in e.set.iter().enumerate() {
@@ -307,8 +257,20 @@ pub fn confirm<R: Robot<N>, const N: usize>(
                 continue;
             }
             let common = e.sol.theta[i].first().copied().unwrap_or(0.0);
-            if let Some(lags) = joints_disagree(p, pool, &e.set, i, common, nominal, hold_links) {
-                suggested.push(suggest(i, Unconfirmed::JointsDisagree { common, lags }));
+            let part = |k: usize| model_part(&p.sig, k, f.candidate);
+            let split = match part(p.rows.first().copied().unwrap_or(0)) {
+                Some(_) => model_lag(
+                    pool,
+                    &e.set,
+                    i,
+                    &whitened(p, |k| part(k).unwrap_or_else(SVector::zeros)),
+                    inflate,
+                    solve_in,
+                ),
+                None => None,
+            };
+            if let Some(lags) = split.filter(|s| worsens(s.part.0, s.part.1, common)) {
+                suggested.push(suggest(i, Unconfirmed::NotTheWholeEffort { common, lags }));
                 continue;
             }
         }
@@ -411,6 +373,68 @@ mod tests {
                 "k = {k}, p = {p}: {q} vs {exact}"
             );
         }
+    }
+
+    /// A delay column `a + b` over two joints (`a` what the model's
+    /// effort carries, `b` a step-like rest at joint 0, as a friction
+    /// switching at reversals gives) beside a friction column: the residual
+    /// of a late stream (both parts late alike) keeps its delay; that of
+    /// the rest alone late does not, though the common fit gives it one.
+    #[test]
+    fn a_lag_of_what_the_model_misses_alone_is_not_a_late_stream() {
+        use crate::diagnose::select::{test_pool, test_term};
+        use nalgebra::{DMatrix, DVector};
+        let n = 2 * 500;
+        let a: Vec<f64> = (0..n)
+            .map(|i| ((i / 2) as f64 * 0.023).sin() * (1.0 + (i % 2) as f64))
+            .collect();
+        let b: Vec<f64> = (0..n)
+            .map(|i| match i % 2 {
+                0 => 0.4 * ((i / 2) as f64 * 0.07).cos().signum(),
+                _ => 0.0,
+            })
+            .collect();
+        let f: Vec<f64> = (0..n)
+            .map(|i| match i % 2 {
+                0 => ((i / 2) as f64 * 0.013).cos(),
+                _ => 0.0,
+            })
+            .collect();
+        let mut rng = crate::synth::Rng::new(11);
+        let noise: Vec<f64> = (0..n).map(|_| rng.normal()).collect();
+        let delay = 0.01;
+        let judged = |late_a: f64, late_b: f64| {
+            let y = DVector::from_fn(n, |r, _| {
+                late_a * a[r] + late_b * b[r] + 0.6 * f[r] + 1e-3 * noise[r]
+            });
+            let x = DMatrix::from_fn(n, 2, |r, c| if c == 0 { f[r] } else { a[r] + b[r] });
+            let terms = vec![
+                test_term(Candidate::Viscous(0), vec![0], vec![true], None),
+                test_term(Candidate::TimeDelay, vec![1], vec![true], None),
+            ];
+            let pool = test_pool(x, y, terms, 2);
+            let common = pool.solve(&[0, 1]).theta[1][0];
+            let lags = model_lag(&pool, &[0, 1], 1, &a, 3.0, |q, s| q.solve(s)).expect("split");
+            (common, lags, worsens(lags.part.0, lags.part.1, common))
+        };
+        let (common, lags, worse) = judged(delay, delay);
+        assert!((common - delay).abs() < 1e-3, "{common}");
+        assert!((lags.part.0 - delay).abs() < 1e-3, "{lags:?}");
+        assert!(!worse, "{lags:?}");
+        let (common, lags, worse) = judged(0.0, delay);
+        assert!(common > 0.2 * delay, "{common}");
+        assert!(lags.part.0.abs() < 1e-3 && (lags.rest.0 - delay).abs() < 1e-3);
+        assert!(worse, "{common} {lags:?}");
+    }
+
+    #[test]
+    fn a_part_lagging_less_than_half_the_common_delay_is_worsened() {
+        // Half is where the common delay stops helping.
+        assert!(!worsens(0.006, 0.0, 0.01));
+        assert!(worsens(0.004, 0.0, 0.01));
+        // Within two standard deviations of helping: not worsened.
+        assert!(!worsens(0.004, 0.0006, 0.01));
+        assert!(worsens(-0.002, 0.001, 0.01));
     }
 
     #[test]

@@ -25,7 +25,7 @@ mod shrink;
 mod yardstick;
 
 pub use calibration::FrictionSpread;
-pub use confirm::{Confidence, Confirmed, JointLag, Suggestion, Unconfirmed};
+pub use confirm::{Confidence, Confirmed, Suggestion, Unconfirmed};
 pub(crate) use determinacy::held_at_zero;
 pub use determinacy::why_not;
 pub use gap_windows::GapWindow;

@@ -10,9 +10,9 @@ use super::ranked::ranked_entry;
 use super::report::{self, EffectWindow, Explained, Parameter, Rival, ShrinkStep, Suggested};
 use super::words::{add_direction_words, link_words, nominal_words};
 use crate::diagnose::candidates::{delta, Candidate, Friction, LinkBasis};
-use crate::diagnose::evaluate::{fraction, Confidence, Holdout, JointLag, Suggestion, Unconfirmed};
+use crate::diagnose::evaluate::{fraction, Confidence, Holdout, Suggestion, Unconfirmed};
 use crate::diagnose::fit::{window_of, Windows};
-use crate::diagnose::select::{joint_fit, Explanation, Pool, Solution};
+use crate::diagnose::select::{joint_fit, Explanation, Parts, Pool, Solution};
 use crate::inertial::{check, complete, describe};
 use dynamics_runtime::Robot;
 
@@ -207,9 +207,7 @@ pub fn suggested<R: Robot<N>, const N: usize>(
                 Unconfirmed::WithinCalibration(s) => format!(
                     "refines the baseline's calibration (its spread on this friction {s:.3e}): no change that the calibration would have seen"
                 ),
-                Unconfirmed::JointsDisagree { common, lags } => {
-                    disagreeing_words::<R, N>(*common, lags)
-                }
+                Unconfirmed::NotTheWholeEffort { common, lags } => not_the_whole(common, lags),
                 Unconfirmed::NotConfirmed(c) => format!(
                     "helps only where it was fitted: on the held-out record it removes {} of the gap above noise, no more than noise alone could ({})",
                     share(c.gain_share),
@@ -243,29 +241,17 @@ pub fn suggested<R: Robot<N>, const N: usize>(
         .collect()
 }
 
-/// Why a delay the joints do not share is not named, in words: the
-/// common delay and every joint's own lag, those it would make worse
-/// marked.
-fn disagreeing_words<R: Robot<N>, const N: usize>(common: f64, lags: &[JointLag]) -> String {
-    let ms = |x: f64| format!("{:+.2}", 1e3 * x);
-    let each: Vec<String> = lags
-        .iter()
-        .map(|l| {
-            format!(
-                "{} {} +- {:.2}{}",
-                R::JOINT_NAMES.get(l.joint).copied().unwrap_or("?"),
-                ms(l.lag),
-                1e3 * l.std,
-                if l.against { " (against)" } else { "" }
-            )
-        })
-        .collect();
+/// Why a delay the model's own effort does not show is not named, in
+/// words: the common delay and the two parts' lags.
+fn not_the_whole(common: &f64, lags: &Parts) -> String {
+    let ms = |(v, s): (f64, f64)| format!("{:+.2} +- {:.2} ms", 1e3 * v, 1e3 * s);
     format!(
-        "not one lag of the whole stream: split by joint, the joints' own lags (ms) are {}; \
-         the common {:.2} ms would worsen the joints marked against (their lag below half of it by more than two standard deviations), \
-         as a lag at some joints alone does (a friction that lags its velocity reversals), not a late stream",
-        each.join(", "),
-        1e3 * common
+        "not the whole effort late: its column split, the effort the model predicts lags {} and the rest {}; \
+         the common {:.2} ms would worsen the model's part (its lag below half of it by more than two standard deviations), \
+         as a lag of what the model misses alone does (a friction that lags its velocity reversals), not a late stream",
+        ms(lags.part),
+        ms(lags.rest),
+        1e3 * *common
     )
 }
 

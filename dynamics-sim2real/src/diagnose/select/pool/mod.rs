@@ -25,7 +25,7 @@ mod split;
 mod windows;
 pub(in crate::diagnose) use physical::leaves_a_body;
 pub(in crate::diagnose) use solve::independent;
-pub(in crate::diagnose) use split::per_joint;
+pub use split::Parts;
 
 /// One term of the pool: a fitted single candidate and its columns.
 #[derive(Debug, Clone)]
