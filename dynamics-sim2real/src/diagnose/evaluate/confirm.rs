@@ -7,13 +7,20 @@
 //!    deviations) is how the log samples its streams (an effort read at its
 //!    sample's instant, or held over the interval after it), not an
 //!    effect: left out, with a warning;
-//! 2. an effect whose parameters the data do not determine, or that are
+//! 2. a delay of the motion or of the effort must be one of the whole
+//!    effort: its column split into the model effort's rate and the rest
+//!    ([`model_lag`]), the model's part must not lag less than half the
+//!    common delay by more than two standard deviations ([`worsens`]: the
+//!    common delay would then worsen the model's own part). A lag of what
+//!    the model misses alone (a friction lagging its velocity reversals)
+//!    is not a late stream: a suggestion, with both lags;
+//! 3. an effect whose parameters the data do not determine, or that are
 //!    not physical (`determinacy.rs`), is not named: a suggestion, with the
 //!    reason; so is a link correction that leaves no physical body, unless
 //!    [`Options::hold_links`](crate::diagnose::Options::hold_links): it is
 //!    then held to the nearest physical body in the metric of the data
 //!    (`Pool::solve_physical`) in this test and those below;
-//! 3. every other effect must lower the held-out record's residual, the
+//! 4. every other effect must lower the held-out record's residual, the
 //!    others refitted on the training record without it, by more than the
 //!    sensor noise could: `(sse_without - sse_with) / tau` (sums of squares
 //!    in units of the noise floor, so noise alone gives a chi-square) above
