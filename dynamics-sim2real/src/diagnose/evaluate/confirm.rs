@@ -9,9 +9,9 @@
 //!    effect: left out, with a warning;
 //! 2. a delay of the motion or of the effort must be one of the whole
 //!    effort: its column split into the model effort's rate and the rest
-//!    ([`model_lag`]), the model's part must not lag less than half the
-//!    common delay by more than two standard deviations ([`worsens`]: the
-//!    common delay would then worsen the model's own part). A lag of what
+//!    ([`model_lag`]), the model's part must lag more than half the common
+//!    delay by more than two standard deviations ([`helps`]: the common
+//!    delay is then shown to help the model's own part). A lag of what
 //!    the model misses alone (a friction lagging its velocity reversals)
 //!    is not a late stream: a suggestion, with both lags;
 //! 3. an effect whose parameters the data do not determine, or that are
@@ -87,8 +87,8 @@ pub enum Unconfirmed {
     WithinCalibration(f64),
     /// A delay the model's own effort does not show: its column split
     /// into the part the model's effort carries and the rest (the rest of
-    /// the set refitted with both), a common delay that would worsen the
-    /// model's part ([`model_lag`], [`worsens`]).
+    /// the set refitted with both), a common delay not shown to help the
+    /// model's part ([`model_lag`], [`helps`]).
     NotTheWholeEffort {
         /// The common delay as fitted, s.
         common: f64,
@@ -174,15 +174,15 @@ fn physical(b: &LinkBasis, theta: &[f64], nominal: Option<&SVector<f64, 10>>) ->
     nominal.is_none_or(|nom| leaves_a_body(nom, &delta(b, theta), &b.free_combinations()))
 }
 
-/// Whether a common delay `common` (> 0) worsens a part of the delay's
-/// column whose own lag is `lag` (standard deviation `std`): a part of
-/// weight `w` fitted with lag `d_p` has its sum of squares lowered by the
-/// common delay `d` by `w (d_p^2 - (d_p - d)^2) = w d (2 d_p - d)`, which
-/// is positive only for `d_p > d / 2`. Worsened: the part's lag below half
-/// the common one (or of the other sign) by more than two standard
-/// deviations.
-pub fn worsens(lag: f64, std: f64, common: f64) -> bool {
-    lag + 2.0 * std < 0.5 * common
+/// Whether a common delay `common` (> 0) is shown to help a part of the
+/// delay's column whose own lag is `lag` (standard deviation `std`): a
+/// part of weight `w` fitted with lag `d_p` has its sum of squares lowered
+/// by the common delay `d` by `w (d_p^2 - (d_p - d)^2) = w d (2 d_p - d)`,
+/// which is positive only for `d_p > d / 2`. Shown: the part's lag above
+/// half the common one by more than two standard deviations (the width
+/// the within-a-sample rule asks of the delay itself).
+pub fn helps(lag: f64, std: f64, common: f64) -> bool {
+    lag - 2.0 * std > 0.5 * common
 }
 
 /// The lags of the two parts of the delay at position `at` of `set`
@@ -276,7 +276,7 @@ pub fn confirm<R: Robot<N>, const N: usize>(
                 ),
                 None => None,
             };
-            if let Some(lags) = split.filter(|s| worsens(s.part.0, s.part.1, common)) {
+            if let Some(lags) = split.filter(|s| !helps(s.part.0, s.part.1, common)) {
                 suggested.push(suggest(i, Unconfirmed::NotTheWholeEffort { common, lags }));
                 continue;
             }
@@ -422,26 +422,27 @@ mod tests {
             let pool = test_pool(x, y, terms, 2);
             let common = pool.solve(&[0, 1]).theta[1][0];
             let lags = model_lag(&pool, &[0, 1], 1, &a, 3.0, |q, s| q.solve(s)).expect("split");
-            (common, lags, worsens(lags.part.0, lags.part.1, common))
+            (common, lags, !helps(lags.part.0, lags.part.1, common))
         };
-        let (common, lags, worse) = judged(delay, delay);
+        let (common, lags, not_shown) = judged(delay, delay);
         assert!((common - delay).abs() < 1e-3, "{common}");
         assert!((lags.part.0 - delay).abs() < 1e-3, "{lags:?}");
-        assert!(!worse, "{lags:?}");
-        let (common, lags, worse) = judged(0.0, delay);
+        assert!(!not_shown, "{lags:?}");
+        let (common, lags, not_shown) = judged(0.0, delay);
         assert!(common > 0.2 * delay, "{common}");
         assert!(lags.part.0.abs() < 1e-3 && (lags.rest.0 - delay).abs() < 1e-3);
-        assert!(worse, "{common} {lags:?}");
+        assert!(not_shown, "{common} {lags:?}");
     }
 
     #[test]
-    fn a_part_lagging_less_than_half_the_common_delay_is_worsened() {
+    fn a_part_must_lag_more_than_half_the_common_delay() {
         // Half is where the common delay stops helping.
-        assert!(!worsens(0.006, 0.0, 0.01));
-        assert!(worsens(0.004, 0.0, 0.01));
-        // Within two standard deviations of helping: not worsened.
-        assert!(!worsens(0.004, 0.0006, 0.01));
-        assert!(worsens(-0.002, 0.001, 0.01));
+        assert!(helps(0.006, 0.0, 0.01));
+        assert!(!helps(0.004, 0.0, 0.01));
+        // Above half, but not by two standard deviations: not shown.
+        assert!(!helps(0.006, 0.0006, 0.01));
+        assert!(helps(0.006, 0.0004, 0.01));
+        assert!(!helps(-0.002, 0.001, 0.01));
     }
 
     #[test]

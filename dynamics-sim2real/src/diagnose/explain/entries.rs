@@ -247,7 +247,7 @@ fn not_the_whole(common: &f64, lags: &Parts) -> String {
     let ms = |(v, s): (f64, f64)| format!("{:+.2} +- {:.2} ms", 1e3 * v, 1e3 * s);
     format!(
         "not the whole effort late: its column split, the effort the model predicts lags {} and the rest {}; \
-         the common {:.2} ms would worsen the model's part (its lag below half of it by more than two standard deviations), \
+         the common {:.2} ms is not shown to help the model's part (its lag is not above half of it by two standard deviations), \
          as a lag of what the model misses alone does (a friction that lags its velocity reversals), not a late stream",
         ms(lags.part),
         ms(lags.rest),
