@@ -397,7 +397,7 @@ mod tests {
             .collect();
         let b: Vec<f64> = (0..n)
             .map(|i| match i % 2 {
-                0 => 0.4 * ((i / 2) as f64 * 0.07).cos().signum(),
+                0 => ((i / 2) as f64 * 0.07).cos().signum(),
                 _ => 0.0,
             })
             .collect();
