@@ -77,10 +77,11 @@ pub fn diagnose_cmd<R: Robot<N> + Clone + Send + Sync + 'static, const N: usize>
         }
     }
     for e in &report.which.suggested {
+        let place = e.joint.clone().or(e.point.clone()).unwrap_or_default();
         println!(
             "  suggested, not confirmed: {} {}: {}",
             e.kind,
-            e.joint.clone().or(e.point.clone()).unwrap_or_default(),
+            crate::report::explanation::late_place(place, e.channel).trim_start(),
             e.reason
         );
     }

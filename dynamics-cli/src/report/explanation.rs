@@ -130,13 +130,7 @@ pub fn section(report: &Report) -> String {
             .clone()
             .or(e.point.clone())
             .unwrap_or("all signals".into());
-        // A delay: which channel is late.
-        let place = match &e.channel {
-            Some(Channel::Positions) => format!("{place} (the position stream late)"),
-            Some(Channel::Effort) => format!("{place} (the effort stream late)"),
-            Some(_) => format!("{place} (positions and velocities late together)"),
-            None => place,
-        };
+        let place = late_place(place, e.channel);
         // An effect that starts and stops: where in time.
         let place = match &e.window {
             Some(w) => format!("{place}, on from {:.3} s to {:.3} s", w.start, w.end),
@@ -191,6 +185,16 @@ pub fn section(report: &Report) -> String {
     s
 }
 
+/// A place with, for a delay, which channel is late.
+pub fn late_place(place: String, channel: Option<Channel>) -> String {
+    match channel {
+        Some(Channel::Positions) => format!("{place} (the position stream late)"),
+        Some(Channel::Effort) => format!("{place} (the effort stream late)"),
+        Some(_) => format!("{place} (positions and velocities late together)"),
+        None => place,
+    }
+}
+
 /// What the training data suggested and the held-out data did not
 /// confirm.
 fn suggestions(report: &Report, s: &mut String) {
@@ -208,6 +212,7 @@ fn suggestions(report: &Report, s: &mut String) {
             .clone()
             .or(e.point.clone())
             .unwrap_or("all signals".into());
+        let place = late_place(place, e.channel);
         let _ = writeln!(s, "- {} at {place}: {}", e.kind, e.reason);
     }
     let _ = writeln!(s);

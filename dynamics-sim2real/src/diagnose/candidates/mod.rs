@@ -42,6 +42,7 @@ pub use links::{combined, delta, link_basis, regressor_columns, LinkBasis};
 pub use motor::{motor_feasible, motor_grid, signature_limit, MotorGuess};
 pub use prepared::Prepared;
 pub use records::{Record, Records};
+pub(in crate::diagnose) use shift::model_part;
 pub use visibility::{identifiable, Excitation};
 
 use crate::diagnose::Options;

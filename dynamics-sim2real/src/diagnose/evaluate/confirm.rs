@@ -7,13 +7,20 @@
 //!    deviations) is how the log samples its streams (an effort read at its
 //!    sample's instant, or held over the interval after it), not an
 //!    effect: left out, with a warning;
-//! 2. an effect whose parameters the data do not determine, or that are
+//! 2. a delay of the motion or of the effort must be one of the whole
+//!    effort: its column split into the model effort's rate and the rest
+//!    ([`model_lag`]), the model's part must lag more than half the common
+//!    delay by more than two standard deviations ([`helps`]: the common
+//!    delay is then shown to help the model's own part). A lag of what
+//!    the model misses alone (a friction lagging its velocity reversals)
+//!    is not a late stream: a suggestion, with both lags;
+//! 3. an effect whose parameters the data do not determine, or that are
 //!    not physical (`determinacy.rs`), is not named: a suggestion, with the
 //!    reason; so is a link correction that leaves no physical body, unless
 //!    [`Options::hold_links`](crate::diagnose::Options::hold_links): it is
 //!    then held to the nearest physical body in the metric of the data
 //!    (`Pool::solve_physical`) in this test and those below;
-//! 3. every other effect must lower the held-out record's residual, the
+//! 4. every other effect must lower the held-out record's residual, the
 //!    others refitted on the training record without it, by more than the
 //!    sensor noise could: `(sse_without - sse_with) / tau` (sums of squares
 //!    in units of the noise floor, so noise alone gives a chi-square) above
@@ -30,9 +37,11 @@ use nalgebra::SVector;
 
 use super::determinacy::undetermined;
 use super::holdout::{limit_to_windows, Holdout};
-use crate::diagnose::candidates::{delta, Candidate, Excitation, LinkBasis, Prepared};
+use crate::diagnose::candidates::{
+    delta, model_part, whitened, Candidate, Excitation, LinkBasis, Prepared,
+};
 use crate::diagnose::fit::Windows;
-use crate::diagnose::select::{joint_fit, leaves_a_body, Explanation, Pool};
+use crate::diagnose::select::{joint_fit, leaves_a_body, Explanation, Parts, Pool, Solution};
 use crate::effects::Effect;
 use dynamics_runtime::{JointKind, Robot};
 
@@ -76,6 +85,17 @@ pub enum Unconfirmed {
     /// model could tell (its spread on that friction, given): no change
     /// since the calibration (`calibration.rs`).
     WithinCalibration(f64),
+    /// A delay the model's own effort does not show: its column split
+    /// into the part the model's effort carries and the rest (the rest of
+    /// the set refitted with both), a common delay not shown to help the
+    /// model's part ([`model_lag`], [`helps`]).
+    NotTheWholeEffort {
+        /// The common delay as fitted, s.
+        common: f64,
+        /// The split's lags: the model effort's part and the rest, each
+        /// with its standard deviation, s.
+        lags: Parts,
+    },
 }
 
 /// An effect left out of the explanation: its pool term, its fit in the
@@ -154,6 +174,37 @@ fn physical(b: &LinkBasis, theta: &[f64], nominal: Option<&SVector<f64, 10>>) ->
     nominal.is_none_or(|nom| leaves_a_body(nom, &delta(b, theta), &b.free_combinations()))
 }
 
+/// Whether a common delay `common` (> 0) is shown to help a part of the
+/// delay's column whose own lag is `lag` (standard deviation `std`): a
+/// part of weight `w` fitted with lag `d_p` has its sum of squares lowered
+/// by the common delay `d` by `w (d_p^2 - (d_p - d)^2) = w d (2 d_p - d)`,
+/// which is positive only for `d_p > d / 2`. Shown: the part's lag above
+/// half the common one by more than two standard deviations (the width
+/// the within-a-sample rule asks of the delay itself).
+pub fn helps(lag: f64, std: f64, common: f64) -> bool {
+    lag - 2.0 * std > 0.5 * common
+}
+
+/// The lags of the two parts of the delay at position `at` of `set`
+/// (column split into `part`, whitened over the pool's rows, and the rest;
+/// [`Pool::split_off`]), the set refitted by `solve`, their standard
+/// deviations times `inflate` (the rows counted as the noise through the
+/// smoothing leaves them independent).
+pub fn model_lag(
+    pool: &Pool,
+    set: &[usize],
+    at: usize,
+    part: &[f64],
+    inflate: f64,
+    solve: impl Fn(&Pool, &[usize]) -> Solution,
+) -> Option<Parts> {
+    let parts = pool.split_off(set, at, part, solve)?;
+    Some(Parts {
+        part: (parts.part.0, parts.part.1 * inflate),
+        rest: (parts.rest.0, parts.rest.1 * inflate),
+    })
+}
+
 /// The explanation `e` over `pool` confirmed on the held-out record `h`
 /// (`hlinks`: its link regressor columns; `windows`: the training windows
 /// of the windowed effects); `p` the training record, `excitation` what it
@@ -185,19 +236,22 @@ pub fn confirm<R: Robot<N>, const N: usize>(
         std: e.sol.std[i].clone(),
         why,
     };
-    let solve = |set: &[usize]| {
-        if hold_links {
-            pool.solve_physical(set, nominal)
-        } else {
-            pool.solve(set)
-        }
-    };
     // The link corrections judged: as fitted, or held to bodies.
     let allowed = if hold_links {
         pool.solve_physical(&e.set, nominal)
     } else {
         e.sol.clone()
     };
+    let solve_in = |q: &Pool, set: &[usize]| {
+        if hold_links {
+            q.solve_physical(set, nominal)
+        } else {
+            q.solve(set)
+        }
+    };
+    let spacing = p.rows.windows(2).map(|w| w[1] - w[0]).min().unwrap_or(1);
+    let inflate = correlation_time(p.sig.sg.weights(0), spacing).sqrt();
+    let solve = |set: &[usize]| solve_in(pool, set);
     // Positions into `e.set` still in the explanation.
     let mut keep: Vec<usize> = Vec::new();
     for (i, &t) in e.set.iter().enumerate() {
@@ -207,6 +261,23 @@ pub fn confirm<R: Robot<N>, const N: usize>(
             let std = f.parameters().first().map_or(0.0, |p| p.2);
             if delay.abs() - 2.0 * std.min(delay.abs()) <= 0.5 * p.sig.dt {
                 within_sample = Some((delay, p.sig.dt));
+                continue;
+            }
+            let common = e.sol.theta[i].first().copied().unwrap_or(0.0);
+            let part = |k: usize| model_part(&p.sig, k, f.candidate);
+            let split = match part(p.rows.first().copied().unwrap_or(0)) {
+                Some(_) => model_lag(
+                    pool,
+                    &e.set,
+                    i,
+                    &whitened(p, |k| part(k).unwrap_or_else(SVector::zeros)),
+                    inflate,
+                    solve_in,
+                ),
+                None => None,
+            };
+            if let Some(lags) = split.filter(|s| !helps(s.part.0, s.part.1, common)) {
+                suggested.push(suggest(i, Unconfirmed::NotTheWholeEffort { common, lags }));
                 continue;
             }
         }
@@ -309,6 +380,69 @@ mod tests {
                 "k = {k}, p = {p}: {q} vs {exact}"
             );
         }
+    }
+
+    /// A delay column `a + b` over two joints (`a` what the model's
+    /// effort carries, `b` a step-like rest at joint 0, as a friction
+    /// switching at reversals gives) beside a friction column: the residual
+    /// of a late stream (both parts late alike) keeps its delay; that of
+    /// the rest alone late does not, though the common fit gives it one.
+    #[test]
+    fn a_lag_of_what_the_model_misses_alone_is_not_a_late_stream() {
+        use crate::diagnose::select::{test_pool, test_term};
+        use nalgebra::{DMatrix, DVector};
+        let n = 2 * 500;
+        let a: Vec<f64> = (0..n)
+            .map(|i| ((i / 2) as f64 * 0.023).sin() * (1.0 + (i % 2) as f64))
+            .collect();
+        let b: Vec<f64> = (0..n)
+            .map(|i| match i % 2 {
+                0 => ((i / 2) as f64 * 0.07).cos().signum(),
+                _ => 0.0,
+            })
+            .collect();
+        let f: Vec<f64> = (0..n)
+            .map(|i| match i % 2 {
+                0 => ((i / 2) as f64 * 0.013).cos(),
+                _ => 0.0,
+            })
+            .collect();
+        let mut rng = crate::synth::Rng::new(11);
+        let noise: Vec<f64> = (0..n).map(|_| rng.normal()).collect();
+        let delay = 0.01;
+        let judged = |late_a: f64, late_b: f64| {
+            let y = DVector::from_fn(n, |r, _| {
+                late_a * a[r] + late_b * b[r] + 0.6 * f[r] + 1e-3 * noise[r]
+            });
+            let x = DMatrix::from_fn(n, 2, |r, c| if c == 0 { f[r] } else { a[r] + b[r] });
+            let terms = vec![
+                test_term(Candidate::Viscous(0), vec![0], vec![true], None),
+                test_term(Candidate::TimeDelay, vec![1], vec![true], None),
+            ];
+            let pool = test_pool(x, y, terms, 2);
+            let common = pool.solve(&[0, 1]).theta[1][0];
+            let lags = model_lag(&pool, &[0, 1], 1, &a, 3.0, |q, s| q.solve(s)).expect("split");
+            (common, lags, !helps(lags.part.0, lags.part.1, common))
+        };
+        let (common, lags, not_shown) = judged(delay, delay);
+        assert!((common - delay).abs() < 1e-3, "{common}");
+        assert!((lags.part.0 - delay).abs() < 1e-3, "{lags:?}");
+        assert!(!not_shown, "{lags:?}");
+        let (common, lags, not_shown) = judged(0.0, delay);
+        assert!(common > 0.2 * delay, "{common}");
+        assert!(lags.part.0.abs() < 1e-3 && (lags.rest.0 - delay).abs() < 1e-3);
+        assert!(not_shown, "{common} {lags:?}");
+    }
+
+    #[test]
+    fn a_part_must_lag_more_than_half_the_common_delay() {
+        // Half is where the common delay stops helping.
+        assert!(helps(0.006, 0.0, 0.01));
+        assert!(!helps(0.004, 0.0, 0.01));
+        // Above half, but not by two standard deviations: not shown.
+        assert!(!helps(0.006, 0.0006, 0.01));
+        assert!(helps(0.006, 0.0004, 0.01));
+        assert!(!helps(-0.002, 0.001, 0.01));
     }
 
     #[test]

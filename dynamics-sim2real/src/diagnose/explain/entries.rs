@@ -12,7 +12,7 @@ use super::words::{add_direction_words, link_words, nominal_words};
 use crate::diagnose::candidates::{delta, Candidate, Friction, LinkBasis};
 use crate::diagnose::evaluate::{fraction, Confidence, Holdout, Suggestion, Unconfirmed};
 use crate::diagnose::fit::{window_of, Windows};
-use crate::diagnose::select::{joint_fit, Explanation, Pool, Solution};
+use crate::diagnose::select::{joint_fit, Explanation, Parts, Pool, Solution};
 use crate::inertial::{check, complete, describe};
 use dynamics_runtime::Robot;
 
@@ -207,6 +207,7 @@ pub fn suggested<R: Robot<N>, const N: usize>(
                 Unconfirmed::WithinCalibration(s) => format!(
                     "refines the baseline's calibration (its spread on this friction {s:.3e}): no change that the calibration would have seen"
                 ),
+                Unconfirmed::NotTheWholeEffort { common, lags } => not_the_whole(common, lags),
                 Unconfirmed::NotConfirmed(c) => format!(
                     "helps only where it was fitted: on the held-out record it removes {} of the gap above noise, no more than noise alone could ({})",
                     share(c.gain_share),
@@ -232,11 +233,26 @@ pub fn suggested<R: Robot<N>, const N: usize>(
                 joint,
                 point,
                 parameters,
+                channel: c.channel(),
                 status: "suggested",
                 reason,
             }
         })
         .collect()
+}
+
+/// Why a delay the model's own effort does not show is not named, in
+/// words: the common delay and the two parts' lags.
+fn not_the_whole(common: &f64, lags: &Parts) -> String {
+    let ms = |(v, s): (f64, f64)| format!("{:+.2} +- {:.2} ms", 1e3 * v, 1e3 * s);
+    format!(
+        "not the whole effort late: its column split, the effort the model predicts lags {} and the rest {}; \
+         the common {:.2} ms is not shown to help the model's part (its lag is not above half of it by two standard deviations), \
+         as a lag of what the model misses alone does (a friction that lags its velocity reversals), not a late stream",
+        ms(lags.part),
+        ms(lags.rest),
+        1e3 * *common
+    )
 }
 
 /// A link correction's parameters and its words: the change along the

@@ -180,6 +180,9 @@ pub struct Suggested {
     /// Its parameters as fitted in the set it was chosen in (none for a
     /// link correction).
     pub parameters: Vec<Parameter>,
+    /// For `time_delay`: the late channel (see [`Ranked::channel`]).
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub channel: Option<Channel>,
     /// `suggested`: not confirmed.
     pub status: &'static str,
     /// Why it is not named.

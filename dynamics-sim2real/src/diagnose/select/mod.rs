@@ -21,7 +21,9 @@ mod rank;
 pub use compound::{effects, joint_fit, without_others, Explanation};
 pub use nesting::{breakaway_data_needed, nested_rival_stands};
 pub(in crate::diagnose) use pool::leaves_a_body;
-pub use pool::{Pool, Solution};
+#[cfg(test)]
+pub(crate) use pool::{test_pool, test_term};
+pub use pool::{Parts, Pool, Solution};
 
 use nalgebra::SVector;
 

@@ -23,9 +23,11 @@ mod build;
 mod physical;
 pub mod prior;
 mod solve;
+mod split;
 mod windows;
 pub(in crate::diagnose) use physical::leaves_a_body;
 pub(in crate::diagnose) use solve::independent;
+pub use split::Parts;
 
 /// One term of the pool: a fitted single candidate and its columns.
 #[derive(Debug, Clone)]
