@@ -7,7 +7,7 @@
 use nalgebra::DMatrix;
 
 use super::prior::Prior;
-use super::{penalised, Pool, Solution};
+use super::{penalised, Blocks, Pool, Solution};
 
 /// The two parts of a split term as the joint fit gives them: the part
 /// asked for and the rest of the column, each a value and its standard
@@ -111,6 +111,7 @@ impl Pool {
             weights: self.weights.clone(),
             prior,
             strength: self.strength,
+            blocks: Blocks::default(),
         };
         let all: Vec<usize> = (0..count).collect();
         let sol = solve(&pool, &all);
