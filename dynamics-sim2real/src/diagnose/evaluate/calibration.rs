@@ -139,7 +139,10 @@ pub fn changed(
 /// The friction corrections of `confirmed` that are no change since
 /// `calibration` ([`changed`], at each effect's held-out test level) moved
 /// to its suggestions (`Unconfirmed::WithinCalibration`), the others
-/// refitted without them by `solve`.
+/// refitted without them by `solve`; again on the refitted values until
+/// none moves (two corrections of one joint's friction share what they
+/// explain: with the one gone, the other's value is what is reported,
+/// and it is that value which must be a change).
 pub fn keep_changes(
     confirmed: &mut Confirmed,
     pool: &Pool,
@@ -148,40 +151,44 @@ pub fn keep_changes(
     solve: impl Fn(&[usize]) -> Solution,
 ) {
     let naming = (add_margin.max(0.0) + 2.0).sqrt();
-    let e = &confirmed.explanation;
-    let mut keep = Vec::new();
-    for (i, &t) in e.set.iter().enumerate() {
-        let c = pool.terms[t].fit.candidate;
-        let (value, std) = (
-            e.sol.theta[i].first().copied().unwrap_or(0.0),
-            e.sol.std[i].first().copied().unwrap_or(0.0),
-        );
-        let level = confirmed.confidence.get(i).map_or(1e-3, |c| c.level);
-        if changed(c, (value, std), calibration, level, naming) {
-            keep.push(i);
-            continue;
+    loop {
+        let e = &confirmed.explanation;
+        let mut keep = Vec::new();
+        let mut moved = Vec::new();
+        for (i, &t) in e.set.iter().enumerate() {
+            let c = pool.terms[t].fit.candidate;
+            let (value, std) = (
+                e.sol.theta[i].first().copied().unwrap_or(0.0),
+                e.sol.std[i].first().copied().unwrap_or(0.0),
+            );
+            let level = confirmed.confidence.get(i).map_or(1e-3, |c| c.level);
+            if changed(c, (value, std), calibration, level, naming) {
+                keep.push(i);
+                continue;
+            }
+            moved.push(Suggestion {
+                term: t,
+                theta: e.sol.theta[i].clone(),
+                std: e.sol.std[i].clone(),
+                why: Unconfirmed::WithinCalibration(
+                    calibrated(c, calibration).map_or(f64::NAN, |(s, _)| s),
+                ),
+            });
         }
-        confirmed.suggested.push(Suggestion {
-            term: t,
-            theta: e.sol.theta[i].clone(),
-            std: e.sol.std[i].clone(),
-            why: Unconfirmed::WithinCalibration(
-                calibrated(c, calibration).map_or(f64::NAN, |(s, _)| s),
-            ),
-        });
+        if moved.is_empty() {
+            return;
+        }
+        let set: Vec<usize> = keep.iter().map(|&i| e.set[i]).collect();
+        let rivals = keep.iter().map(|&i| e.rivals[i]).collect();
+        let confidence = keep
+            .iter()
+            .filter_map(|&i| confirmed.confidence.get(i).copied())
+            .collect();
+        let sol = solve(&set);
+        confirmed.suggested.extend(moved);
+        confirmed.explanation = Explanation { set, sol, rivals };
+        confirmed.confidence = confidence;
     }
-    if keep.len() == e.set.len() {
-        return;
-    }
-    let set: Vec<usize> = keep.iter().map(|&i| e.set[i]).collect();
-    let rivals = keep.iter().map(|&i| e.rivals[i]).collect();
-    let confidence = keep
-        .iter()
-        .filter_map(|&i| confirmed.confidence.get(i).copied())
-        .collect();
-    let sol = solve(&set);
-    confirmed.explanation = Explanation { set, sol, rivals };
-    confirmed.confidence = confidence;
 }
 
 #[cfg(test)]
@@ -240,6 +247,75 @@ mod tests {
             &cal,
             1e-3,
             naming
+        ));
+    }
+
+    /// Coulomb and viscous friction of one joint whose columns share most
+    /// of what they explain: fitted together, the viscous correction is 5
+    /// (beyond the calibration's 0.5) and the Coulomb one -4 (within its
+    /// 10); with the Coulomb correction left to the calibration, the
+    /// viscous one alone is about 1, within what the calibration could
+    /// tell: it too is a suggestion, not a change.
+    #[test]
+    fn a_correction_is_judged_at_the_value_reported() {
+        use crate::diagnose::evaluate::confirm::Confidence;
+        use crate::diagnose::select::{test_pool, test_term};
+        use nalgebra::{DMatrix, DVector};
+        let n = 200;
+        // a: a sign-like column; c: small and orthogonal to it.
+        let a = |r: usize| if r % 2 == 0 { 1.0 } else { -1.0 };
+        let c = |r: usize| if (r / 2) % 2 == 0 { 0.1 } else { -0.1 };
+        let x = DMatrix::from_fn(n, 2, |r, k| if k == 0 { a(r) } else { a(r) + c(r) });
+        let y = DVector::from_fn(n, |r, _| -4.0 * a(r) + 5.0 * (a(r) + c(r)));
+        let coulomb = Candidate::Coulomb(0, SIGN_SMOOTHING);
+        let viscous = Candidate::Viscous(0);
+        let pool = test_pool(
+            x,
+            y,
+            vec![
+                test_term(coulomb, vec![0], vec![false], None),
+                test_term(viscous, vec![1], vec![false], None),
+            ],
+            1,
+        );
+        let sol = pool.solve(&[0, 1]);
+        assert!((sol.theta[0][0] + 4.0).abs() < 1e-9 && (sol.theta[1][0] - 5.0).abs() < 1e-9);
+        let confidence = Confidence {
+            held_out: 1.0,
+            threshold: 0.0,
+            effective_rows: n as f64,
+            gain_share: 0.5,
+            chance_share: 0.0,
+            level: 1e-3,
+        };
+        let mut confirmed = Confirmed {
+            explanation: Explanation {
+                set: vec![0, 1],
+                sol,
+                rivals: vec![None, None],
+            },
+            confidence: vec![confidence, confidence],
+            suggested: vec![],
+            within_sample: None,
+        };
+        let cal = CalibrationSpread {
+            coulomb: vec![10.0],
+            viscous: vec![0.5],
+            coulomb_corrected: vec![true],
+            viscous_corrected: vec![true],
+        };
+        // The viscous correction alone: (a + c) . (a + 5 c) / |a + c|^2 =
+        // 210 / 202.
+        let alone = pool.solve(&[1]).theta[0][0];
+        assert!((alone - 210.0 / 202.0).abs() < 1e-9, "{alone}");
+        keep_changes(&mut confirmed, &pool, &cal, 0.0, |set| pool.solve(set));
+        assert!(confirmed.explanation.set.is_empty());
+        let moved: Vec<usize> = confirmed.suggested.iter().map(|s| s.term).collect();
+        assert_eq!(moved, vec![0, 1]);
+        assert!((confirmed.suggested[1].theta[0] - alone).abs() < 1e-12);
+        assert!(matches!(
+            confirmed.suggested[1].why,
+            Unconfirmed::WithinCalibration(s) if s == 0.5
         ));
     }
 }
