@@ -263,8 +263,8 @@ mod tests {
         use nalgebra::{DMatrix, DVector};
         let n = 200;
         // a: a sign-like column; c: small and orthogonal to it.
-        let a = |r: usize| if r % 2 == 0 { 1.0 } else { -1.0 };
-        let c = |r: usize| if (r / 2) % 2 == 0 { 0.1 } else { -0.1 };
+        let a = |r: usize| if r.is_multiple_of(2) { 1.0 } else { -1.0 };
+        let c = |r: usize| if (r / 2).is_multiple_of(2) { 0.1 } else { -0.1 };
         let x = DMatrix::from_fn(n, 2, |r, k| if k == 0 { a(r) } else { a(r) + c(r) });
         let y = DVector::from_fn(n, |r, _| -4.0 * a(r) + 5.0 * (a(r) + c(r)));
         let coulomb = Candidate::Coulomb(0, SIGN_SMOOTHING);
