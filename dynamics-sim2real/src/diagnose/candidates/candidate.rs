@@ -465,3 +465,33 @@ pub fn payload_com(theta: &[f64]) -> [f64; 3] {
     }
     [p(1) / m, p(2) / m, p(3) / m]
 }
+
+/// The part of a delay's column at sample `k` that the model's own effort
+/// carries, for the channels whose column is a rate of the effort: the
+/// model effort's rate for the motion late (`time_delay`, channel `all`),
+/// minus it for the effort late (its column is minus the effort's
+/// secant); `None` for every other candidate (the `positions` column,
+/// `K qd`, is the model's own through and through). Zero where the
+/// model's rate is not finite.
+///
+/// A late stream shifts the whole effort: the part the model predicts
+/// (inertia, gravity, Coriolis) as much as what it misses; a lag of what
+/// it misses alone (a friction whose force lags its velocity reversals)
+/// does not show in this part (`evaluate/confirm.rs`).
+pub fn model_part<const N: usize>(
+    sig: &Signals<N>,
+    k: usize,
+    c: Candidate,
+) -> Option<SVector<f64, N>> {
+    let sign = match c {
+        Candidate::TimeDelay => 1.0,
+        Candidate::LateEffort(_) => -1.0,
+        _ => return None,
+    };
+    let rate = sig.model_rate(k);
+    Some(if rate.iter().all(|x| x.is_finite()) {
+        rate * sign
+    } else {
+        SVector::zeros()
+    })
+}

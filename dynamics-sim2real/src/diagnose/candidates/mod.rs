@@ -34,6 +34,7 @@ mod shift;
 mod visibility;
 
 pub use basis::Friction;
+pub(in crate::diagnose) use candidate::model_part;
 pub use candidate::{payload_com, Candidate, Channel, Unnamed};
 pub use columns::{linear_columns, lower_bounds, whitened, whitened_rows};
 pub use grids::EFFORT_SCALE_LIMIT;
@@ -42,7 +43,6 @@ pub use links::{combined, delta, link_basis, regressor_columns, LinkBasis};
 pub use motor::{motor_feasible, motor_grid, signature_limit, MotorGuess};
 pub use prepared::Prepared;
 pub use records::{Record, Records};
-pub(in crate::diagnose) use shift::model_part;
 pub use visibility::{identifiable, Excitation};
 
 use crate::diagnose::Options;
