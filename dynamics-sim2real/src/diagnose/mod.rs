@@ -103,12 +103,8 @@ pub fn diagnose<R: Robot<N> + Clone + Send + Sync + 'static, const N: usize>(
     options: &Options,
     progress: &(dyn Fn(usize, usize) + Sync),
 ) -> Result<Report, DiagnoseError> {
-    let threads = rayon::ThreadPoolBuilder::new()
-        .num_threads(options.threads)
-        .build()
-        .map_err(|e| DiagnoseError::Threads(e.to_string()))?;
     let (train, holdout) = (Record::Lent(train), Record::Lent(holdout));
-    threads.install(|| stages(robot, train, holdout, options, progress))
+    in_pool(options, || stages(robot, train, holdout, options, progress))
 }
 
 /// [`diagnose`] on records handed over rather than lent: the diagnosis
@@ -131,13 +127,21 @@ pub fn diagnose_owned<R: Robot<N> + Clone + Send + Sync + 'static, const N: usiz
     options: &Options,
     progress: &(dyn Fn(usize, usize) + Sync),
 ) -> Result<Report, DiagnoseError> {
-    let threads = rayon::ThreadPoolBuilder::new()
-        .num_threads(options.threads)
-        .build()
-        .map_err(|e| DiagnoseError::Threads(e.to_string()))?;
     let train = Record::Shared(Arc::new(train));
     let holdout = Record::Shared(Arc::new(holdout));
-    threads.install(|| stages(robot, train, holdout, options, progress))
+    in_pool(options, || stages(robot, train, holdout, options, progress))
+}
+
+/// `run` on a thread pool of `options.threads` threads.
+fn in_pool<T: Send>(
+    options: &Options,
+    run: impl FnOnce() -> Result<T, DiagnoseError> + Send,
+) -> Result<T, DiagnoseError> {
+    rayon::ThreadPoolBuilder::new()
+        .num_threads(options.threads)
+        .build()
+        .map_err(|e| DiagnoseError::Threads(e.to_string()))?
+        .install(run)
 }
 
 /// The stages of [`diagnose`], in the order of the data.
