@@ -31,7 +31,14 @@
 //!    autocorrelation time of the sensor noise through the smoothing (the
 //!    filter makes neighbouring rows anything but independent: chance is
 //!    the noise, so its rows count as the filter leaves them). The weakest
-//!    failing effect is dropped first and the rest tested again.
+//!    failing effect is dropped first and the rest tested again, unless a
+//!    larger effect of the set (more parameters) stands in for it: where
+//!    the failing effect holds once the larger one is out, and the larger
+//!    one in its place lowers the held-out residual by no more than the
+//!    chi-square quantile of the extra parameters, the larger one is the
+//!    one dropped ([`held_out_test`]): a link correction does not stand in
+//!    for a rotor inertia, nor a payload for an encoder offset, unless the
+//!    held-out record shows what its extra parameters add.
 
 use nalgebra::SVector;
 
@@ -81,6 +88,19 @@ pub enum Unconfirmed {
     NotPhysical,
     /// It does not lower the held-out deviance by more than chance would.
     NotConfirmed(Confidence),
+    /// A simpler effect of the set (fewer parameters) holds on the
+    /// held-out record in its place, and this one does not lower the
+    /// held-out residual below that simpler one's by more than chance
+    /// would with its extra parameters.
+    Simpler {
+        /// The simpler effect's pool term.
+        rival: usize,
+        /// What this effect in place of the simpler one gains on the
+        /// held-out record, as a share of the gap above noise.
+        extra: f64,
+        /// What chance would give its extra parameters, the same share.
+        chance: f64,
+    },
     /// A friction correction within what the calibration of the nominal
     /// model could tell (its spread on that friction, given): no change
     /// since the calibration (`calibration.rs`).
@@ -306,15 +326,93 @@ pub fn confirm<R: Robot<N>, const N: usize>(
     let level = FAMILY_LEVEL / keep.len().max(1) as f64;
     let y = hold.observed();
     let gap = (y.norm_squared() - y.len() as f64).max(1e-300);
-    let mut confidence;
+    let scale = Scale {
+        tau,
+        gap,
+        effective_rows,
+        level,
+    };
+    let k = |i: usize| pool.terms[e.set[i]].k;
+    let (keep, confidence, dropped) = held_out_test(keep, k, sse, &scale);
+    for (i, why) in dropped {
+        let why = match why {
+            Unconfirmed::Simpler {
+                rival,
+                extra,
+                chance,
+            } => Unconfirmed::Simpler {
+                rival: e.set[rival],
+                extra,
+                chance,
+            },
+            why => why,
+        };
+        suggested.push(suggest(i, why));
+    }
+    let set = terms(&keep);
+    let sol = solve(&set);
+    let rivals = keep
+        .iter()
+        .map(|&i| e.rivals[i].filter(|r| !set.contains(r)))
+        .collect();
+    Confirmed {
+        explanation: Explanation { set, sol, rivals },
+        confidence,
+        suggested,
+        within_sample,
+    }
+}
+
+/// The held-out record's yardsticks: `tau` rows a noise sample is
+/// correlated over, `gap` the held-out residual's sum of squares above the
+/// noise (in floor units), `effective_rows` the rows over `tau`, `level`
+/// each effect's chance level.
+pub struct Scale {
+    /// Integrated autocorrelation time of the noise, in rows.
+    pub tau: f64,
+    /// The nominal model's held-out sum of squares above noise.
+    pub gap: f64,
+    /// Held-out rows counted as independent.
+    pub effective_rows: f64,
+    /// The chance level of each effect's test.
+    pub level: f64,
+}
+
+/// The held-out test of the effects at positions `keep` (`k`: an
+/// effect's parameter count; `sse`: the held-out residual's sum of
+/// squares, in floor units, with the effects at the positions given, the
+/// others refitted on the training record). Each effect must lower it by
+/// more than the chi-square quantile at its parameter count; the weakest
+/// failing one goes first and the rest are tested again, unless a larger
+/// effect (more parameters) stands in its way: where the failing effect
+/// holds once the larger one is out, and the larger one in its place
+/// lowers the held-out residual by no more than chance gives the extra
+/// parameters, the larger one goes instead (`Unconfirmed::Simpler`, its
+/// `rival` a position). Returns the positions kept, their confidence and
+/// the positions dropped, with the reason.
+pub fn held_out_test(
+    mut keep: Vec<usize>,
+    k: impl Fn(usize) -> usize,
+    sse: impl Fn(&[usize]) -> f64,
+    scale: &Scale,
+) -> (Vec<usize>, Vec<Confidence>, Vec<(usize, Unconfirmed)>) {
+    let Scale {
+        tau,
+        gap,
+        effective_rows,
+        level,
+    } = *scale;
+    let mut dropped = Vec::new();
     loop {
+        let without = |drop: &[usize]| -> Vec<usize> {
+            keep.iter().copied().filter(|i| !drop.contains(i)).collect()
+        };
         let full = sse(&keep);
-        confidence = keep
+        let confidence = keep
             .iter()
             .map(|&i| {
-                let rest: Vec<usize> = keep.iter().copied().filter(|&m| m != i).collect();
-                let without = sse(&rest);
-                let threshold = chi2_upper(pool.terms[e.set[i]].k, level);
+                let without = sse(&without(&[i]));
+                let threshold = chi2_upper(k(i), level);
                 Confidence {
                     held_out: (without - full) / tau,
                     threshold,
@@ -335,31 +433,104 @@ pub fn confirm<R: Robot<N>, const N: usize>(
                 (a.1.held_out - a.1.threshold).total_cmp(&(b.1.held_out - b.1.threshold))
             })
             .map(|(m, c)| (m, *c));
-        match worst {
-            Some((m, c)) => {
-                let i = keep.remove(m);
-                suggested.push(suggest(i, Unconfirmed::NotConfirmed(c)));
+        let Some((m, c)) = worst else {
+            return (keep, confidence, dropped);
+        };
+        // A larger effect standing in for the failing one.
+        let i = keep[m];
+        let with_j = full + c.held_out * tau;
+        let displaced = keep
+            .iter()
+            .enumerate()
+            .filter(|&(n, &j)| n != m && k(j) > k(i))
+            .filter_map(|(n, &j)| {
+                let with_i = sse(&without(&[j]));
+                let alone = (sse(&without(&[i, j])) - with_i) / tau;
+                let extra = (with_i - with_j) / tau;
+                let chance = chi2_upper(k(j) - k(i), level);
+                (alone > c.threshold && extra <= chance).then_some((n, extra, chance))
+            })
+            .min_by(|a, b| (a.1 - a.2).total_cmp(&(b.1 - b.2)));
+        match displaced {
+            Some((n, extra, chance)) => {
+                let j = keep.remove(n);
+                let why = Unconfirmed::Simpler {
+                    rival: i,
+                    extra: extra * tau / gap,
+                    chance: chance * tau / gap,
+                };
+                dropped.push((j, why));
             }
-            None => break,
+            None => {
+                keep.remove(m);
+                dropped.push((i, Unconfirmed::NotConfirmed(c)));
+            }
         }
-    }
-    let set = terms(&keep);
-    let sol = solve(&set);
-    let rivals = keep
-        .iter()
-        .map(|&i| e.rivals[i].filter(|r| !set.contains(r)))
-        .collect();
-    Confirmed {
-        explanation: Explanation { set, sol, rivals },
-        confidence,
-        suggested,
-        within_sample,
     }
 }
 
 #[cfg(test)]
 mod tests {
     use super::*;
+
+    /// A one-parameter effect (position 0) and a ten-parameter one
+    /// (position 1) that can stand in for it, judged by held-out sums of
+    /// squares given for every subset: the simpler one fails beside the
+    /// larger one, holds alone; the larger one passes beside it. Unless
+    /// the larger one in the simpler one's place gains more than chance
+    /// gives its nine extra parameters, the simpler one is named.
+    #[test]
+    fn a_larger_effect_must_earn_its_extra_parameters_over_a_simpler_one() {
+        let level = FAMILY_LEVEL / 2.0;
+        let (t1, t10, t9) = (
+            chi2_upper(1, level),
+            chi2_upper(10, level),
+            chi2_upper(9, level),
+        );
+        let scale = Scale {
+            tau: 1.0,
+            gap: 1e4,
+            effective_rows: 1e3,
+            level,
+        };
+        let k = |i: usize| if i == 0 { 1 } else { 10 };
+        let judged = |gain_simple: f64, gain_large: f64| {
+            let full = 100.0;
+            let sse = move |pos: &[usize]| match pos {
+                [] => 1e4,
+                [0] => full + gain_large,
+                [1] => full + gain_simple,
+                _ => full,
+            };
+            held_out_test(vec![0, 1], k, sse, &scale)
+        };
+        // The larger one gains t10 + 1 beside the simpler one (it passes),
+        // the simpler one t1 - 1 beside it (it fails): in each other's
+        // place the larger one gains t10 - t1 + 2, below t9.
+        assert!(t10 - t1 + 2.0 < t9);
+        let (keep, confidence, dropped) = judged(t1 - 1.0, t10 + 1.0);
+        assert_eq!(keep, vec![0]);
+        assert!(confidence[0].held_out > confidence[0].threshold);
+        match &dropped[..] {
+            [(
+                1,
+                Unconfirmed::Simpler {
+                    rival: 0,
+                    extra,
+                    chance,
+                },
+            )] => {
+                assert!((extra * 1e4 - (t10 - t1 + 2.0)).abs() < 1e-9);
+                assert!((chance * 1e4 - t9).abs() < 1e-9);
+            }
+            other => panic!("the larger effect should go: {other:?}"),
+        }
+        // The larger one gains t9 + 1 more than the simpler one: it has
+        // earned its extra parameters, and the simpler one goes.
+        let (keep, _, dropped) = judged(t1 - 1.0, t1 - 1.0 + t9 + 1.0);
+        assert_eq!(keep, vec![1]);
+        assert!(matches!(&dropped[..], [(0, Unconfirmed::NotConfirmed(_))]));
+    }
 
     #[test]
     fn the_quantiles_are_the_tables() {

@@ -208,6 +208,30 @@ pub fn suggested<R: Robot<N>, const N: usize>(
                     "refines the baseline's calibration (its spread on this friction {s:.3e}): no change that the calibration would have seen"
                 ),
                 Unconfirmed::NotTheWholeEffort { common, lags } => not_the_whole(common, lags),
+                Unconfirmed::Simpler {
+                    rival,
+                    extra,
+                    chance,
+                } => {
+                    let r = pool.terms[*rival].fit.candidate;
+                    let at = match place_of::<R, N>(r, tip) {
+                        (_, Some(point)) => format!(" at {point}"),
+                        (Some(joint), None) => format!(" at {joint}"),
+                        (None, None) => String::new(),
+                    };
+                    let gain = if *extra > 0.0 {
+                        format!("removes {} more of the gap above noise there", share(*extra))
+                    } else {
+                        "removes nothing more of the gap above noise there".into()
+                    };
+                    format!(
+                        "the held-out record holds a simpler effect in its place ({}{at}, {} fewer parameters); \
+                         this one in that one's place {gain}, no more than chance gives the extra parameters ({})",
+                        r.kind().name(),
+                        pool.terms[s.term].k.saturating_sub(pool.terms[*rival].k),
+                        share(*chance)
+                    )
+                }
                 Unconfirmed::NotConfirmed(c) => format!(
                     "helps only where it was fitted: on the held-out record it removes {} of the gap above noise, no more than noise alone could ({})",
                     share(c.gain_share),
