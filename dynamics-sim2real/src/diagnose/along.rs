@@ -121,6 +121,14 @@ pub fn tip_rotation<R: Robot<N>, const N: usize>(
     }
 }
 
+/// Where a frame tip's orientation, angular-velocity Jacobian and angular
+/// acceleration are written, a sample each.
+pub type FrameOut<'a, const N: usize> = (
+    &'a mut [Matrix3<f64>],
+    &'a mut [SMatrix<f64, 3, N>],
+    &'a mut [Vector3<f64>],
+);
+
 /// A frame tip's motion at the samples of `range`: what [`tip_motion`]
 /// and `tip_rotation` write, to the bit, each of the frame's poses
 /// their central differences share evaluated once
@@ -133,11 +141,7 @@ pub fn frame_tip<R: Robot<N>, const N: usize>(
     range: Range<usize>,
     jac: &mut [SMatrix<f64, 3, N>],
     acc: &mut [Vector3<f64>],
-    (rot, jac_w, alpha): (
-        &mut [Matrix3<f64>],
-        &mut [SMatrix<f64, 3, N>],
-        &mut [Vector3<f64>],
-    ),
+    (rot, jac_w, alpha): FrameOut<'_, N>,
 ) -> bool {
     if !matches!(tip, Tip::Frame(_)) {
         return false;
