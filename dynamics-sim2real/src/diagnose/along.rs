@@ -100,7 +100,8 @@ pub fn tip_motion<R: Robot<N>, const N: usize>(
 /// The tip frame's orientation, angular-velocity Jacobian J_w and angular
 /// acceleration `J_w qdd + Jd_w qd` at the samples of `range` into `rot`,
 /// `jac` and `alpha` (left as they are for a point tip, which has no
-/// frame).
+/// frame); `frame_tip` gives the same values with `tip_motion`'s.
+#[cfg(test)]
 #[allow(clippy::too_many_arguments)]
 pub fn tip_rotation<R: Robot<N>, const N: usize>(
     robot: &R,
@@ -118,6 +119,46 @@ pub fn tip_rotation<R: Robot<N>, const N: usize>(
             alpha[k] = j * qdd[k] + tip.angular_bias(robot, &q[k], &qd[k]);
         }
     }
+}
+
+/// Where a frame tip's orientation, angular-velocity Jacobian and angular
+/// acceleration are written, a sample each.
+pub type FrameOut<'a, const N: usize> = (
+    &'a mut [Matrix3<f64>],
+    &'a mut [SMatrix<f64, 3, N>],
+    &'a mut [Vector3<f64>],
+);
+
+/// A frame tip's motion at the samples of `range`: what [`tip_motion`]
+/// and `tip_rotation` write, to the bit, each of the frame's poses
+/// their central differences share evaluated once
+/// (`Tip::frame_motion`). `false`, nothing written, for a point tip.
+#[allow(clippy::too_many_arguments)]
+pub fn frame_tip<R: Robot<N>, const N: usize>(
+    robot: &R,
+    tip: &Tip,
+    [q, qd, qdd]: [&[SVector<f64, N>]; 3],
+    range: Range<usize>,
+    jac: &mut [SMatrix<f64, 3, N>],
+    acc: &mut [Vector3<f64>],
+    (rot, jac_w, alpha): FrameOut<'_, N>,
+) -> bool {
+    if !matches!(tip, Tip::Frame(_)) {
+        return false;
+    }
+    for k in range {
+        let Some(m) = tip.frame_motion(robot, &q[k], &qd[k], &qdd[k]) else {
+            return false;
+        };
+        jac[k] = m.jac;
+        acc[k] = m.acc;
+        if let Some((r, j)) = m.rotation {
+            rot[k] = r;
+            jac_w[k] = j;
+            alpha[k] = m.alpha;
+        }
+    }
+    true
 }
 
 /// The sum over the samples of `range` of the mass matrix's diagonal.

@@ -84,14 +84,18 @@ impl<R: Robot<N> + Send + Sync, const N: usize> Model<N> for Held<R> {
         let n = out.len();
         let mut jac = vec![SMatrix::zeros(); n];
         let mut acc = vec![Vector3::zeros(); n];
-        along::tip_motion(&self.0, tip, motion, 0..n, n.max(1), &mut jac, &mut acc);
         let mut frame = None;
         if let Tip::Frame(_) = tip {
             let mut rot = vec![Matrix3::identity(); n];
             let mut jac_w = vec![SMatrix::zeros(); n];
             let mut alpha = vec![Vector3::zeros(); n];
-            along::tip_rotation(&self.0, tip, motion, 0..n, &mut rot, &mut jac_w, &mut alpha);
-            frame = Some((rot, jac_w, alpha));
+            let rotation = (&mut rot[..], &mut jac_w[..], &mut alpha[..]);
+            if along::frame_tip(&self.0, tip, motion, 0..n, &mut jac, &mut acc, rotation) {
+                frame = Some((rot, jac_w, alpha));
+            }
+        }
+        if frame.is_none() {
+            along::tip_motion(&self.0, tip, motion, 0..n, n.max(1), &mut jac, &mut acc);
         }
         for (i, o) in out.iter_mut().enumerate() {
             *o = TipAt {

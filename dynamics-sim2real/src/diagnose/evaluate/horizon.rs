@@ -4,6 +4,11 @@
 //! (windows on all cores). A delay shifts the recorded motion against the
 //! recorded efforts: a positive one reads the motion that many samples
 //! later, a negative one (the effort late, `late.rs`) the efforts.
+//!
+//! A window starts every [`SPACING`] seconds where the samples are clear;
+//! a record with more than [`WINDOWS`] such windows (some two minutes of
+//! record) is sampled at [`WINDOWS`] of them spread evenly over it
+//! ([`spread`]), so that the error's cost stops growing with the log.
 
 use nalgebra::SVector;
 use rayon::prelude::*;
@@ -17,9 +22,24 @@ use dynamics_runtime::Robot;
 pub const HORIZON: f64 = 0.1;
 /// Spacing of window starts, s.
 pub const SPACING: f64 = 0.5;
+/// Most windows an error is averaged over (120 s of record at
+/// [`SPACING`]).
+pub const WINDOWS: usize = 240;
+
+/// The window starts `starts` (increasing) kept when there are more than
+/// [`WINDOWS`]: `WINDOWS` of them spread evenly, the `i`-th being entry
+/// `i * n / WINDOWS` of the `n` (the first one always among them); all of
+/// them otherwise.
+pub fn spread(starts: Vec<usize>) -> Vec<usize> {
+    let n = starts.len();
+    if n <= WINDOWS {
+        return starts;
+    }
+    (0..WINDOWS).map(|i| starts[i * n / WINDOWS]).collect()
+}
 
 /// RMS position prediction error per joint over windows of [`HORIZON`]
-/// seconds, for the model with `effects` attached (none: the nominal model);
+/// seconds (at most [`WINDOWS`] of them, [`spread`]), for the model with `effects` attached (none: the nominal model);
 /// why not, when a plant cannot be built or a window not simulated.
 pub fn prediction_error<R: Robot<N> + Clone + Sync, const N: usize>(
     robot: &R,
@@ -64,6 +84,7 @@ pub fn prediction_error<R: Robot<N> + Clone + Sync, const N: usize>(
         }
         k0 += step;
     }
+    let starts = spread(starts);
     let plant = &plant;
     let window = |&k0: &usize| -> Result<Vec<SVector<f64, N>>, String> {
         // True state at t0 is what the sensors show `delay` later.
@@ -111,5 +132,31 @@ pub fn prediction_error<R: Robot<N> + Clone + Sync, const N: usize>(
         Ok(rms)
     } else {
         Err("a simulated position is not finite".into())
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::{spread, WINDOWS};
+
+    /// Up to [`WINDOWS`] starts are all kept; more are thinned to
+    /// [`WINDOWS`] of them, increasing, the first among them, each step
+    /// over the kept ones `n / WINDOWS` entries rounded down or up.
+    #[test]
+    fn a_long_records_windows_are_spread_evenly() {
+        let few: Vec<usize> = (0..WINDOWS).map(|i| 3 + 500 * i).collect();
+        assert_eq!(spread(few.clone()), few);
+        for n in [WINDOWS + 1, 2 * WINDOWS, 3 * WINDOWS + 7, 7200] {
+            let starts: Vec<usize> = (0..n).map(|i| 10 + 500 * i).collect();
+            let kept = spread(starts.clone());
+            assert_eq!(kept.len(), WINDOWS, "{n}");
+            assert_eq!(kept[0], starts[0]);
+            let (lo, hi) = (n / WINDOWS, n.div_ceil(WINDOWS));
+            for w in kept.windows(2) {
+                let step = (w[1] - w[0]) / 500;
+                assert!((lo..=hi).contains(&step), "{n}: step {step}");
+            }
+            assert!(*kept.last().unwrap() >= starts[n - hi]);
+        }
     }
 }

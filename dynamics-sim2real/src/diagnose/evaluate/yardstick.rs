@@ -21,7 +21,7 @@ use rayon::prelude::*;
 
 use crate::data::Measured;
 use crate::diagnose::candidates::Prepared;
-use crate::diagnose::evaluate::horizon::{HORIZON, SPACING};
+use crate::diagnose::evaluate::horizon::{spread, HORIZON, SPACING};
 use crate::effects::Plant;
 use crate::synth::Rng;
 use dynamics_runtime::ode::Tolerances;
@@ -31,7 +31,7 @@ use dynamics_runtime::Robot;
 const DRAWS: usize = 2;
 
 /// The floor of the short-horizon prediction error per joint (see the
-/// module notes), windows on all cores; the position noise if the model
+/// module notes) over at most `horizon::WINDOWS` windows, on all cores; the position noise if the model
 /// cannot be simulated.
 pub fn prediction_floor<R: Robot<N> + Clone + Sync, const N: usize>(
     robot: &R,
@@ -109,11 +109,15 @@ pub fn prediction_floor<R: Robot<N> + Clone + Sync, const N: usize>(
         Some((sum, count))
     };
     // Windows on all cores.
-    let starts: Vec<usize> = (a..)
-        .step_by(step)
-        .take_while(|s0| s0 + seg < z)
-        .filter(|&s0| sig.mask.clear(s0, s0 + seg))
-        .collect();
+    // Windows as the prediction error takes them (at most
+    // `horizon::WINDOWS`, spread evenly over the record).
+    let starts: Vec<usize> = spread(
+        (a..)
+            .step_by(step)
+            .take_while(|s0| s0 + seg < z)
+            .filter(|&s0| sig.mask.clear(s0, s0 + seg))
+            .collect(),
+    );
     let results: Vec<Option<(SVector<f64, N>, usize)>> = starts
         .par_iter()
         .with_max_len(1)

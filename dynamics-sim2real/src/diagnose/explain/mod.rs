@@ -37,7 +37,7 @@ pub use words::{add_encoder_words, add_payload_words, add_placement_words, add_s
 
 use crate::diagnose::candidates::Records;
 use crate::diagnose::evaluate::Evaluation;
-use crate::diagnose::fit::corrected;
+use crate::diagnose::fit::corrected_rows;
 use crate::diagnose::numeric::aicc;
 use crate::diagnose::select::Selection;
 use crate::diagnose::Options;
@@ -70,7 +70,7 @@ pub fn report<R: Robot<N>, const N: usize>(
         .best
         .iter()
         .map(|f| {
-            let hs = h.sse(&corrected(f, h, &selection.windows));
+            let hs = h.sse_rows(&corrected_rows(f, h, &selection.windows));
             ranked_entry::<R, N>(
                 f,
                 &tip_name,
