@@ -7,6 +7,7 @@ mod noise;
 mod segments;
 
 use std::ops::Deref;
+use std::sync::atomic::{AtomicU64, Ordering};
 use std::sync::Arc;
 
 use nalgebra::SVector;
@@ -113,17 +114,29 @@ fn kept<const N: usize>(m: &Measured<N>) -> Measured<N> {
 /// derivatives of the positions.
 #[derive(Debug, Clone)]
 pub struct Motion<const N: usize> {
+    /// Tells this motion from another's (its copies share it).
+    id: u64,
     record: Arc<Measured<N>>,
     sg: SavitzkyGolay,
 }
+
+/// Where each [`Motion`] is told from another.
+static NEXT_MOTION: AtomicU64 = AtomicU64::new(0);
 
 impl<const N: usize> Motion<N> {
     /// The smoothed motion of `record` by `sg`.
     pub fn of(record: &Arc<Measured<N>>, sg: &SavitzkyGolay) -> Self {
         Motion {
+            id: NEXT_MOTION.fetch_add(1, Ordering::Relaxed),
             record: Arc::clone(record),
             sg: sg.clone(),
         }
+    }
+
+    /// What tells this motion (and its copies) from another record's or
+    /// filter's: a key for values kept made from it.
+    pub fn id(&self) -> u64 {
+        self.id
     }
 
     /// Number of samples.

@@ -20,7 +20,9 @@ pub mod stretches;
 mod tests;
 pub mod transmitted;
 
+use std::cell::RefCell;
 use std::f64::consts::PI;
+use std::rc::Rc;
 
 use crate::diagnose::candidates::MotorGuess;
 use crate::diagnose::signals::Signals;
@@ -126,7 +128,7 @@ fn in_lanes<const N: usize>(
     let mut out = Vec::with_capacity(gs.len());
     let mut rest = gs;
     let track = Track::of(sig, j, span);
-    let tr = &track;
+    let tr = &*track;
     while !rest.is_empty() {
         let take = rest.len().min(LANES);
         let (now, later) = rest.split_at(take);
@@ -146,15 +148,57 @@ fn in_lanes<const N: usize>(
 
 /// Joint `j`'s smoothed position, velocity and acceleration over the
 /// samples of a span that lie in the record, indexed from the span's
-/// first sample: made once for all the lanes integrated over the span.
+/// first sample: made once for all the lanes integrated over the span,
+/// and kept by the thread for the next guesses simulated over it.
 struct Track {
     q: Vec<f64>,
     qd: Vec<f64>,
     qdd: Vec<f64>,
 }
 
+/// Samples of tracks a thread keeps, in seconds of the record: what one
+/// search simulates ([`stretches::SEARCH_SECONDS`], whole or in
+/// stretches) and a quarter more; an optimum's simulation over a longer
+/// record makes its track and drops it.
+const KEPT_SECONDS: f64 = 1.25 * stretches::SEARCH_SECONDS;
+
+/// A kept track: the motion's id, the joint, the span.
+type Kept = (u64, usize, (usize, usize), Rc<Track>);
+
+thread_local! {
+    /// The tracks this thread made last (first in, first out).
+    static KEPT: RefCell<Vec<Kept>> = const { RefCell::new(Vec::new()) };
+}
+
 impl Track {
-    fn of<const N: usize>(sig: &Signals<N>, j: usize, (a, z): (usize, usize)) -> Self {
+    /// Joint `j`'s track over `span` of `sig`'s motion, kept or made.
+    fn of<const N: usize>(sig: &Signals<N>, j: usize, span: (usize, usize)) -> Rc<Track> {
+        let id = sig.motion.id();
+        let most = (KEPT_SECONDS / sig.dt) as usize;
+        let len = |s: (usize, usize)| s.1.saturating_sub(s.0);
+        if len(span) > most {
+            return Rc::new(Self::made(sig, j, span));
+        }
+        KEPT.with(|kept| {
+            let mut kept = kept.borrow_mut();
+            let hit = kept
+                .iter()
+                .find(|(i, jj, s, _)| *i == id && *jj == j && *s == span);
+            if let Some((.., t)) = hit {
+                return Rc::clone(t);
+            }
+            let t = Rc::new(Self::made(sig, j, span));
+            while !kept.is_empty()
+                && kept.iter().map(|x| len(x.2)).sum::<usize>() + len(span) > most
+            {
+                kept.remove(0);
+            }
+            kept.push((id, j, span, Rc::clone(&t)));
+            t
+        })
+    }
+
+    fn made<const N: usize>(sig: &Signals<N>, j: usize, (a, z): (usize, usize)) -> Self {
         let z = z.min(sig.t.len());
         let m = &sig.motion;
         Track {
