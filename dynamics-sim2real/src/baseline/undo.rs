@@ -227,7 +227,7 @@ fn windowed_forces<R: Robot<N> + Clone + Send + Sync + 'static, const N: usize>(
             // Outside the smoothing's range (no fit row reaches it) the
             // measured position and velocity, at no acceleration.
             let (q, qd, qdd) = match (a..z).contains(&k) {
-                true => (sig.q[k], sig.qd[k], sig.qdd[k]),
+                true => (sig.q(k), sig.qd(k), sig.qdd(k)),
                 false => (m.q[k], m.qd[k], SVector::zeros()),
             };
             let added =

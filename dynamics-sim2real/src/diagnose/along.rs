@@ -161,27 +161,22 @@ pub fn frame_tip<R: Robot<N>, const N: usize>(
     true
 }
 
-/// The sum over the samples of `range` of the mass matrix's diagonal.
-pub fn mass_diagonal_sum<R: Robot<N>, const N: usize>(
+/// The mass matrix's diagonal at each state of `q` (a chunk or less)
+/// added to `sum`, in the samples' order.
+pub fn add_mass_diagonal<R: Robot<N>, const N: usize>(
     robot: &R,
     q: &[SVector<f64, N>],
-    range: Range<usize>,
-    chunk: usize,
-) -> SVector<f64, N> {
-    let mut sum = SVector::<f64, N>::zeros();
-    let mut a = Vec::new();
-    for c in chunks(range, chunk) {
-        a.resize(c.len(), SMatrix::<f64, N, N>::zeros());
-        if robot.mass_matrix_many(&q[c], &mut a).is_err() {
-            unreachable!("slices of one chunk have one length");
-        }
-        for m in &a {
-            for j in 0..N {
-                sum[j] += m[(j, j)];
-            }
+    sum: &mut SVector<f64, N>,
+) {
+    let mut a = vec![SMatrix::<f64, N, N>::zeros(); q.len()];
+    if robot.mass_matrix_many(q, &mut a).is_err() {
+        unreachable!("slices of one length");
+    }
+    for m in &a {
+        for j in 0..N {
+            sum[j] += m[(j, j)];
         }
     }
-    sum
 }
 
 /// Every link's inertial regressor at each sample of `range` (a chunk or

@@ -41,15 +41,14 @@ pub fn design<R: Robot<N>, const N: usize>(
         *c = sig.qd_light(k).map(|v| (v / sign_zone).tanh());
     }
     for k in a..z {
-        let have = robot
-            .inertial_regressor(&sig.q[k], &sig.qd[k], &sig.qdd[k], &mut y)
-            .is_ok();
+        let (q, qd, qdd) = (sig.q(k), sig.qd(k), sig.qdd(k));
+        let have = robot.inertial_regressor(&q, &qd, &qdd, &mut y).is_ok();
         for (c, col) in columns.iter().enumerate() {
             for j in 0..N {
                 let v = match *col {
                     Column::Coulomb(i) if i == j => coulomb[k][j],
-                    Column::Viscous(i) if i == j => sig.qd[k][j],
-                    Column::Armature(i) if i == j => sig.qdd[k][j],
+                    Column::Viscous(i) if i == j => qd[j],
+                    Column::Armature(i) if i == j => qdd[j],
                     Column::Link(l, p) if have => y[l][(j, p)],
                     _ => 0.0,
                 };

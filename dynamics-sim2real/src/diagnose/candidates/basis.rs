@@ -19,7 +19,7 @@ use nalgebra::{Matrix3, SMatrix, SVector, Vector3};
 
 use super::row_series::RowSeries;
 use crate::diagnose::along::{self, CHUNK};
-use crate::diagnose::signals::Signals;
+use crate::diagnose::signals::{Motion, Signals};
 use crate::effects::nominal_friction;
 use crate::effects::Tip;
 use crate::smoothing::SavitzkyGolay;
@@ -117,9 +117,7 @@ impl<R: Robot<N> + Send + Sync, const N: usize> Model<N> for Held<R> {
 #[derive(Clone)]
 struct Along<const N: usize> {
     model: Arc<dyn Model<N>>,
-    q: Arc<[SVector<f64, N>]>,
-    qd: Arc<[SVector<f64, N>]>,
-    qdd: Arc<[SVector<f64, N>]>,
+    motion: Motion<N>,
     range: (usize, usize),
     sg: SavitzkyGolay,
     tip: Tip,
@@ -184,6 +182,23 @@ fn smoothed<const R: usize, const C: usize>(
     y
 }
 
+/// The sum over the samples of `range` of the mass matrix's diagonal at
+/// `sig`'s positions, the positions made and the batches evaluated
+/// `chunk` samples at a time, summed in the samples' order.
+fn mass_diagonal_sum<R: Robot<N>, const N: usize>(
+    robot: &R,
+    sig: &Signals<N>,
+    range: std::ops::Range<usize>,
+    chunk: usize,
+) -> SVector<f64, N> {
+    let mut sum = SVector::<f64, N>::zeros();
+    for c in along::chunks(range, chunk) {
+        let q: Vec<_> = c.map(|k| sig.q(k)).collect();
+        along::add_mass_diagonal(robot, &q, &mut sum);
+    }
+    sum
+}
+
 /// K's raw values over a stretch, from its first sample on.
 type RawK<const N: usize> = (usize, Vec<SMatrix<f64, N, N>>);
 
@@ -191,7 +206,7 @@ impl<const N: usize> Along<N> {
     /// Chunk `c`'s samples and, when some lie in the signals' range, the
     /// stretch `lo..hi` of raw values their smoothing reads.
     fn stretch(&self, c: usize) -> (usize, usize, Option<(usize, usize)>) {
-        let n = self.q.len();
+        let n = self.motion.len();
         let (a, z) = self.range;
         let h = self.sg.half();
         let first = c.saturating_mul(self.chunk).min(n);
@@ -201,8 +216,8 @@ impl<const N: usize> Along<N> {
         (first, end, raw)
     }
 
-    fn motion(&self, lo: usize, hi: usize) -> [&[SVector<f64, N>]; 3] {
-        [&self.q[lo..hi], &self.qd[lo..hi], &self.qdd[lo..hi]]
+    fn motion(&self, lo: usize, hi: usize) -> [Vec<SVector<f64, N>>; 3] {
+        self.motion.stretch(lo, hi)
     }
 
     /// K's raw values over the stretch chunk `c`'s smoothing reads, and
@@ -212,7 +227,8 @@ impl<const N: usize> Along<N> {
         let (first, end, raw) = self.stretch(c);
         let raw = raw.map(|(lo, hi)| {
             let mut x = vec![SMatrix::zeros(); hi - lo];
-            self.model.k(self.motion(lo, hi), &mut x);
+            let [q, qd, qdd] = self.motion(lo, hi);
+            self.model.k([&q, &qd, &qdd], &mut x);
             (lo, x)
         });
         (first, end, raw)
@@ -262,7 +278,8 @@ impl<const N: usize> Along<N> {
         let mut out = vec![rest; end - first];
         if let Some((lo, hi)) = raw {
             let mut x = vec![rest; hi - lo];
-            self.model.tip(&self.tip, self.motion(lo, hi), &mut x);
+            let [q, qd, qdd] = self.motion(lo, hi);
+            self.model.tip(&self.tip, [&q, &qd, &qdd], &mut x);
             let acc: Vec<Vector3<f64>> = x.iter().map(|t| t.acc).collect();
             let alpha: Vec<Vector3<f64>> = x
                 .iter()
@@ -371,9 +388,7 @@ impl<const N: usize> Basis<N> {
         let chunk = if chunk == 0 { CHUNK } else { chunk };
         let along = Along {
             model: Arc::new(Held(robot.clone())),
-            q: sig.q.clone(),
-            qd: sig.qd.clone(),
-            qdd: sig.qdd.clone(),
+            motion: sig.motion.clone(),
             range: sig.range,
             sg: sig.sg.clone(),
             tip,
@@ -410,10 +425,10 @@ impl<const N: usize> Basis<N> {
             series: RowSeries::new(sig, rows, chunk),
             friction: (SVector::zeros(), SVector::zeros()),
         };
-        if let Some(q) = sig.q.get(a) {
-            b.friction = nominal_friction(robot, q);
+        if a < n {
+            b.friction = nominal_friction(robot, &sig.q(a));
         }
-        b.inertia = along::mass_diagonal_sum(robot, &sig.q, a..z, chunk);
+        b.inertia = mass_diagonal_sum(robot, sig, a..z, chunk);
         b.inertia /= (z - a).max(1) as f64;
         // The link's response to its own effort, as one over its mean own
         // inertia. The inverse mass matrix's diagonal at each sample (the

@@ -331,10 +331,9 @@ impl Candidate {
         k: usize,
     ) -> [SVector<f64, N>; 4] {
         let mut c = [SVector::zeros(); 4];
-        let qd = &sig.qd[k];
         match *self {
             Candidate::Coulomb(j, w) => c[0][j] = basis.series.law(sig, coulomb_law(w), k, j),
-            Candidate::Viscous(j) => c[0][j] = qd[j],
+            Candidate::Viscous(j) => c[0][j] = sig.motion.qd_at(k, j),
             Candidate::Stribeck(j, vs) => {
                 c[0][j] = basis.series.law(sig, coulomb_law(SIGN_SMOOTHING), k, j);
                 c[1][j] = basis.series.law(sig, stribeck_law(vs), k, j);
@@ -354,7 +353,7 @@ impl Candidate {
                 let f = t.acc - basis.gravity;
                 c[0] = t.jac.transpose() * f;
                 if let Some(Frame { rot, jac_w, alpha }) = t.frame {
-                    let w = jac_w * qd;
+                    let w = jac_w * sig.qd(k);
                     for i in 0..3 {
                         let u = rot.column(i).into_owned();
                         let lin = alpha.cross(&u) + w.cross(&w.cross(&u));
@@ -364,7 +363,7 @@ impl Candidate {
             }
             Candidate::Environment(alpha) => {
                 let jac = basis.tip_at(k).jac;
-                let v = jac * qd;
+                let v = jac * sig.qd(k);
                 let s = v.norm();
                 if s > 0.0 {
                     c[0] = jac.transpose() * (v * s.powf(alpha - 1.0));
@@ -375,7 +374,7 @@ impl Candidate {
             Candidate::TimeDelay => c[0] = late_motion_column(sig, k),
             // Positions d late: the model is evaluated at q - d qd, and
             // misses d K qd.
-            Candidate::LatePositions => c[0] = basis.k(k) * qd,
+            Candidate::LatePositions => c[0] = basis.k(k) * sig.qd(k),
             // The effort d late: the model's effort d earlier, which misses
             // -d times its rate.
             Candidate::LateEffort(d) => c[0] = late_effort_column(sig, k, d),
@@ -383,7 +382,7 @@ impl Candidate {
             Candidate::EffortOffset(j) => c[0][j] = 1.0,
             // The drive holds the spring: stiffness q + preload.
             Candidate::Spring(j) => {
-                c[0][j] = sig.q[k][j];
+                c[0][j] = sig.motion.q_at(k, j);
                 c[1][j] = 1.0;
             }
             Candidate::Elasticity(_) | Candidate::Backlash(_) | Candidate::Inertial(_) => {}

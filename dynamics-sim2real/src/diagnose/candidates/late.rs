@@ -69,7 +69,7 @@ pub fn kinematic<const N: usize>(m: &Measured<N>, p: &Prepared<N>) -> Option<Kin
         let rate = sig.sg.apply(&q, 1);
         let (mut ex, mut xx, mut ee, mut n) = (0.0, 0.0, 0.0, 0.0);
         for &k in &p.rows {
-            let (e, x) = (rate[k] - sig.qd[k][j], sig.qdd[k][j]);
+            let (e, x) = (rate[k] - sig.motion.qd_at(k, j), sig.motion.qdd_at(k, j));
             if e.is_finite() && x.is_finite() {
                 ex += e * x;
                 xx += x * x;

@@ -145,8 +145,9 @@ impl<const N: usize> RegressorWindow<N> {
         for _ in start..inside.start {
             self.y.push_back(zero());
         }
-        let motion = [&sig.q[..], &sig.qd[..], &sig.qdd[..]];
-        along::inertial_regressor(robot, motion, inside.clone(), self.links, &mut self.y).ok()?;
+        let [q, qd, qdd] = sig.motion.stretch(inside.start, inside.end);
+        let motion = [&q[..], &qd[..], &qdd[..]];
+        along::inertial_regressor(robot, motion, 0..inside.len(), self.links, &mut self.y).ok()?;
         for _ in inside.end..end {
             self.y.push_back(zero());
         }

@@ -208,6 +208,13 @@ impl<const N: usize> RowSeries<N> {
         if let Ok(r) = self.rows.binary_search(&k) {
             return self.at_rows[r][1 + i][j];
         }
+        self.cached(sig, i, k, j)
+    }
+
+    /// Series `i` (a law below [`LAWS`], the smoothed accelerations at
+    /// [`LAWS`]) of joint `j` at sample `k` from this thread's chunk
+    /// cache, its chunk recomputed when not there.
+    fn cached(&self, sig: &Signals<N>, i: usize, k: usize, j: usize) -> f64 {
         let c = k / self.chunk;
         CACHE.with(|cache| {
             let mut cache = cache.borrow_mut();
@@ -217,7 +224,11 @@ impl<const N: usize> RowSeries<N> {
             if let Some(s) = hit {
                 return s.values[k - s.first];
             }
-            let (first, values) = self.recompute(sig, i, j, c);
+            let (first, values) = if i < LAWS {
+                self.recompute(sig, i, j, c)
+            } else {
+                self.recompute_qdd(sig, j, c)
+            };
             let x = values[k - first];
             if cache.len() >= SLOTS {
                 cache.remove(0);
@@ -240,8 +251,24 @@ impl<const N: usize> RowSeries<N> {
     pub fn qdd(&self, sig: &Signals<N>, k: usize, j: usize) -> f64 {
         match self.rows.binary_search(&k) {
             Ok(r) => self.at_rows[r][0][j],
-            Err(_) => smoothed_qdd(sig, k, j),
+            Err(_) => self.cached(sig, LAWS, k, j),
         }
+    }
+
+    /// Joint `j`'s accelerations smoothed once more over chunk `c`: its
+    /// first sample and values, from the accelerations over the stretch
+    /// the chunk's windows read.
+    fn recompute_qdd(&self, sig: &Signals<N>, j: usize, c: usize) -> (usize, Vec<f64>) {
+        let n = sig.t.len();
+        let h = sig.sg.half();
+        let first = c * self.chunk;
+        let end = first.saturating_add(self.chunk).min(n);
+        let (from, to) = (first.saturating_sub(h), end.saturating_add(h).min(n));
+        let qdd: Vec<f64> = (from..to).map(|k| sig.motion.qdd_at(k, j)).collect();
+        let values = (first..end)
+            .map(|k| smoothed_qdd_in(sig, &qdd, from, k))
+            .collect();
+        (first, values)
     }
 
     /// Law `i` of joint `j` over chunk `c`: its first sample and values.
@@ -266,10 +293,20 @@ impl<const N: usize> RowSeries<N> {
 /// window does not fit in the range (or it is not finite), the
 /// acceleration itself outside the range.
 fn smoothed_qdd<const N: usize>(sig: &Signals<N>, k: usize, j: usize) -> f64 {
+    let h = sig.sg.half();
+    let lo = k.saturating_sub(h);
+    let hi = k.saturating_add(h + 1).min(sig.t.len()).max(k + 1);
+    let qdd: Vec<f64> = (lo..hi).map(|i| sig.motion.qdd_at(i, j)).collect();
+    smoothed_qdd_in(sig, &qdd, lo, k)
+}
+
+/// [`smoothed_qdd`] from the joint's accelerations `qdd` of samples `lo`
+/// on (covering `k` and, inside the range, its window).
+fn smoothed_qdd_in<const N: usize>(sig: &Signals<N>, qdd: &[f64], lo: usize, k: usize) -> f64 {
     let (a, z) = sig.range;
     let h = sig.sg.half();
     if k < a || k >= z {
-        return sig.qdd[k][j];
+        return qdd[k - lo];
     }
     if k < a + h || k + h >= z {
         return 0.0;
@@ -278,8 +315,8 @@ fn smoothed_qdd<const N: usize>(sig: &Signals<N>, k: usize, j: usize) -> f64 {
         .sg
         .weights(0)
         .iter()
-        .zip(&sig.qdd[k - h..=k + h])
-        .map(|(w, x)| w * x[j])
+        .zip(&qdd[k - h - lo..=k + h - lo])
+        .map(|(w, x)| w * x)
         .sum();
     if y.is_finite() {
         y

@@ -58,10 +58,11 @@ pub fn excitation<const N: usize>(
     for j in 0..N {
         let (mut lo, mut hi, mut vlo, mut vhi) = (f64::INFINITY, f64::NEG_INFINITY, 0.0f64, 0.0f64);
         for &k in &p.rows {
-            lo = lo.min(p.sig.q[k][j]);
-            hi = hi.max(p.sig.q[k][j]);
-            vlo = vlo.min(p.sig.qd[k][j]);
-            vhi = vhi.max(p.sig.qd[k][j]);
+            let (q, v) = (p.sig.motion.q_at(k, j), p.sig.motion.qd_at(k, j));
+            lo = lo.min(q);
+            hi = hi.max(q);
+            vlo = vlo.min(v);
+            vhi = vhi.max(v);
         }
         let peak = vhi.max(-vlo);
         range[j] = (lo, hi);
@@ -142,8 +143,8 @@ fn coefficient<const N: usize>(p: &Prepared<N>, j: usize) -> Option<f64> {
     let mut xtx = SMatrix::<f64, 5, 5>::zeros();
     let mut xty = SVector::<f64, 5>::zeros();
     for &k in &p.rows {
-        let v = p.sig.qd[k][j];
-        let x = SVector::<f64, 5>::new(p.sig.model[k][j], smooth_sign(v), v, p.sig.q[k][j], 1.0);
+        let (v, q) = (p.sig.motion.qd_at(k, j), p.sig.motion.q_at(k, j));
+        let x = SVector::<f64, 5>::new(p.sig.model[k][j], smooth_sign(v), v, q, 1.0);
         xtx += x * x.transpose();
         xty += x * p.sig.tau_at(k, j);
     }

@@ -36,25 +36,24 @@ pub fn gap_windows<const N: usize>(
     if z <= a {
         return vec![];
     }
-    let peak_v = (a..z)
-        .map(|k| sig.qd[k][j].abs())
-        .fold(0.0, f64::max)
-        .max(1e-9);
-    let peak_a = (a..z)
-        .map(|k| sig.qdd[k][j].abs())
-        .fold(0.0, f64::max)
-        .max(1e-9);
+    let (qd, qdd) = (|k| sig.motion.qd_at(k, j), |k| sig.motion.qdd_at(k, j));
+    let peak_v = (a..z).map(|k| qd(k).abs()).fold(0.0, f64::max).max(1e-9);
+    let peak_a = (a..z).map(|k| qdd(k).abs()).fold(0.0, f64::max).max(1e-9);
     let reversal_span = (0.03 / sig.dt).round() as usize;
     let mut near_reversal = vec![false; sig.t.len()];
+    let mut before = qd(a);
     for k in a + 1..z {
-        if sig.qd[k][j].signum() != sig.qd[k - 1][j].signum() && peak_v > 1e-6 {
+        let now = qd(k);
+        let reversed = now.signum() != before.signum();
+        before = now;
+        if reversed && peak_v > 1e-6 {
             for m in k.saturating_sub(reversal_span)..(k + reversal_span).min(z) {
                 near_reversal[m] = true;
             }
         }
     }
     let phase = |k: usize| -> &'static str {
-        let (v, acc) = (sig.qd[k][j].abs(), sig.qdd[k][j].abs());
+        let (v, acc) = (qd(k).abs(), qdd(k).abs());
         if v < 0.02 * peak_v && acc < 0.05 * peak_a {
             "hold"
         } else if near_reversal[k] {

@@ -88,8 +88,8 @@ pub fn prediction_error<R: Robot<N> + Clone + Sync, const N: usize>(
     let plant = &plant;
     let window = |&k0: &usize| -> Result<Vec<SVector<f64, N>>, String> {
         // True state at t0 is what the sensors show `delay` later.
-        let q0 = sig.q[k0 + m] - offset;
-        let mut sim = plant.start(q0, sig.qd[k0 + m]);
+        let q0 = sig.q(k0 + m) - offset;
+        let mut sim = plant.start(q0, sig.qd(k0 + m));
         for e in plant.effects.iter() {
             if let Effect::JointElasticity {
                 joint, stiffness, ..
@@ -109,7 +109,7 @@ pub fn prediction_error<R: Robot<N> + Clone + Sync, const N: usize>(
             )
             .map_err(|e| format!("the window from t = {:.3} s: {e}", sig.t[k0]))?;
             let predicted = sim.state.q + offset;
-            let measured = sig.q[k + 1 + m];
+            let measured = sig.q(k + 1 + m);
             errors.push((predicted - measured).component_mul(&(predicted - measured)));
         }
         Ok(errors)

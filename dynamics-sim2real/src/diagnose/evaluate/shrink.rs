@@ -103,7 +103,9 @@ pub fn shrink<R: Robot<N> + Clone + Sync, const N: usize>(
 fn position_noise<const N: usize>(m: &Measured<N>, p: &Prepared<N>) -> SVector<f64, N> {
     let (a, z) = p.sig.range;
     SVector::from_fn(|j, _| {
-        let d: Vec<f64> = (a..z).map(|k| m.q[k][j] - p.sig.q[k][j]).collect();
+        let d: Vec<f64> = (a..z)
+            .map(|k| m.q[k][j] - p.sig.motion.q_at(k, j))
+            .collect();
         robust_std(&d).max(1e-12)
     })
 }

@@ -68,7 +68,7 @@ pub fn prediction_floor<R: Robot<N> + Clone + Sync, const N: usize>(
         let efforts: Vec<SVector<f64, N>> = (s0..s0 + seg)
             .map(|k| 0.5 * (sig.model[k] + sig.model[(k + 1).min(z - 1)]))
             .collect();
-        let mut sim = plant.start(sig.q[s0], sig.qd[s0]);
+        let mut sim = plant.start(sig.q(s0), sig.qd(s0));
         sim.t = sig.t[s0];
         let mut truth = vec![(sim.state.q, sim.state.qd)];
         for i in 0..seg - 1 {

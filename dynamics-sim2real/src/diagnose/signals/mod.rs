@@ -7,6 +7,7 @@ mod noise;
 mod segments;
 
 use std::ops::Deref;
+use std::sync::atomic::{AtomicU64, Ordering};
 use std::sync::Arc;
 
 use nalgebra::SVector;
@@ -37,12 +38,10 @@ pub struct Signals<const N: usize> {
     pub range: (usize, usize),
     /// Times.
     pub t: Times<N>,
-    /// Smoothed positions.
-    pub q: Arc<[SVector<f64, N>]>,
-    /// Smoothed velocities.
-    pub qd: Arc<[SVector<f64, N>]>,
-    /// Accelerations (derivative of the smoothing fit).
-    pub qdd: Arc<[SVector<f64, N>]>,
+    /// The smoothed positions, velocities and accelerations, made where
+    /// asked from the record ([`Signals::q`], [`Signals::qd`],
+    /// [`Signals::qdd`]; [`Motion::stretch`] for a stretch of samples).
+    pub motion: Motion<N>,
     /// Whether the velocities were measured (the accelerations are then
     /// the first derivative of their smoothing fit; else the second of
     /// the positions').
@@ -51,8 +50,7 @@ pub struct Signals<const N: usize> {
     /// [`LIGHT_HALF_WIDTH`]).
     pub light: SavitzkyGolay,
     /// The record as recorded, as far as these signals read it: times,
-    /// raw efforts, and the velocities (measured) or else positions the
-    /// light smoother reads.
+    /// raw efforts, positions and (measured) velocities.
     pub record: Arc<Measured<N>>,
     /// The nominal model's efforts along the smoothed motion.
     pub model: Vec<SVector<f64, N>>,
@@ -88,17 +86,17 @@ impl<const N: usize> Deref for Times<N> {
 }
 
 /// What [`Signals`] read of `m` as recorded, copied: its times, raw
-/// efforts, and the velocities (when measured) or else positions the
-/// light smoother reads (the other fields empty).
+/// efforts, positions and the velocities when measured (the other fields
+/// empty).
 fn kept<const N: usize>(m: &Measured<N>) -> Measured<N> {
-    let (q, qd) = if m.qd_measured {
-        (Vec::new(), m.qd.clone())
+    let qd = if m.qd_measured {
+        m.qd.clone()
     } else {
-        (m.q.clone(), Vec::new())
+        Vec::new()
     };
     Measured {
         t: m.t.clone(),
-        q,
+        q: m.q.clone(),
         qd,
         tau: m.tau.clone(),
         qd_measured: m.qd_measured,
@@ -106,13 +104,128 @@ fn kept<const N: usize>(m: &Measured<N>) -> Measured<N> {
     }
 }
 
-fn column<const N: usize>(v: &[SVector<f64, N>], j: usize) -> Vec<f64> {
-    v.iter().map(|x| x[j]).collect()
+/// A record's positions, velocities and accelerations smoothed by the
+/// diagnosis's filter, made where asked from the record (shared, not
+/// copied): the same products summed in the same order as
+/// [`SavitzkyGolay::apply`] over the whole record, so the same values to
+/// the bit, NaN where the filter's window does not fit. The velocities
+/// and accelerations are the smoothing fit's value and first derivative
+/// of the measured velocities when measured, else its first and second
+/// derivatives of the positions.
+#[derive(Debug, Clone)]
+pub struct Motion<const N: usize> {
+    /// Tells this motion from another's (its copies share it).
+    id: u64,
+    record: Arc<Measured<N>>,
+    sg: SavitzkyGolay,
 }
 
-fn set_column<const N: usize>(v: &mut [SVector<f64, N>], j: usize, x: &[f64]) {
-    for (a, b) in v.iter_mut().zip(x) {
-        a[j] = *b;
+/// Where each [`Motion`] is told from another.
+static NEXT_MOTION: AtomicU64 = AtomicU64::new(0);
+
+impl<const N: usize> Motion<N> {
+    /// The smoothed motion of `record` by `sg`.
+    pub fn of(record: &Arc<Measured<N>>, sg: &SavitzkyGolay) -> Self {
+        Motion {
+            id: NEXT_MOTION.fetch_add(1, Ordering::Relaxed),
+            record: Arc::clone(record),
+            sg: sg.clone(),
+        }
+    }
+
+    /// What tells this motion (and its copies) from another record's or
+    /// filter's: a key for values kept made from it.
+    pub fn id(&self) -> u64 {
+        self.id
+    }
+
+    /// Number of samples.
+    pub fn len(&self) -> usize {
+        self.record.t.len()
+    }
+
+    /// Whether the record has no samples.
+    pub fn is_empty(&self) -> bool {
+        self.len() == 0
+    }
+
+    /// The samples and derivative order derivative `d` (0, 1, 2) of the
+    /// motion is the filter's derivative of.
+    fn source(&self, d: usize) -> (&[SVector<f64, N>], usize) {
+        match (self.record.qd_measured, d) {
+            (_, 0) => (&self.record.q, 0),
+            (true, _) => (&self.record.qd, d - 1),
+            (false, _) => (&self.record.q, d),
+        }
+    }
+
+    /// Derivative `d` (0: positions, 1: velocities, 2: accelerations) at
+    /// sample `k`, every joint.
+    fn filtered(&self, d: usize, k: usize) -> SVector<f64, N> {
+        let (x, order) = self.source(d);
+        let h = self.sg.half();
+        if k < h || k + h >= x.len() {
+            return SVector::from_element(f64::NAN);
+        }
+        // Each joint's sum term by term in `apply`'s order, from the
+        // value a float sum starts from (`Iterator::sum`).
+        let start: f64 = std::iter::empty::<f64>().sum();
+        let mut s = SVector::<f64, N>::from_element(start);
+        for (w, v) in self.sg.weights(order).iter().zip(&x[k - h..=k + h]) {
+            s += v * *w;
+        }
+        s
+    }
+
+    /// Derivative `d` at sample `k`, joint `j`.
+    fn filtered_at(&self, d: usize, k: usize, j: usize) -> f64 {
+        let (x, order) = self.source(d);
+        let h = self.sg.half();
+        if k < h || k + h >= x.len() {
+            return f64::NAN;
+        }
+        self.sg
+            .weights(order)
+            .iter()
+            .zip(&x[k - h..=k + h])
+            .map(|(w, v)| w * v[j])
+            .sum()
+    }
+
+    /// Smoothed positions at sample `k`.
+    pub fn q(&self, k: usize) -> SVector<f64, N> {
+        self.filtered(0, k)
+    }
+
+    /// Smoothed velocities at sample `k`.
+    pub fn qd(&self, k: usize) -> SVector<f64, N> {
+        self.filtered(1, k)
+    }
+
+    /// Accelerations at sample `k`.
+    pub fn qdd(&self, k: usize) -> SVector<f64, N> {
+        self.filtered(2, k)
+    }
+
+    /// Joint `j` of [`Motion::q`].
+    pub fn q_at(&self, k: usize, j: usize) -> f64 {
+        self.filtered_at(0, k, j)
+    }
+
+    /// Joint `j` of [`Motion::qd`].
+    pub fn qd_at(&self, k: usize, j: usize) -> f64 {
+        self.filtered_at(1, k, j)
+    }
+
+    /// Joint `j` of [`Motion::qdd`].
+    pub fn qdd_at(&self, k: usize, j: usize) -> f64 {
+        self.filtered_at(2, k, j)
+    }
+
+    /// Positions, velocities and accelerations at samples `lo..hi`
+    /// (indexed from `lo`).
+    pub fn stretch(&self, lo: usize, hi: usize) -> [Vec<SVector<f64, N>>; 3] {
+        std::array::from_fn(|d| (lo..hi).map(|k| self.filtered(d, k)).collect())
     }
 }
 
@@ -186,24 +299,18 @@ impl<const N: usize> Signals<N> {
         let sg = SavitzkyGolay::analysis(dt);
         let half = sg.half();
         let zero = vec![SVector::<f64, N>::zeros(); n];
-        let (mut q, mut qd, mut qdd) = (zero.clone(), zero.clone(), zero.clone());
         let light = SavitzkyGolay::new(((LIGHT_HALF_WIDTH / dt).round() as usize).max(2), dt);
-        for j in 0..N {
-            let qj = column(&m.q, j);
-            set_column(&mut q, j, &sg.apply(&qj, 0));
-            if m.qd_measured {
-                let vj = column(&m.qd, j);
-                set_column(&mut qd, j, &sg.apply(&vj, 0));
-                set_column(&mut qdd, j, &sg.apply(&vj, 1));
-            } else {
-                set_column(&mut qd, j, &sg.apply(&qj, 1));
-                set_column(&mut qdd, j, &sg.apply(&qj, 2));
-            }
-        }
+        let motion = Motion::of(&record, &sg);
         let range = (half, n.saturating_sub(half));
         let mut model = zero.clone();
         let mut residual = zero;
-        along::inverse_dynamics(robot, [&q, &qd, &qdd], range.0..range.1, chunk, &mut model);
+        // The motion a chunk at a time: the model's batches are those of
+        // the whole record's motion taken `chunk` samples at a time.
+        for c in along::chunks(range.0..range.1, chunk) {
+            let [q, qd, qdd] = motion.stretch(c.start, c.end);
+            let len = c.len();
+            along::inverse_dynamics(robot, [&q, &qd, &qdd], 0..len, len, &mut model[c]);
+        }
         for k in range.0..range.1 {
             residual[k] = smoothed_effort(&sg, &record.tau, k) - model[k];
         }
@@ -213,9 +320,7 @@ impl<const N: usize> Signals<N> {
             dt,
             range,
             t: Times(Arc::clone(&record)),
-            q: q.into(),
-            qd: qd.into(),
-            qdd: qdd.into(),
+            motion,
             qd_measured: m.qd_measured,
             light,
             record,
@@ -224,6 +329,22 @@ impl<const N: usize> Signals<N> {
             floor: SVector::zeros(),
             sg,
         }
+    }
+
+    /// Smoothed positions at sample `k` ([`Motion::q`]).
+    pub fn q(&self, k: usize) -> SVector<f64, N> {
+        self.motion.q(k)
+    }
+
+    /// Smoothed velocities at sample `k` ([`Motion::qd`]).
+    pub fn qd(&self, k: usize) -> SVector<f64, N> {
+        self.motion.qd(k)
+    }
+
+    /// Accelerations at sample `k` (derivative of the smoothing fit,
+    /// [`Motion::qdd`]).
+    pub fn qdd(&self, k: usize) -> SVector<f64, N> {
+        self.motion.qdd(k)
     }
 
     /// Measured efforts, raw (the record's own).
@@ -358,6 +479,10 @@ mod tests {
     use crate::synth::{synthesize, SynthOptions};
     use crate::test_robots::Arm2;
 
+    fn column<const N: usize>(v: &[SVector<f64, N>], j: usize) -> Vec<f64> {
+        v.iter().map(|x| x[j]).collect()
+    }
+
     /// The model's rate at every sample, made where asked, is the whole
     /// record's filter output to the bit (NaN where the window leaves the
     /// samples with a full window).
@@ -396,6 +521,100 @@ mod tests {
             }
             assert!(finite > 1000, "{finite}");
         }
+    }
+
+    /// The smoothed motion at every sample, made where asked (alone, at
+    /// one joint, or over a stretch), is the filter's output over the
+    /// whole record to the bit (NaN where its window does not fit), from
+    /// the measured velocities or else the positions; and the model's
+    /// efforts made from it a chunk at a time are the inverse dynamics of
+    /// the whole record's filtered motion.
+    #[test]
+    fn the_motion_at_a_sample_is_the_whole_records() {
+        let robot = Arm2::default();
+        let opts = SynthOptions {
+            duration: 1.0,
+            seed: 5,
+            ..Default::default()
+        };
+        let effects = [Effect::ViscousFriction { joint: 1, fv: 0.2 }];
+        let made = synthesize(&robot, &effects, &opts).expect("a generated record");
+        for measured in [true, false] {
+            let m = Measured {
+                qd_measured: measured,
+                ..made.clone()
+            };
+            let n = m.len();
+            let mut whole = [
+                vec![SVector::<f64, 2>::zeros(); n],
+                vec![SVector::zeros(); n],
+                vec![SVector::zeros(); n],
+            ];
+            for j in 0..2 {
+                let (q, v) = (column(&m.q, j), column(&m.qd, j));
+                let cols = if measured {
+                    [
+                        sig_apply(&m, &q, 0),
+                        sig_apply(&m, &v, 0),
+                        sig_apply(&m, &v, 1),
+                    ]
+                } else {
+                    [
+                        sig_apply(&m, &q, 0),
+                        sig_apply(&m, &q, 1),
+                        sig_apply(&m, &q, 2),
+                    ]
+                };
+                for (d, col) in cols.iter().enumerate() {
+                    for (k, x) in col.iter().enumerate() {
+                        whole[d][k][j] = *x;
+                    }
+                }
+            }
+            let same = |a: f64, b: f64| a.to_bits() == b.to_bits();
+            for chunk in [7, 4096] {
+                let sig = Signals::unfloored_chunked(&robot, &m, chunk);
+                let mo = &sig.motion;
+                let stretch = mo.stretch(13, n);
+                let mut finite = 0;
+                for k in 0..n {
+                    let at = [sig.q(k), sig.qd(k), sig.qdd(k)];
+                    for d in 0..3 {
+                        for j in 0..2 {
+                            let w = whole[d][k][j];
+                            let one = [mo.q_at(k, j), mo.qd_at(k, j), mo.qdd_at(k, j)][d];
+                            assert!(same(at[d][j], w), "measured {measured}, d {d}, sample {k}");
+                            assert!(same(one, w), "measured {measured}, d {d}, sample {k}");
+                            if k >= 13 {
+                                assert!(same(stretch[d][k - 13][j], w), "sample {k}");
+                            }
+                            finite += usize::from(w.is_finite());
+                        }
+                    }
+                }
+                assert!(finite > 5000, "{finite}");
+                let mut model = vec![SVector::<f64, 2>::zeros(); n];
+                let (a, z) = sig.range;
+                along::inverse_dynamics(
+                    &robot,
+                    [&whole[0], &whole[1], &whole[2]],
+                    a..z,
+                    chunk,
+                    &mut model,
+                );
+                for k in 0..n {
+                    for j in 0..2 {
+                        assert!(same(sig.model[k][j], model[k][j]), "model at {k}");
+                    }
+                }
+                assert!(model[a + 1].norm() > 0.0);
+            }
+        }
+    }
+
+    /// The analysis filter of `m` over `x`, derivative `d`.
+    fn sig_apply(m: &Measured<2>, x: &[f64], d: usize) -> Vec<f64> {
+        SavitzkyGolay::analysis(m.sample_interval()).apply(x, d)
     }
 
     /// The lightly smoothed velocity at every sample, made where asked,

@@ -172,11 +172,16 @@ pub fn sensor_levels<const N: usize>(m: &Measured<N>, sig: &Signals<N>) -> [SVec
     let gain = 1.0 / ((1.0 - w0).max(0.25) * m.noise_variance_factor()).sqrt();
     let spread = |d: Vec<f64>| (robust_std(&d) * gain).max(1e-15);
     let used = || (a..z).filter(|&k| sig.mask.usable(k));
-    let sigma_q: SVector<f64, N> =
-        SVector::from_fn(|j, _| spread(used().map(|k| m.q[k][j] - sig.q[k][j]).collect()));
+    let sigma_q: SVector<f64, N> = SVector::from_fn(|j, _| {
+        spread(used().map(|k| m.q[k][j] - sig.motion.q_at(k, j)).collect())
+    });
     let sigma_qd: SVector<f64, N> = SVector::from_fn(|j, _| {
         if m.qd_measured {
-            spread(used().map(|k| m.qd[k][j] - sig.qd[k][j]).collect())
+            spread(
+                used()
+                    .map(|k| m.qd[k][j] - sig.motion.qd_at(k, j))
+                    .collect(),
+            )
         } else {
             0.0
         }

@@ -52,7 +52,8 @@ fn chunks_and_rows_give_the_whole_records_outputs() {
     let (a, z) = sig.range;
     let tip = Tip::of::<Arm2, 2>();
     assert!(matches!(tip, Tip::Frame(_)));
-    let motion = [&sig.q[..], &sig.qd[..], &sig.qdd[..]];
+    let whole = sig.motion.stretch(0, n);
+    let motion = [&whole[0][..], &whole[1][..], &whole[2][..]];
     let mut k = vec![SMatrix::<f64, 2, 2>::zeros(); n];
     along::perturbation_k(&robot, motion, a..z, usize::MAX, &mut k);
     let mut jac = vec![SMatrix::<f64, 3, 2>::zeros(); n];

@@ -20,7 +20,9 @@ pub mod stretches;
 mod tests;
 pub mod transmitted;
 
+use std::cell::RefCell;
 use std::f64::consts::PI;
+use std::rc::Rc;
 
 use crate::diagnose::candidates::MotorGuess;
 use crate::diagnose::signals::Signals;
@@ -125,28 +127,95 @@ fn in_lanes<const N: usize>(
 ) -> Vec<Vec<f64>> {
     let mut out = Vec::with_capacity(gs.len());
     let mut rest = gs;
+    let track = Track::of(sig, j, span);
+    let tr = &*track;
     while !rest.is_empty() {
         let take = rest.len().min(LANES);
         let (now, later) = rest.split_at(take);
         let c = compliance;
         match (take, backlash) {
-            (1, false) => out.extend(lanes::<N, 1, false>(sig, j, now, c, span)),
-            (1, true) => out.extend(lanes::<N, 1, true>(sig, j, now, c, span)),
-            (2, false) => out.extend(lanes::<N, 2, false>(sig, j, now, c, span)),
-            (2, true) => out.extend(lanes::<N, 2, true>(sig, j, now, c, span)),
-            (_, false) => out.extend(lanes::<N, LANES, false>(sig, j, now, c, span)),
-            (_, true) => out.extend(lanes::<N, LANES, true>(sig, j, now, c, span)),
+            (1, false) => out.extend(lanes::<N, 1, false>(sig, tr, j, now, c, span)),
+            (1, true) => out.extend(lanes::<N, 1, true>(sig, tr, j, now, c, span)),
+            (2, false) => out.extend(lanes::<N, 2, false>(sig, tr, j, now, c, span)),
+            (2, true) => out.extend(lanes::<N, 2, true>(sig, tr, j, now, c, span)),
+            (_, false) => out.extend(lanes::<N, LANES, false>(sig, tr, j, now, c, span)),
+            (_, true) => out.extend(lanes::<N, LANES, true>(sig, tr, j, now, c, span)),
         }
         rest = later;
     }
     out
 }
 
+/// Joint `j`'s smoothed position, velocity and acceleration over the
+/// samples of a span that lie in the record, indexed from the span's
+/// first sample: made once for all the lanes integrated over the span,
+/// and kept by the thread for the next guesses simulated over it.
+struct Track {
+    q: Vec<f64>,
+    qd: Vec<f64>,
+    qdd: Vec<f64>,
+}
+
+/// Samples of tracks a thread keeps, in seconds of the record: what one
+/// search simulates ([`stretches::SEARCH_SECONDS`], whole or in
+/// stretches) and a quarter more; an optimum's simulation over a longer
+/// record makes its track and drops it.
+const KEPT_SECONDS: f64 = 1.25 * stretches::SEARCH_SECONDS;
+
+/// A kept track: the motion's id, the joint, the span.
+type Kept = (u64, usize, (usize, usize), Rc<Track>);
+
+thread_local! {
+    /// The tracks this thread made last (first in, first out).
+    static KEPT: RefCell<Vec<Kept>> = const { RefCell::new(Vec::new()) };
+}
+
+impl Track {
+    /// Joint `j`'s track over `span` of `sig`'s motion, kept or made.
+    fn of<const N: usize>(sig: &Signals<N>, j: usize, span: (usize, usize)) -> Rc<Track> {
+        let id = sig.motion.id();
+        let most = (KEPT_SECONDS / sig.dt) as usize;
+        let len = |s: (usize, usize)| s.1.saturating_sub(s.0);
+        if len(span) > most {
+            return Rc::new(Self::made(sig, j, span));
+        }
+        KEPT.with(|kept| {
+            let mut kept = kept.borrow_mut();
+            let hit = kept
+                .iter()
+                .find(|(i, jj, s, _)| *i == id && *jj == j && *s == span);
+            if let Some((.., t)) = hit {
+                return Rc::clone(t);
+            }
+            let t = Rc::new(Self::made(sig, j, span));
+            while !kept.is_empty()
+                && kept.iter().map(|x| len(x.2)).sum::<usize>() + len(span) > most
+            {
+                kept.remove(0);
+            }
+            kept.push((id, j, span, Rc::clone(&t)));
+            t
+        })
+    }
+
+    fn made<const N: usize>(sig: &Signals<N>, j: usize, (a, z): (usize, usize)) -> Self {
+        let z = z.min(sig.t.len());
+        let m = &sig.motion;
+        Track {
+            q: (a..z).map(|k| m.q_at(k, j)).collect(),
+            qd: (a..z).map(|k| m.qd_at(k, j)).collect(),
+            qdd: (a..z).map(|k| m.qdd_at(k, j)).collect(),
+        }
+    }
+}
+
 /// `L` lanes side by side, `B` backlash, over samples `a..z`, each result
 /// indexed from `a`; `gs` has 1 to `L` guesses (the last repeated to fill
-/// the lanes, its copies dropped).
+/// the lanes, its copies dropped); `track` is joint `j`'s motion over
+/// them.
 fn lanes<const N: usize, const L: usize, const B: bool>(
     sig: &Signals<N>,
+    track: &Track,
     j: usize,
     gs: &[MotorGuess],
     compliance: &SVector<f64, N>,
@@ -167,17 +236,18 @@ fn lanes<const N: usize, const L: usize, const B: bool>(
     // One buffer per guess (the copies filling the lanes store nothing).
     let mut out = nan();
     let load = sig.model[a][j];
+    let (q, qd, qdd) = (&track.q, &track.qd, &track.qdd);
     // State per lane: motor angle, motor rate, link angle, link rate.
     let mut x = [[0.0f64; L]; 4];
     for l in 0..L {
         x[0][l] = if B {
-            sig.q[a][j] + load.signum() * (g[l].half_width + load.abs() / g[l].stiffness)
+            q[0] + load.signum() * (g[l].half_width + load.abs() / g[l].stiffness)
         } else {
-            sig.q[a][j] + load / g[l].stiffness
+            q[0] + load / g[l].stiffness
         };
-        x[1][l] = sig.qd[a][j];
-        x[2][l] = sig.q[a][j];
-        x[3][l] = sig.qd[a][j];
+        x[1][l] = qd[0];
+        x[2][l] = q[0];
+        x[3][l] = qd[0];
     }
     let mut dead = [false; L];
     let wo = 2.0 * PI * OBSERVER_HZ;
@@ -196,13 +266,9 @@ fn lanes<const N: usize, const L: usize, const B: bool>(
         if k + 1 >= z {
             break;
         }
-        let (q0, v0, a0, m0) = (sig.q[k][j], sig.qd[k][j], sig.qdd[k][j], sig.model[k][j]);
-        let (q1, v1, a1, m1) = (
-            sig.q[k + 1][j],
-            sig.qd[k + 1][j],
-            sig.qdd[k + 1][j],
-            sig.model[k + 1][j],
-        );
+        let r = k - a;
+        let (q0, v0, a0, m0) = (q[r], qd[r], qdd[r], sig.model[k][j]);
+        let (q1, v1, a1, m1) = (q[r + 1], qd[r + 1], qdd[r + 1], sig.model[k + 1][j]);
         let h = (t[k + 1] - t[k]) / SUB as f64;
         let tau = tau_raw[k][j];
         // The link's response to its own effort.

@@ -2,7 +2,7 @@
 
 use super::*;
 use crate::data::Measured;
-use crate::diagnose::signals::Times;
+use crate::diagnose::signals::{Motion, Times};
 use crate::smoothing::SavitzkyGolay;
 use nalgebra::SVector;
 use std::sync::Arc;
@@ -38,12 +38,12 @@ fn one_at_a_time<const N: usize>(
     };
     let load = sig.model[a][j];
     let mut th = if backlash {
-        sig.q[a][j] + load.signum() * (g.half_width + load.abs() / g.stiffness)
+        sig.motion.q_at(a, j) + load.signum() * (g.half_width + load.abs() / g.stiffness)
     } else {
-        sig.q[a][j] + load / g.stiffness
+        sig.motion.q_at(a, j) + load / g.stiffness
     };
-    let mut thd = sig.qd[a][j];
-    let (mut ql, mut vl) = (sig.q[a][j], sig.qd[a][j]);
+    let mut thd = sig.motion.qd_at(a, j);
+    let (mut ql, mut vl) = (sig.motion.q_at(a, j), sig.motion.qd_at(a, j));
     let wo = 2.0 * PI * OBSERVER_HZ;
     // Two RK4 steps a sample: omega h <= 0.8 up to the 250 Hz stiff rotor,
     // well inside RK4's stability (|R(z)| < 1 for |z| < 2.78 on the
@@ -56,11 +56,16 @@ fn one_at_a_time<const N: usize>(
         if k + 1 >= z {
             break;
         }
-        let (q0, v0, a0, m0) = (sig.q[k][j], sig.qd[k][j], sig.qdd[k][j], sig.model[k][j]);
+        let (q0, v0, a0, m0) = (
+            sig.motion.q_at(k, j),
+            sig.motion.qd_at(k, j),
+            sig.motion.qdd_at(k, j),
+            sig.model[k][j],
+        );
         let (q1, v1, a1, m1) = (
-            sig.q[k + 1][j],
-            sig.qd[k + 1][j],
-            sig.qdd[k + 1][j],
+            sig.motion.q_at(k + 1, j),
+            sig.motion.qd_at(k + 1, j),
+            sig.motion.qdd_at(k + 1, j),
             sig.model[k + 1][j],
         );
         let h = (sig.t[k + 1] - sig.t[k]) / SUB as f64;
@@ -136,25 +141,25 @@ pub(super) fn swinging(seconds: f64) -> Signals<1> {
         .collect();
     let record = Arc::new(Measured {
         t,
-        qd: qd.clone(),
+        q,
+        qd,
         tau: tau_raw,
         qd_measured: true,
         ..Default::default()
     });
+    let sg = SavitzkyGolay::new(40, dt);
     Signals {
         dt,
         range: (40, n - 40),
         t: Times::of(&record),
-        q: q.into(),
-        qd: qd.into(),
-        qdd: qdd.into(),
+        motion: Motion::of(&record, &sg),
         qd_measured: true,
         light: SavitzkyGolay::new(4, dt),
         record,
         model: model.clone(),
         residual: model,
         floor: v(1.0),
-        sg: SavitzkyGolay::new(40, dt),
+        sg,
         mask: Default::default(),
     }
 }
@@ -207,4 +212,33 @@ fn every_lane_is_the_simulation_of_its_guess_alone() {
             }
         }
     }
+}
+
+/// A joint's track over a span is the motion made where asked, to the
+/// bit; a thread keeps it for the next lanes over the same span and
+/// joint of the same motion, and makes another for another span or
+/// record.
+#[test]
+fn a_kept_track_is_the_motion_of_its_span() {
+    let sig = signals();
+    let other = swinging(2.0);
+    let span = (100, 900);
+    let same = |t: &Track, s: &Signals<1>| {
+        let m = &s.motion;
+        assert_eq!(t.q.len(), span.1 - span.0);
+        for (i, k) in (span.0..span.1).enumerate() {
+            assert_eq!(t.q[i].to_bits(), m.q_at(k, 0).to_bits(), "{k}");
+            assert_eq!(t.qd[i].to_bits(), m.qd_at(k, 0).to_bits(), "{k}");
+            assert_eq!(t.qdd[i].to_bits(), m.qdd_at(k, 0).to_bits(), "{k}");
+        }
+    };
+    let t = Track::of(&sig, 0, span);
+    same(&t, &sig);
+    assert!(t.qdd.iter().any(|x| x.abs() > 1.0));
+    assert!(Rc::ptr_eq(&t, &Track::of(&sig, 0, span)));
+    assert!(Rc::ptr_eq(&t, &Track::of(&sig.clone(), 0, span)));
+    assert!(!Rc::ptr_eq(&t, &Track::of(&sig, 0, (100, 901))));
+    let o = Track::of(&other, 0, span);
+    assert!(!Rc::ptr_eq(&t, &o));
+    same(&o, &other);
 }
