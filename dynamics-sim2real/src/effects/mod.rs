@@ -27,3 +27,19 @@ pub use plant::{Plant, PlantError, PlantSim, PlantState, Switch};
 pub use sensors::undo_sensors;
 pub use tip::Tip;
 pub use window::{Window, WindowError};
+
+use nalgebra::SVector;
+
+/// `x` moved by `h` and by `-h` along coordinate `k`, and `h` (`1e-6` of
+/// the coordinate's size, at least `1e-6`): the two points and the step
+/// of a central difference.
+pub(crate) fn central_step<const N: usize>(
+    x: &SVector<f64, N>,
+    k: usize,
+) -> (SVector<f64, N>, SVector<f64, N>, f64) {
+    let h = 1e-6 * (1.0 + x[k].abs());
+    let (mut xp, mut xm) = (*x, *x);
+    xp[k] += h;
+    xm[k] -= h;
+    (xp, xm, h)
+}

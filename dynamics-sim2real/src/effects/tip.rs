@@ -138,11 +138,7 @@ impl Tip {
         }
         let mut jac = SMatrix::<f64, 3, N>::zeros();
         for k in 0..N {
-            let h = 1e-6 * (1.0 + q[k].abs());
-            let mut qp = *q;
-            let mut qm = *q;
-            qp[k] += h;
-            qm[k] -= h;
+            let (qp, qm, h) = super::central_step(q, k);
             let d = (self.position_at(robot, &qp, offset) - self.position_at(robot, &qm, offset))
                 / (2.0 * h);
             jac.set_column(k, &d);
@@ -259,10 +255,7 @@ impl Tip {
         let r = rot(q)?;
         let mut jac = SMatrix::<f64, 3, N>::zeros();
         for k in 0..N {
-            let h = 1e-6 * (1.0 + q[k].abs());
-            let (mut qp, mut qm) = (*q, *q);
-            qp[k] += h;
-            qm[k] -= h;
+            let (qp, qm, h) = super::central_step(q, k);
             let w = (rot(&qp)? - rot(&qm)?) / (2.0 * h) * r.transpose();
             let w = 0.5 * (w - w.transpose());
             jac.set_column(k, &Vector3::new(w[(2, 1)], w[(0, 2)], w[(1, 0)]));
@@ -339,11 +332,7 @@ fn frame_jacobians<R: Robot<N>, const N: usize>(
     let mut jac = SMatrix::<f64, 3, N>::zeros();
     let mut jac_w = r.map(|_| SMatrix::<f64, 3, N>::zeros());
     for k in 0..N {
-        let h = 1e-6 * (1.0 + q[k].abs());
-        let mut qp = *q;
-        let mut qm = *q;
-        qp[k] += h;
-        qm[k] -= h;
+        let (qp, qm, h) = super::central_step(q, k);
         let (mp, mm) = (robot.frame_pose(i, &qp), robot.frame_pose(i, &qm));
         let d = (position(&mp) - position(&mm)) / (2.0 * h);
         jac.set_column(k, &d);

@@ -88,16 +88,10 @@ impl<R: Robot<N>, const N: usize> Robot<N> for Calibrated<R, N> {
             return pj;
         }
         for k in 0..N {
-            let h = 1e-6 * (1.0 + q[k].abs());
-            let (mut qp, mut qm) = (*q, *q);
-            qp[k] += h;
-            qm[k] -= h;
+            let (qp, qm, h) = crate::effects::central_step(q, k);
             let dq =
                 (self.extra_residual(&qp, qd, qdd) - self.extra_residual(&qm, qd, qdd)) / (2.0 * h);
-            let h = 1e-6 * (1.0 + qd[k].abs());
-            let (mut vp, mut vm) = (*qd, *qd);
-            vp[k] += h;
-            vm[k] -= h;
+            let (vp, vm, h) = crate::effects::central_step(qd, k);
             let dv =
                 (self.extra_residual(q, &vp, qdd) - self.extra_residual(q, &vm, qdd)) / (2.0 * h);
             for i in 0..N {
