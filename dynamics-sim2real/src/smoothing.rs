@@ -86,6 +86,26 @@ impl SavitzkyGolay {
             .sum()
     }
 
+    /// Derivative `d` (0, 1, 2) of joint `j` of the series `x` at sample
+    /// `k` alone, as [`SavitzkyGolay::at`] of that joint's values; NaN where
+    /// the window does not fit.
+    pub(crate) fn at_joint<const N: usize>(
+        &self,
+        x: &[nalgebra::SVector<f64, N>],
+        d: usize,
+        k: usize,
+        j: usize,
+    ) -> f64 {
+        if k < self.half || k + self.half >= x.len() {
+            return f64::NAN;
+        }
+        self.weights[d.min(2)]
+            .iter()
+            .zip(&x[k - self.half..=k + self.half])
+            .map(|(a, b)| a * b[j])
+            .sum()
+    }
+
     /// Derivative `d` (0, 1, 2) of `x`; NaN where the window does not fit.
     pub fn apply(&self, x: &[f64], d: usize) -> Vec<f64> {
         let w = &self.weights[d.min(2)];

@@ -180,16 +180,7 @@ impl<const N: usize> Motion<N> {
     /// Derivative `d` at sample `k`, joint `j`.
     fn filtered_at(&self, d: usize, k: usize, j: usize) -> f64 {
         let (x, order) = self.source(d);
-        let h = self.sg.half();
-        if k < h || k + h >= x.len() {
-            return f64::NAN;
-        }
-        self.sg
-            .weights(order)
-            .iter()
-            .zip(&x[k - h..=k + h])
-            .map(|(w, v)| w * v[j])
-            .sum()
+        self.sg.at_joint(x, order, k, j)
     }
 
     /// Smoothed positions at sample `k`.
@@ -382,16 +373,7 @@ impl<const N: usize> Signals<N> {
         } else {
             (&self.record.q, 1)
         };
-        let h = self.light.half();
-        if k < h || k + h >= x.len() {
-            return f64::NAN;
-        }
-        self.light
-            .weights(d)
-            .iter()
-            .zip(&x[k - h..=k + h])
-            .map(|(w, v)| w * v[j])
-            .sum()
+        self.light.at_joint(x, d, k, j)
     }
 
     /// Rate of the model efforts at sample `k`: the derivative of their
