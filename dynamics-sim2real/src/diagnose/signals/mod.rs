@@ -465,19 +465,28 @@ mod tests {
         v.iter().map(|x| x[j]).collect()
     }
 
+    /// A record of `duration` seconds generated with `effect` (seed `seed`).
+    fn generated(robot: &Arm2, duration: f64, seed: u64, effect: Effect) -> Measured<2> {
+        let opts = SynthOptions {
+            duration,
+            seed,
+            ..Default::default()
+        };
+        synthesize(robot, &[effect], &opts).expect("a generated record")
+    }
+
     /// The model's rate at every sample, made where asked, is the whole
     /// record's filter output to the bit (NaN where the window leaves the
     /// samples with a full window).
     #[test]
     fn the_model_rate_at_a_sample_is_the_whole_records() {
         let robot = Arm2::default();
-        let opts = SynthOptions {
-            duration: 2.0,
-            seed: 4,
-            ..Default::default()
-        };
-        let effects = [Effect::ViscousFriction { joint: 1, fv: 0.3 }];
-        let m = synthesize(&robot, &effects, &opts).expect("a generated record");
+        let m = generated(
+            &robot,
+            2.0,
+            4,
+            Effect::ViscousFriction { joint: 1, fv: 0.3 },
+        );
         let sig = Signals::unfloored(&robot, &m);
         let (a, z) = sig.range;
         assert!(z > a + 2 * sig.sg.half());
@@ -514,13 +523,12 @@ mod tests {
     #[test]
     fn the_motion_at_a_sample_is_the_whole_records() {
         let robot = Arm2::default();
-        let opts = SynthOptions {
-            duration: 1.0,
-            seed: 5,
-            ..Default::default()
-        };
-        let effects = [Effect::ViscousFriction { joint: 1, fv: 0.2 }];
-        let made = synthesize(&robot, &effects, &opts).expect("a generated record");
+        let made = generated(
+            &robot,
+            1.0,
+            5,
+            Effect::ViscousFriction { joint: 1, fv: 0.2 },
+        );
         for measured in [true, false] {
             let m = Measured {
                 qd_measured: measured,
@@ -606,13 +614,12 @@ mod tests {
     #[test]
     fn the_light_velocity_at_a_sample_is_the_whole_records() {
         let robot = Arm2::default();
-        let opts = SynthOptions {
-            duration: 1.0,
-            seed: 8,
-            ..Default::default()
-        };
-        let effects = [Effect::ViscousFriction { joint: 0, fv: 0.2 }];
-        let made = synthesize(&robot, &effects, &opts).expect("a generated record");
+        let made = generated(
+            &robot,
+            1.0,
+            8,
+            Effect::ViscousFriction { joint: 0, fv: 0.2 },
+        );
         for measured in [true, false] {
             let m = Measured {
                 qd_measured: measured,
@@ -647,13 +654,12 @@ mod tests {
     #[test]
     fn signals_of_a_record_handed_over_share_it() {
         let robot = Arm2::default();
-        let opts = SynthOptions {
-            duration: 1.0,
-            seed: 9,
-            ..Default::default()
-        };
-        let effects = [Effect::ViscousFriction { joint: 1, fv: 0.3 }];
-        let m = synthesize(&robot, &effects, &opts).expect("a generated record");
+        let m = generated(
+            &robot,
+            1.0,
+            9,
+            Effect::ViscousFriction { joint: 1, fv: 0.3 },
+        );
         let (lent, levels) = Signals::new(&robot, &m, None, 64);
         let handed = Arc::new(m.clone());
         let (shared, shared_levels) = Signals::shared(&robot, &handed, None, 64);
@@ -681,17 +687,16 @@ mod tests {
     #[test]
     fn the_smoothed_effort_at_a_sample_is_the_whole_records() {
         let robot = Arm2::default();
-        let opts = SynthOptions {
-            duration: 2.0,
-            seed: 6,
-            ..Default::default()
-        };
-        let effects = [Effect::CoulombFriction {
-            joint: 0,
-            fc: 0.4,
-            vw: 0.01,
-        }];
-        let m = synthesize(&robot, &effects, &opts).expect("a generated record");
+        let m = generated(
+            &robot,
+            2.0,
+            6,
+            Effect::CoulombFriction {
+                joint: 0,
+                fc: 0.4,
+                vw: 0.01,
+            },
+        );
         let sig = Signals::unfloored(&robot, &m);
         let (a, z) = sig.range;
         for j in 0..2 {
