@@ -6,7 +6,8 @@
 //! The window is found from the gap's time structure: a change-point
 //! search over every pair of fit rows (`search`: the one-column fit of the
 //! candidate's first column, a payload's mass, on `[a, b)` from prefix
-//! sums, so all pairs cost little), then refined at the full sample rate
+//! sums, so all pairs cost little; a long record's over blocks of rows
+//! first, then at the row), then refined at the full sample rate
 //! (`refine`: each edge where the residual crosses the fitted step, within
 //! a row spacing); every column of the candidate is then refitted on the
 //! window's rows (a payload's first moments go in and out with its
