@@ -213,6 +213,15 @@ impl<const N: usize> Motion<N> {
         self.filtered_at(2, k, j)
     }
 
+    /// Derivative `d` (0: positions, 1: velocities, 2: accelerations) of
+    /// joint `j` at samples `lo..hi` (indexed from `lo`): each sample's
+    /// [`Motion::q_at`], [`Motion::qd_at`] or [`Motion::qdd_at`] to the
+    /// bit, several samples' sums side by side.
+    pub fn joint_stretch(&self, d: usize, j: usize, lo: usize, hi: usize) -> Vec<f64> {
+        let (x, order) = self.source(d);
+        self.sg.joint_run(x, order, j, (lo, hi))
+    }
+
     /// Positions, velocities and accelerations at samples `lo..hi`
     /// (indexed from `lo`).
     pub fn stretch(&self, lo: usize, hi: usize) -> [Vec<SVector<f64, N>>; 3] {

@@ -201,10 +201,11 @@ impl Track {
     fn made<const N: usize>(sig: &Signals<N>, j: usize, (a, z): (usize, usize)) -> Self {
         let z = z.min(sig.t.len());
         let m = &sig.motion;
+        let z = z.max(a);
         Track {
-            q: (a..z).map(|k| m.q_at(k, j)).collect(),
-            qd: (a..z).map(|k| m.qd_at(k, j)).collect(),
-            qdd: (a..z).map(|k| m.qdd_at(k, j)).collect(),
+            q: m.joint_stretch(0, j, a, z),
+            qd: m.joint_stretch(1, j, a, z),
+            qdd: m.joint_stretch(2, j, a, z),
         }
     }
 }
