@@ -13,7 +13,7 @@
 
 use std::sync::{Mutex, MutexGuard};
 
-use nalgebra::{DMatrix, DVector, Dyn, Matrix, Storage};
+use nalgebra::{DMatrix, DVector};
 
 use crate::diagnose::candidates::{Candidate, LinkBasis};
 use crate::diagnose::fit::Fit;
@@ -273,7 +273,7 @@ impl Pool {
         let xb = self.x.rows(a, z - a);
         let yb = self.y.rows(a, z - a);
         let g = RowsGram {
-            gram: gram_of(&xb),
+            gram: gram_of_rows(&self.x, a, z),
             xty: xb.tr_mul(&yb),
             yy: yb.norm_squared(),
         };
@@ -342,17 +342,64 @@ impl Pool {
 /// below the diagonal are their mirrors' (a column's dot product with
 /// another does not depend on which comes first, to the bit), half the
 /// work of `x.tr_mul(&x)` for the same matrix.
-pub(in crate::diagnose) fn gram_of<S: Storage<f64, Dyn, Dyn>>(
-    x: &Matrix<f64, Dyn, Dyn, S>,
-) -> DMatrix<f64> {
-    let c = x.ncols();
+pub(in crate::diagnose) fn gram_of(x: &DMatrix<f64>) -> DMatrix<f64> {
+    gram_of_rows(x, 0, x.nrows())
+}
+
+/// Columns a tile of [`gram_of_rows`].
+const TILE: usize = 8;
+
+/// `x_b^T x_b` of rows `a..z` of `x`, each entry nalgebra's dot product of
+/// its two columns to the bit (eight partial sums of every eighth row,
+/// summed as `dot` sums them, then the rows left over in order), formed
+/// tile by tile: the products of eight columns with eight others row
+/// after row, so that each column is read once a tile of others instead
+/// of once for every other column (a long record's columns do not stay in
+/// the cache between two of their dot products).
+pub(in crate::diagnose) fn gram_of_rows(x: &DMatrix<f64>, a: usize, z: usize) -> DMatrix<f64> {
+    let (rows, c) = x.shape();
+    let (a, z) = (a.min(rows), z.min(rows).max(a.min(rows)));
+    let n = z - a;
+    let bulk = n - n % 8;
+    let data = x.as_slice();
+    let col = |i: usize| &data[i * rows + a..i * rows + z];
     let mut g = DMatrix::zeros(c, c);
-    for i in 0..c {
-        let xi = x.column(i);
-        for j in i..c {
-            let d = xi.dot(&x.column(j));
-            g[(i, j)] = d;
-            g[(j, i)] = d;
+    for ti in (0..c).step_by(TILE) {
+        let ci: Vec<&[f64]> = (ti..(ti + TILE).min(c)).map(col).collect();
+        for tj in (ti..c).step_by(TILE) {
+            let cj: Vec<&[f64]> = (tj..(tj + TILE).min(c)).map(col).collect();
+            let mut acc = [[[0.0f64; 8]; TILE]; TILE];
+            for off in (0..bulk).step_by(8) {
+                for (u, xu) in ci.iter().enumerate() {
+                    let xu = &xu[off..off + 8];
+                    for (v, xv) in cj.iter().enumerate() {
+                        let xv = &xv[off..off + 8];
+                        let s = &mut acc[u][v];
+                        for r in 0..8 {
+                            s[r] += xu[r] * xv[r];
+                        }
+                    }
+                }
+            }
+            for (u, xu) in ci.iter().enumerate() {
+                for (v, xv) in cj.iter().enumerate() {
+                    let (i, j) = (ti + u, tj + v);
+                    if j < i {
+                        continue;
+                    }
+                    let s = &acc[u][v];
+                    let mut d = 0.0;
+                    d += s[0] + s[4];
+                    d += s[1] + s[5];
+                    d += s[2] + s[6];
+                    d += s[3] + s[7];
+                    for k in bulk..n {
+                        d += xu[k] * xv[k];
+                    }
+                    g[(i, j)] = d;
+                    g[(j, i)] = d;
+                }
+            }
         }
     }
     g
