@@ -11,6 +11,7 @@
 //! fit on the other blocks subtracts one block's Gram from the whole.
 
 use crate::diagnose::select::pool::{Pool, RowsGram};
+use rayon::prelude::*;
 
 /// Contiguous blocks of time.
 pub const FOLDS: usize = 4;
@@ -35,7 +36,9 @@ impl Folds {
         if samples < 8 * FOLDS {
             return None;
         }
+        // The blocks' Gram matrices formed side by side.
         let blocks = (0..FOLDS)
+            .into_par_iter()
             .map(|b| {
                 let (a, z) = (
                     b * samples / FOLDS * joints,

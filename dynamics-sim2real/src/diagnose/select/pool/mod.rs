@@ -14,6 +14,7 @@
 use std::sync::{Mutex, MutexGuard};
 
 use nalgebra::{DMatrix, DVector};
+use rayon::prelude::*;
 
 use crate::diagnose::candidates::{Candidate, LinkBasis};
 use crate::diagnose::fit::Fit;
@@ -363,44 +364,56 @@ pub(in crate::diagnose) fn gram_of_rows(x: &DMatrix<f64>, a: usize, z: usize) ->
     let bulk = n - n % 8;
     let data = x.as_slice();
     let col = |i: usize| &data[i * rows + a..i * rows + z];
-    let mut g = DMatrix::zeros(c, c);
-    for ti in (0..c).step_by(TILE) {
-        let ci: Vec<&[f64]> = (ti..(ti + TILE).min(c)).map(col).collect();
-        for tj in (ti..c).step_by(TILE) {
-            let cj: Vec<&[f64]> = (tj..(tj + TILE).min(c)).map(col).collect();
-            let mut acc = [[[0.0f64; 8]; TILE]; TILE];
-            for off in (0..bulk).step_by(8) {
-                for (u, xu) in ci.iter().enumerate() {
-                    let xu = &xu[off..off + 8];
-                    for (v, xv) in cj.iter().enumerate() {
-                        let xv = &xv[off..off + 8];
-                        let s = &mut acc[u][v];
-                        for r in 0..8 {
-                            s[r] += xu[r] * xv[r];
+    // Each tile of columns against itself and those after it, the tiles
+    // side by side on the threads.
+    let tiles: Vec<Vec<(usize, usize, f64)>> = (0..c)
+        .step_by(TILE)
+        .collect::<Vec<_>>()
+        .into_par_iter()
+        .map(|ti| {
+            let mut out = Vec::new();
+            let ci: Vec<&[f64]> = (ti..(ti + TILE).min(c)).map(col).collect();
+            for tj in (ti..c).step_by(TILE) {
+                let cj: Vec<&[f64]> = (tj..(tj + TILE).min(c)).map(col).collect();
+                let mut acc = [[[0.0f64; 8]; TILE]; TILE];
+                for off in (0..bulk).step_by(8) {
+                    for (u, xu) in ci.iter().enumerate() {
+                        let xu = &xu[off..off + 8];
+                        for (v, xv) in cj.iter().enumerate() {
+                            let xv = &xv[off..off + 8];
+                            let s = &mut acc[u][v];
+                            for r in 0..8 {
+                                s[r] += xu[r] * xv[r];
+                            }
                         }
                     }
                 }
-            }
-            for (u, xu) in ci.iter().enumerate() {
-                for (v, xv) in cj.iter().enumerate() {
-                    let (i, j) = (ti + u, tj + v);
-                    if j < i {
-                        continue;
+                for (u, xu) in ci.iter().enumerate() {
+                    for (v, xv) in cj.iter().enumerate() {
+                        let (i, j) = (ti + u, tj + v);
+                        if j < i {
+                            continue;
+                        }
+                        let s = &acc[u][v];
+                        let mut d = 0.0;
+                        d += s[0] + s[4];
+                        d += s[1] + s[5];
+                        d += s[2] + s[6];
+                        d += s[3] + s[7];
+                        for k in bulk..n {
+                            d += xu[k] * xv[k];
+                        }
+                        out.push((i, j, d));
                     }
-                    let s = &acc[u][v];
-                    let mut d = 0.0;
-                    d += s[0] + s[4];
-                    d += s[1] + s[5];
-                    d += s[2] + s[6];
-                    d += s[3] + s[7];
-                    for k in bulk..n {
-                        d += xu[k] * xv[k];
-                    }
-                    g[(i, j)] = d;
-                    g[(j, i)] = d;
                 }
             }
-        }
+            out
+        })
+        .collect();
+    let mut g = DMatrix::zeros(c, c);
+    for (i, j, d) in tiles.into_iter().flatten() {
+        g[(i, j)] = d;
+        g[(j, i)] = d;
     }
     g
 }
