@@ -111,7 +111,7 @@ impl SavitzkyGolay {
         if x.len() < 2 * self.half + 1 {
             return vec![f64::NAN; x.len()];
         }
-        self.run(d, x.len(), 0, x.len(), |k| x[k])
+        self.run(d, x, 0, x.len(), (0, x.len()))
     }
 
     /// Derivative `d` (0, 1, 2) of joint `j` of the series `x` at samples
@@ -124,44 +124,64 @@ impl SavitzkyGolay {
         j: usize,
         (lo, hi): (usize, usize),
     ) -> Vec<f64> {
-        self.run(d, x.len(), lo, hi, |k| x[k][j])
+        // The joint's values the windows reach, side by side.
+        let base = lo.saturating_sub(self.half).min(x.len());
+        let end = (hi + self.half).min(x.len()).max(base);
+        let xj: Vec<f64> = x[base..end].iter().map(|v| v[j]).collect();
+        self.run(d, &xj, base, x.len(), (lo, hi))
     }
 
-    /// Derivative `d` of the series `get` of `len` samples at samples
-    /// `lo..hi`: four samples' sums side by side, each term by term in
-    /// [`SavitzkyGolay::at`]'s order (the same values to the bit, four
-    /// chains of dependent additions at a time instead of one); NaN where
-    /// the window does not fit.
+    /// Derivative `d` at samples `lo..hi` of a series of `len` samples
+    /// whose samples `base..base + xs.len()` are `xs` (every window that
+    /// fits in the series lies in them). Sixteen samples' sums side by
+    /// side (the vector unit's lanes), then four, then one, each term by
+    /// term in [`SavitzkyGolay::at`]'s order: the same values to the bit,
+    /// many chains of dependent additions at a time instead of one; NaN
+    /// where the window does not fit.
     fn run(
         &self,
         d: usize,
+        xs: &[f64],
+        base: usize,
         len: usize,
-        lo: usize,
-        hi: usize,
-        get: impl Fn(usize) -> f64,
+        (lo, hi): (usize, usize),
     ) -> Vec<f64> {
+        const WIDE: usize = 16;
         let w = &self.weights[d.min(2)];
         let h = self.half;
         let fits = |k: usize| k >= h && k + h < len;
+        // The window of sample `k`, `extra` samples longer.
+        let window = |k: usize, extra: usize| &xs[k - h - base..k - h - base + w.len() + extra];
         // The value a float sum starts from (`Iterator::sum`).
         let start: f64 = std::iter::empty::<f64>().sum();
         let mut out = Vec::with_capacity(hi.saturating_sub(lo));
         let mut k = lo;
         while k < hi {
-            if k + 3 < hi && fits(k) && fits(k + 3) {
+            if k + WIDE <= hi && fits(k) && fits(k + WIDE - 1) {
+                let x = window(k, WIDE - 1);
+                let mut s = [start; WIDE];
+                for (t, a) in w.iter().enumerate() {
+                    let seg = &x[t..t + WIDE];
+                    for r in 0..WIDE {
+                        s[r] += a * seg[r];
+                    }
+                }
+                out.extend_from_slice(&s);
+                k += WIDE;
+            } else if k + 4 <= hi && fits(k) && fits(k + 3) {
+                let x = window(k, 3);
                 let mut s = [start; 4];
                 for (t, a) in w.iter().enumerate() {
-                    let b = k + t - h;
-                    s[0] += a * get(b);
-                    s[1] += a * get(b + 1);
-                    s[2] += a * get(b + 2);
-                    s[3] += a * get(b + 3);
+                    let seg = &x[t..t + 4];
+                    for r in 0..4 {
+                        s[r] += a * seg[r];
+                    }
                 }
                 out.extend_from_slice(&s);
                 k += 4;
             } else {
                 out.push(if fits(k) {
-                    w.iter().enumerate().map(|(t, a)| a * get(k + t - h)).sum()
+                    w.iter().zip(window(k, 0)).map(|(a, b)| a * b).sum()
                 } else {
                     f64::NAN
                 });
@@ -185,13 +205,22 @@ mod tests {
     fn a_stretch_is_each_samples_filter_to_the_bit() {
         let sg = SavitzkyGolay::new(6, 1e-3);
         let mut rng = crate::synth::Rng::new(5);
-        let x: Vec<SVector<f64, 3>> = (0..61)
+        let x: Vec<SVector<f64, 3>> = (0..97)
             .map(|k| SVector::from_fn(|j, _| (k as f64 * 0.1 + j as f64).sin() + rng.normal()))
             .collect();
         let same = |a: f64, b: f64| a.to_bits() == b.to_bits() || (a.is_nan() && b.is_nan());
         for d in 0..3 {
             for j in 0..3 {
-                for (lo, hi) in [(0, 61), (3, 17), (5, 6), (50, 61), (0, 0), (7, 60)] {
+                for (lo, hi) in [
+                    (0, 97),
+                    (3, 17),
+                    (5, 6),
+                    (50, 97),
+                    (0, 0),
+                    (7, 60),
+                    (6, 91),
+                    (30, 47),
+                ] {
                     let run = sg.joint_run(&x, d, j, (lo, hi));
                     assert_eq!(run.len(), hi - lo);
                     for (i, v) in run.iter().enumerate() {
