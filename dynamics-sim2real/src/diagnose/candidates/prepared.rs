@@ -18,7 +18,7 @@ pub struct Prepared<const N: usize> {
     /// Signals.
     pub sig: Signals<N>,
     /// Shared quantities (never changed once made: shared, not copied,
-    /// by the copies of a record the compound explanation works on).
+    /// by copies of the record).
     pub basis: Arc<Basis<N>>,
     /// Sample indices used as rows (every half-window, away from the edges).
     pub rows: Vec<usize>,

@@ -5,14 +5,17 @@
 //! others leave.
 //!
 //! The others' efforts are made where they are read, not kept along the
-//! record: at the fit's rows (every joint, once) and, for a motor side's
-//! simulation, at its joint over the samples simulated (the simulation's
-//! track, `motor_sim`). Each value is, to the bit, that of a copy of the
+//! record for every joint: at the fit's rows (every joint, once) and, for
+//! a motor side's simulation, at its joint over the samples simulated (the
+//! simulation's track, `motor_sim`), or along the record once for the
+//! motor sides said to read a joint ([`Against::expect`]) and dropped when
+//! the last of them is done. Each value is, to the bit, that of a copy of the
 //! record with each other effect's effort added to the model and taken
 //! from the residual in turn at every sample of the record's range (the
 //! same sums in the same order; outside the range the record's own).
 
 use std::sync::atomic::{AtomicU64, Ordering};
+use std::sync::{Arc, Mutex, MutexGuard};
 
 use nalgebra::SVector;
 
@@ -38,6 +41,18 @@ pub struct Against<'a, const N: usize> {
     /// The residual at each row of the record with the others' efforts
     /// taken away (empty without others).
     rows: Vec<SVector<f64, N>>,
+    /// Per joint, the model's effort along the record's range, made once
+    /// for the motor sides that read it.
+    kept: Vec<Mutex<Kept>>,
+}
+
+/// One joint's model effort along the record's range, while read.
+#[derive(Debug, Default)]
+struct Kept {
+    /// Motor sides still to read it.
+    readers: usize,
+    /// The efforts over the range, once made.
+    along: Option<Arc<Vec<f64>>>,
 }
 
 impl<'a, const N: usize> Against<'a, N> {
@@ -48,6 +63,7 @@ impl<'a, const N: usize> Against<'a, N> {
             others: Vec::new(),
             key: 0,
             rows: Vec::new(),
+            kept: Vec::new(),
         }
     }
 
@@ -63,6 +79,7 @@ impl<'a, const N: usize> Against<'a, N> {
             others,
             key: NEXT_KEY.fetch_add(1, Ordering::Relaxed),
             rows: Vec::new(),
+            kept: (0..N).map(|_| Mutex::default()).collect(),
         };
         // Term after term over the rows (a candidate's columns at the rows
         // are kept by the record's column cache).
@@ -76,6 +93,48 @@ impl<'a, const N: usize> Against<'a, N> {
         }
         a.rows = rows;
         a
+    }
+
+    /// Joint `j`'s kept efforts (none without others).
+    fn kept(&self, j: usize) -> Option<MutexGuard<'_, Kept>> {
+        // A panic while holding the lock left the entry whole or empty.
+        let m = self.kept.get(j)?;
+        Some(m.lock().unwrap_or_else(|e| e.into_inner()))
+    }
+
+    /// Says that `readers` more motor sides will read joint `j`'s model
+    /// along the record: it is made once for them (on the first reading)
+    /// and kept until each has said it is [`Against::done`].
+    pub fn expect(&self, j: usize, readers: usize) {
+        if let Some(mut kept) = self.kept(j) {
+            kept.readers += readers;
+        }
+    }
+
+    /// One motor side said to read joint `j` ([`Against::expect`]) is done
+    /// with it: dropped after the last.
+    pub fn done(&self, j: usize) {
+        if let Some(mut kept) = self.kept(j) {
+            kept.readers = kept.readers.saturating_sub(1);
+            if kept.readers == 0 {
+                kept.along = None;
+            }
+        }
+    }
+
+    /// The model's effort at joint `j` over samples `a..z`, term after
+    /// term along the samples (the column cache recomputes a candidate's
+    /// columns a chunk at a time).
+    fn made_along(&self, j: usize, a: usize, z: usize) -> Vec<f64> {
+        let mut m: Vec<f64> = (a..z).map(|k| self.p.sig.model[k][j]).collect();
+        let (lo, hi) = self.p.sig.range;
+        let (from, to) = (a.max(lo), z.min(hi));
+        for &(c, theta) in &self.others {
+            for k in from..to {
+                m[k - a] += self.effort_at(c, theta, k, j);
+            }
+        }
+        m
     }
 
     /// Whether sample `k` is in the record's range (where the others'
@@ -155,16 +214,25 @@ impl<const N: usize> Load<N> for Against<'_, N> {
     }
 
     fn model_along(&self, j: usize, a: usize, z: usize) -> Vec<f64> {
-        let mut m: Vec<f64> = (a..z).map(|k| self.p.sig.model[k][j]).collect();
-        // Term after term along the samples (the column cache recomputes
-        // a candidate's columns a chunk at a time).
         let (lo, hi) = self.p.sig.range;
-        let (from, to) = (a.max(lo), z.min(hi));
-        for &(c, theta) in &self.others {
-            for k in from..to {
-                m[k - a] += self.effort_at(c, theta, k, j);
-            }
-        }
-        m
+        // (Made under the joint's lock: a second reader waits for it.)
+        let kept = self.kept(j).and_then(|mut kept| {
+            (kept.readers > 0).then(|| {
+                let along = kept
+                    .along
+                    .get_or_insert_with(|| Arc::new(self.made_along(j, lo, hi)));
+                Arc::clone(along)
+            })
+        });
+        let Some(along) = kept else {
+            return self.made_along(j, a, z);
+        };
+        // The kept efforts over the range, the record's own outside it.
+        (a..z)
+            .map(|k| match self.within(k) {
+                true => along[k - lo],
+                false => self.p.sig.model[k][j],
+            })
+            .collect()
     }
 }

@@ -148,18 +148,30 @@ pub fn without_others<const N: usize>(
 /// the pool when its search succeeds.
 fn research<R: Robot<N>, const N: usize>(pool: &mut Pool, todo: &[usize], on: &Against<N>) {
     let terms = &pool.terms;
-    let found: Vec<_> = todo
+    // Joint by joint: the model's effort along the record at a joint is
+    // made once for the motor sides there and dropped after the last.
+    let joint = |t: usize| terms[t].fit.candidate.joint().unwrap_or(0);
+    let mut order: Vec<usize> = (0..todo.len()).collect();
+    order.sort_by_key(|&i| (joint(todo[i]), i));
+    for &t in todo {
+        on.expect(joint(t), 1);
+    }
+    let mut found: Vec<_> = order
         .par_iter()
         .with_max_len(1)
-        .map(|&t| {
+        .map(|&i| {
+            let t = todo[i];
             let f = fit_against::<R, N>(terms[t].fit.candidate, on);
-            (f.motor.is_some() && f.sse.is_finite()).then(|| {
+            let found = (f.motor.is_some() && f.sse.is_finite()).then(|| {
                 let col = fixed_column_against(&f, on);
                 (f, col)
-            })
+            });
+            on.done(joint(t));
+            (i, found)
         })
         .collect();
-    for (&t, found) in todo.iter().zip(found) {
+    found.sort_by_key(|a| a.0);
+    for (&t, (_, found)) in todo.iter().zip(found) {
         if let Some((f, col)) = found {
             pool.set_fixed(t, f, col);
         }

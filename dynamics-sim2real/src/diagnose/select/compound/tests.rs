@@ -21,7 +21,8 @@ fn bits<const N: usize>(a: &SVector<f64, N>, b: &SVector<f64, N>) -> bool {
 /// (at the rows, at its joint over what it simulates) finds what it finds
 /// on a copy of the record with the others' efforts in its model at every
 /// sample, to the bit: the model and residual at every sample and joint,
-/// the model along a joint, the residual at the rows, the fits (a stiff
+/// the model along a joint (made for the samples asked, or kept along the
+/// record while motor sides read it), the residual at the rows, the fits (a stiff
 /// rotor, elasticity) and their fixed columns. The others hold joint
 /// terms at both joints and terms that reach every joint (a payload, an
 /// encoder offset), a link term and a motor side (both left out).
@@ -106,7 +107,9 @@ fn the_others_made_where_read_are_the_copys() {
     }
     // Not a comparison of the record with itself (inside the range only).
     assert!(moved > (z - a), "{moved}");
-    for j in 0..2 {
+    // Made for the samples asked, and kept along the record for the motor
+    // sides said to read the joint.
+    let same_along = |j: usize| {
         for (lo, hi) in [(0, n), (a + 17, a + 900), (z - 5, n)] {
             let along = on.model_along(j, lo, hi);
             assert_eq!(along.len(), hi - lo);
@@ -114,7 +117,11 @@ fn the_others_made_where_read_are_the_copys() {
                 assert_eq!(x.to_bits(), copy.sig.model[k][j].to_bits(), "{k} {j}");
             }
         }
-    }
+    };
+    same_along(0);
+    same_along(1);
+    on.expect(1, 3);
+    same_along(1);
     for (i, &k) in p.rows.iter().enumerate() {
         assert!(bits(&on.residual_row(i), &copy.sig.residual[k]), "row {i}");
     }
@@ -137,7 +144,10 @@ fn the_others_made_where_read_are_the_copys() {
         // Against the record's own residual the same search finds another
         // optimum.
         assert_ne!(fit::<Arm2, 2>(c, &p).sse.to_bits(), f.sse.to_bits());
+        on.done(1);
     }
+    on.done(1);
+    same_along(1);
 }
 
 /// A candidate said to act at one joint has columns that are zero, to
