@@ -182,6 +182,7 @@ impl<'a, const N: usize> Against<'a, N> {
     }
 
     /// The residual at sample `k`, every joint.
+    #[cfg(test)]
     pub fn residual_at(&self, k: usize) -> SVector<f64, N> {
         let mut r = self.p.sig.residual[k];
         if self.within(k) {

@@ -121,7 +121,10 @@ impl Fit {
 
     /// [`Fit::corrected_rows`] against `on` (its residual and model, the
     /// candidate's columns those of its record).
-    pub fn corrected_rows_against<const N: usize>(&self, on: &Against<N>) -> Vec<SVector<f64, N>> {
+    pub(crate) fn corrected_rows_against<const N: usize>(
+        &self,
+        on: &Against<N>,
+    ) -> Vec<SVector<f64, N>> {
         let p = on.p;
         let (a, z) = p.sig.range;
         let motor = self.transmitted(on);
