@@ -135,6 +135,13 @@ impl<const N: usize> Prepared<N> {
         (s / self.rows.len().max(1) as f64).sqrt()
     }
 
+    /// [`Prepared::rms`] of `r` given at the rows (one entry a row, in
+    /// their order).
+    pub fn rms_rows(&self, r: &[SVector<f64, N>], j: usize) -> f64 {
+        let s: f64 = r.iter().take(self.rows.len()).map(|v| v[j].powi(2)).sum();
+        (s / self.rows.len().max(1) as f64).sqrt()
+    }
+
     /// The largest ratio over the joints of the torque residual's RMS to
     /// its noise floor.
     pub fn gap_ratio(&self) -> f64 {
