@@ -293,6 +293,22 @@ impl Candidate {
         }
     }
 
+    /// The joint outside which its [`Candidate::columns`] are zero (a
+    /// joint's own friction, rotor, effort scale or offset, spring), or
+    /// `None` where they may reach any joint.
+    pub(crate) fn local_joint(&self) -> Option<usize> {
+        match *self {
+            Candidate::Coulomb(j, _)
+            | Candidate::Viscous(j)
+            | Candidate::Stribeck(j, _)
+            | Candidate::Armature(j)
+            | Candidate::EffortScale(j)
+            | Candidate::EffortOffset(j)
+            | Candidate::Spring(j) => Some(j),
+            _ => None,
+        }
+    }
+
     /// Names of its linear parameters and whether each must be >= 0.
     pub fn linear_parameters(&self) -> &'static [(&'static str, bool)] {
         match self {

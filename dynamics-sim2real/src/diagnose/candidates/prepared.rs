@@ -18,7 +18,7 @@ pub struct Prepared<const N: usize> {
     /// Signals.
     pub sig: Signals<N>,
     /// Shared quantities (never changed once made: shared, not copied,
-    /// by the copies of a record the compound explanation works on).
+    /// by copies of the record).
     pub basis: Arc<Basis<N>>,
     /// Sample indices used as rows (every half-window, away from the edges).
     pub rows: Vec<usize>,
@@ -132,6 +132,13 @@ impl<const N: usize> Prepared<N> {
     /// RMS of joint `j` of `r` over the rows in use.
     pub fn rms(&self, r: &[SVector<f64, N>], j: usize) -> f64 {
         let s: f64 = self.rows.iter().map(|&k| r[k][j].powi(2)).sum();
+        (s / self.rows.len().max(1) as f64).sqrt()
+    }
+
+    /// [`Prepared::rms`] of `r` given at the rows (one entry a row, in
+    /// their order).
+    pub fn rms_rows(&self, r: &[SVector<f64, N>], j: usize) -> f64 {
+        let s: f64 = r.iter().take(self.rows.len()).map(|v| v[j].powi(2)).sum();
         (s / self.rows.len().max(1) as f64).sqrt()
     }
 

@@ -6,8 +6,8 @@
 use nalgebra::{DVector, SVector};
 
 use crate::diagnose::candidates::{combined, linear_columns, Prepared};
-use crate::diagnose::fit::{fixed_column, holdout_window_in, inside, window_of, Windows};
-use crate::diagnose::select::{without_others, Explanation, Pool};
+use crate::diagnose::fit::{fixed_column_against, holdout_window_in, inside, window_of, Windows};
+use crate::diagnose::select::{against_others, Explanation, Pool};
 
 /// One effect's held-out columns: its free ones and its fixed one.
 type Columns = (Vec<DVector<f64>>, Option<DVector<f64>>);
@@ -37,13 +37,14 @@ impl<'a, const N: usize> Holdout<'a, N> {
     /// The columns of the chosen set on `h`.
     pub fn new(h: &'a Prepared<N>, links: &[Vec<Vec<f64>>], pool: &Pool, e: &Explanation) -> Self {
         // The record with the others' effort in its model, which a motor
-        // side's column is simulated against: made (a copy of the model and
-        // the residual at every sample) only when the set has one.
+        // side's column is simulated against (the others' effort made at
+        // the rows and at the motor side's joint along the record), when
+        // the set has one.
         let fixed = e.set.iter().any(|&t| {
             let term = &pool.terms[t];
             term.link.is_none() && term.fixed.is_some()
         });
-        let hm = fixed.then(|| without_others(h, pool, &e.set, &e.sol, None));
+        let hm = fixed.then(|| against_others(h, pool, &e.set, &e.sol));
         let cols = e
             .set
             .iter()
@@ -57,9 +58,10 @@ impl<'a, const N: usize> Holdout<'a, N> {
                     return (cols.into_iter().map(DVector::from_vec).collect(), None);
                 }
                 match (term.fixed.as_ref(), hm.as_ref()) {
-                    (Some(_), Some(hm)) => {
-                        (vec![], Some(DVector::from_vec(fixed_column(&term.fit, hm))))
-                    }
+                    (Some(_), Some(hm)) => (
+                        vec![],
+                        Some(DVector::from_vec(fixed_column_against(&term.fit, hm))),
+                    ),
                     _ => (
                         linear_columns(term.fit.candidate, h)
                             .into_iter()

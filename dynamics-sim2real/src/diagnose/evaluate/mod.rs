@@ -155,17 +155,51 @@ pub fn evaluate<'a, R: Robot<N> + Clone + Sync, const N: usize>(
     }
 }
 
-/// A whitened residual over the rows of `h` back in effort units at every
-/// sample (zero off the rows).
+/// A whitened residual over the rows of `h` back in effort units, one
+/// entry a row.
 fn unwhitened<const N: usize>(
     h: &crate::diagnose::candidates::Prepared<N>,
     r: &DVector<f64>,
 ) -> Vec<SVector<f64, N>> {
-    let mut v = vec![SVector::<f64, N>::zeros(); h.sig.t.len()];
-    for (i, &k) in h.rows.iter().enumerate() {
-        for j in 0..N {
-            v[k][j] = r[i * N + j] * h.sig.floor[j];
+    (0..h.rows.len())
+        .map(|i| SVector::from_fn(|j, _| r[i * N + j] * h.sig.floor[j]))
+        .collect()
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::diagnose::candidates::Prepared;
+    use crate::synth::{synthesize, SynthOptions};
+    use crate::test_robots::Arm2;
+
+    /// A whitened residual back in effort units at the rows gives, per
+    /// joint, the RMS over the rows of the same residual put back at every
+    /// sample (zero off the rows), to the bit.
+    #[test]
+    fn the_rms_at_the_rows_is_the_whole_records() {
+        let robot = Arm2::default();
+        let opts = SynthOptions {
+            duration: 2.0,
+            seed: 5,
+            ..Default::default()
+        };
+        let m = synthesize(&robot, &[], &opts).expect("a generated record");
+        let h = Prepared::new(&robot, &m);
+        assert!(h.rows.len() > 20);
+        let r = DVector::from_fn(h.n(), |i, _| ((i * 7919) % 1013) as f64 * 1e-2 - 5.0);
+        let rows = unwhitened(&h, &r);
+        assert_eq!(rows.len(), h.rows.len());
+        let mut whole = vec![SVector::<f64, 2>::zeros(); h.sig.t.len()];
+        for (i, &k) in h.rows.iter().enumerate() {
+            for j in 0..2 {
+                whole[k][j] = r[i * 2 + j] * h.sig.floor[j];
+            }
+        }
+        for j in 0..2 {
+            let (a, b) = (h.rms_rows(&rows, j), h.rms(&whole, j));
+            assert!(a > 0.0);
+            assert_eq!(a.to_bits(), b.to_bits(), "joint {j}");
         }
     }
-    v
 }

@@ -38,8 +38,8 @@ pub struct ShrinkFigures<const N: usize> {
 }
 
 /// The shrink on `holdout` (prepared as `h`) of the explanation: `after`,
-/// the held-out torque residual it leaves at every sample (`None`: nothing
-/// added, no shrink), `effects` its effects. A simulation that cannot be
+/// the held-out torque residual it leaves at the rows of `h` (one entry a
+/// row; `None`: nothing added, no shrink), `effects` its effects. A simulation that cannot be
 /// made leaves its figures out and says why in `warnings`.
 pub fn shrink<R: Robot<N> + Clone + Sync, const N: usize>(
     robot: &R,
@@ -75,7 +75,7 @@ pub fn shrink<R: Robot<N> + Clone + Sync, const N: usize>(
     let mut gap = [0.0f64; 4];
     let joints = std::array::from_fn(|j| {
         let before = h.rms(&h.sig.residual, j);
-        let aft = after.as_ref().map(|a| h.rms(a, j)).unwrap_or(before);
+        let aft = after.as_ref().map(|a| h.rms_rows(a, j)).unwrap_or(before);
         let above = |x: f64, floor: f64| (x * x - floor * floor).max(0.0).sqrt() / floor;
         gap[0] += above(before, h.sig.floor[j]).powi(2);
         gap[1] += above(aft, h.sig.floor[j]).powi(2);

@@ -2,6 +2,8 @@
 //! torque residual.
 //!
 //! - `one.rs`: a fit ([`Fit`]) and the residual it leaves;
+//! - `against.rs`: what a fit is made against (a record's residual, or
+//!   what other effects leave of it, made where read);
 //! - here: the fit of one candidate (linear ones by sign-constrained least
 //!   squares on their columns) and of every candidate on all cores;
 //! - `motor/`: the candidates that simulate a motor side (elasticity,
@@ -11,6 +13,7 @@
 //! - `window/`: effects that start and stop, fitted on the window the
 //!   residual shows.
 
+mod against;
 mod motor;
 mod motor_sim;
 mod one;
@@ -26,10 +29,13 @@ use crate::diagnose::numeric::constrained_least_squares;
 use crate::diagnose::Options;
 use dynamics_runtime::Robot;
 
+pub use against::Against;
 /// The motor-side simulation, for a baseline to undo a known motor side
 /// on data (`crate::baseline::undo`).
 pub(crate) use motor_sim::transmitted::motor_transmitted_raw;
-pub use one::{fixed_column, Fit};
+#[cfg(test)]
+pub(crate) use motor_sim::Load;
+pub use one::{fixed_column, fixed_column_against, Fit};
 pub use window::{
     corrected, corrected_in, corrected_rows, fit_windowed, holdout_window_in, inside, window_of,
     windowed, Windows,
@@ -37,9 +43,16 @@ pub use window::{
 
 /// Fits `c` to the residual of `p`.
 pub fn fit<R: Robot<N>, const N: usize>(c: Candidate, p: &Prepared<N>) -> Fit {
+    fit_against::<R, N>(c, &Against::record(p))
+}
+
+/// Fits `c` to the residual of `on` (a motor side simulated against its
+/// model; a linear candidate's columns are those of its record).
+pub fn fit_against<R: Robot<N>, const N: usize>(c: Candidate, on: &Against<N>) -> Fit {
+    let p = on.p;
     let params = c.linear_parameters();
     if params.is_empty() {
-        return motor::fit_motor::<R, N>(c, p);
+        return motor::fit_motor::<R, N>(c, on);
     }
     let m = params.len();
     let n = p.n();
@@ -47,9 +60,10 @@ pub fn fit<R: Robot<N>, const N: usize>(c: Candidate, p: &Prepared<N>) -> Fit {
     let mut y = DVector::zeros(n);
     for (r, &k) in p.rows.iter().enumerate() {
         let cols = c.columns(&p.sig, &p.basis, k);
+        let res = on.residual_row(r);
         for j in 0..N {
             let w = 1.0 / p.sig.floor[j];
-            y[r * N + j] = p.sig.residual[k][j] * w;
+            y[r * N + j] = res[j] * w;
             for i in 0..m {
                 x[(r * N + j, i)] = cols[i][j] * w;
             }
@@ -87,7 +101,7 @@ pub fn fit<R: Robot<N>, const N: usize>(c: Candidate, p: &Prepared<N>) -> Fit {
         k: m,
     };
     match c {
-        Candidate::Armature(j) => motor::stiff_rotor(linear, j, p),
+        Candidate::Armature(j) => motor::stiff_rotor(linear, j, on),
         _ => linear,
     }
 }

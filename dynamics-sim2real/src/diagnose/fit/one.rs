@@ -3,6 +3,7 @@
 
 use nalgebra::SVector;
 
+use super::against::Against;
 use super::motor_sim::transmitted::motor_transmitted;
 use crate::diagnose::candidates::{whitened_rows, Candidate, MotorGuess, Prepared};
 use crate::diagnose::numeric::aicc;
@@ -101,11 +102,12 @@ impl Fit {
 
     /// The smoothed residual of `p` once this effect is added to the model.
     pub fn corrected<const N: usize>(&self, p: &Prepared<N>) -> Vec<SVector<f64, N>> {
+        let on = Against::record(p);
         let mut r = p.sig.residual.clone();
         let (a, z) = p.sig.range;
-        let motor = self.transmitted(p);
+        let motor = self.transmitted(&on);
         for (k, rk) in r.iter_mut().enumerate().take(z).skip(a) {
-            *rk = self.corrected_at(p, motor.as_ref(), k);
+            *rk = self.corrected_at(&on, motor.as_ref(), k, *rk);
         }
         r
     }
@@ -114,54 +116,67 @@ impl Fit {
     /// same values, the candidate's columns made at the rows alone (a
     /// motor side is still simulated over the whole record).
     pub fn corrected_rows<const N: usize>(&self, p: &Prepared<N>) -> Vec<SVector<f64, N>> {
+        self.corrected_rows_against(&Against::record(p))
+    }
+
+    /// [`Fit::corrected_rows`] against `on` (its residual and model, the
+    /// candidate's columns those of its record).
+    pub(crate) fn corrected_rows_against<const N: usize>(
+        &self,
+        on: &Against<N>,
+    ) -> Vec<SVector<f64, N>> {
+        let p = on.p;
         let (a, z) = p.sig.range;
-        let motor = self.transmitted(p);
+        let motor = self.transmitted(on);
         p.rows
             .iter()
-            .map(|&k| {
+            .enumerate()
+            .map(|(i, &k)| {
+                let r = on.residual_row(i);
                 if k >= a && k < z {
-                    self.corrected_at(p, motor.as_ref(), k)
+                    self.corrected_at(on, motor.as_ref(), k, r)
                 } else {
-                    p.sig.residual[k]
+                    r
                 }
             })
             .collect()
     }
 
     /// A motor side's joint and the effort its transmission carries there
-    /// along `p` (NaN outside the range); `None` for the other fits.
-    fn transmitted<const N: usize>(&self, p: &Prepared<N>) -> Option<(usize, Vec<f64>)> {
+    /// along the record of `on` (NaN outside the range); `None` for the
+    /// other fits.
+    fn transmitted<const N: usize>(&self, on: &Against<N>) -> Option<(usize, Vec<f64>)> {
         match (self.candidate, self.motor) {
             (Candidate::Elasticity(j), Some(g))
             | (Candidate::Backlash(j), Some(g))
             | (Candidate::Armature(j), Some(g)) => {
                 let backlash = matches!(self.candidate, Candidate::Backlash(_));
-                let t = motor_transmitted(&p.sig, j, &g, backlash, &p.basis.compliance);
+                let t = motor_transmitted(on, j, &g, backlash, &on.p.basis.compliance);
                 Some((j, t))
             }
             _ => None,
         }
     }
 
-    /// The residual at sample `k` of the range once this effect is added:
-    /// a motor side's transmitted effort `motor` ([`Fit::transmitted`])
-    /// in place of the model's at its joint where finite, else the
-    /// columns times the parameters taken away.
+    /// The residual `r` at sample `k` of the range once this effect is
+    /// added: a motor side's transmitted effort `motor`
+    /// ([`Fit::transmitted`]) in place of the model's at its joint where
+    /// finite, else the columns times the parameters taken away.
     fn corrected_at<const N: usize>(
         &self,
-        p: &Prepared<N>,
+        on: &Against<N>,
         motor: Option<&(usize, Vec<f64>)>,
         k: usize,
+        mut r: SVector<f64, N>,
     ) -> SVector<f64, N> {
-        let mut r = p.sig.residual[k];
         match motor {
             Some((j, t)) => {
                 if t[k].is_finite() {
-                    r[*j] = t[k] - p.sig.model[k][*j];
+                    r[*j] = t[k] - on.model_at(k, *j);
                 }
             }
             None => {
-                let cols = self.candidate.columns(&p.sig, &p.basis, k);
+                let cols = self.candidate.columns(&on.p.sig, &on.p.basis, k);
                 for (i, th) in self.theta.iter().enumerate() {
                     r -= cols[i] * *th;
                 }
@@ -179,21 +194,33 @@ impl Fit {
 /// The fixed column of a motor-side fit on the rows of `p`: the residual
 /// minus the residual it leaves.
 pub fn fixed_column<const N: usize>(f: &Fit, p: &Prepared<N>) -> Vec<f64> {
-    let after = f.corrected_rows(p);
-    whitened_rows(p, |i, k| p.sig.residual[k] - after[i])
+    fixed_column_against(f, &Against::record(p))
 }
 
-/// Joint `j`'s whitening weight, the nominal model's whitened SSE over all
-/// joints, and joint `j`'s share of it: what a model changing only joint
-/// `j`'s effort starts from.
-pub fn whitened_nominal<const N: usize>(p: &Prepared<N>, j: usize) -> (f64, f64, f64) {
+/// [`fixed_column`] against `on` (its residual and model).
+pub fn fixed_column_against<const N: usize>(f: &Fit, on: &Against<N>) -> Vec<f64> {
+    let after = f.corrected_rows_against(on);
+    whitened_rows(on.p, |i, _| on.residual_row(i) - after[i])
+}
+
+/// Joint `j`'s whitening weight, the whitened SSE over all joints of the
+/// residual of `on` (the nominal model's, or what other effects leave),
+/// and joint `j`'s share of it: what a model changing only joint `j`'s
+/// effort starts from.
+pub fn whitened_nominal<const N: usize>(on: &Against<N>, j: usize) -> (f64, f64, f64) {
+    let p = on.p;
     let w = 1.0 / p.sig.floor[j];
-    let own = p
-        .rows
-        .iter()
-        .map(|&k| (p.sig.residual[k][j] * w).powi(2))
+    let own = (0..p.rows.len())
+        .map(|i| (on.residual_row(i)[j] * w).powi(2))
         .sum();
-    (w, p.sse(&p.sig.residual), own)
+    // (`Prepared::sse`'s sums, row by row.)
+    let all = (0..p.rows.len())
+        .map(|i| {
+            let r = on.residual_row(i);
+            (0..N).map(|j| (r[j] / p.sig.floor[j]).powi(2)).sum::<f64>()
+        })
+        .sum();
+    (w, all, own)
 }
 
 #[cfg(test)]

@@ -18,7 +18,7 @@ mod nesting;
 mod pool;
 mod rank;
 
-pub use compound::{effects, joint_fit, without_others, Explanation};
+pub use compound::{against_others, effects, joint_fit, Explanation};
 pub use nesting::{breakaway_data_needed, nested_rival_stands};
 pub(in crate::diagnose) use pool::leaves_a_body;
 #[cfg(test)]

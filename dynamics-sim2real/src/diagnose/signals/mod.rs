@@ -24,12 +24,11 @@ pub use segments::Mask;
 pub const LIGHT_HALF_WIDTH: f64 = 0.004;
 
 /// One data set, prepared. The per-sample signals that do not change once
-/// made are shared (`Arc`) by the copies of a record (the compound
-/// explanation's, which change the model's efforts and the residual only);
-/// what they read of the record as recorded (its times, raw efforts and
-/// the velocities the light smoother reads) is the record itself, shared
-/// with the diagnosis's own when it was handed over
-/// ([`Signals::shared`]), else a copy of those fields.
+/// made are shared (`Arc`) by copies of the signals; what they read of
+/// the record as recorded (its times, raw efforts and the velocities the
+/// light smoother reads) is the record itself, shared with the
+/// diagnosis's own when it was handed over ([`Signals::shared`]), else a
+/// copy of those fields.
 #[derive(Debug, Clone)]
 pub struct Signals<const N: usize> {
     /// Sample interval.
@@ -389,9 +388,7 @@ impl<const N: usize> Signals<N> {
     /// smoothing fit over the samples with a full window (`range`), NaN
     /// where the filter's window reaches outside them. Made where asked
     /// (a late channel's fallback, `shift.rs`) rather than kept for every
-    /// sample, from these signals' `model` (a working copy whose model
-    /// carries other effects, `without_others`, would give that model's
-    /// rate; no late column is made on one).
+    /// sample, from these signals' `model`.
     pub fn model_rate(&self, k: usize) -> SVector<f64, N> {
         let h = self.sg.half();
         let (a, z) = self.range;

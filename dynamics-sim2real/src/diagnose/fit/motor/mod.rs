@@ -6,10 +6,11 @@
 mod refine;
 mod spread;
 
+use super::against::Against;
 use super::motor_sim::{transmitted_each, Stretches};
 use super::one::{whitened_nominal, Fit};
 use crate::diagnose::candidates::{
-    motor_feasible, motor_grid, signature_limit, Candidate, MotorGuess, Prepared,
+    motor_feasible, motor_grid, signature_limit, Candidate, MotorGuess,
 };
 use dynamics_runtime::{JointKind, Robot};
 use refine::{refine, refine_one};
@@ -30,8 +31,9 @@ const STIFF_ROTOR: ([f64; 3], f64) = ([60.0, 120.0, 250.0], 0.7);
 /// otherwise win on a plain rotor's data for those reasons alone (by 12
 /// to 37 AICc on three of 400 scored cases with one 250 Hz coupling).
 /// Keeps the best of the fits of the one parameter.
-pub(super) fn stiff_rotor<const N: usize>(linear: Fit, j: usize, p: &Prepared<N>) -> Fit {
-    let (w, base, own) = whitened_nominal(p, j);
+pub(super) fn stiff_rotor<const N: usize>(linear: Fit, j: usize, on: &Against<N>) -> Fit {
+    let p = on.p;
+    let (w, base, own) = whitened_nominal(on, j);
     let (inertia, zeta) = (p.basis.inertia[j], STIFF_ROTOR.1);
     let guess = |jm: f64, f: f64| -> MotorGuess {
         let om = 2.0 * std::f64::consts::PI * f;
@@ -48,10 +50,10 @@ pub(super) fn stiff_rotor<const N: usize>(linear: Fit, j: usize, p: &Prepared<N>
     let search = Stretches::search(&p.sig, &p.rows);
     let whole = Stretches::whole(&p.sig, &p.rows);
     let costs_on = |stretches: &Stretches, gs: &[MotorGuess]| -> Vec<f64> {
-        transmitted_each(&p.sig, j, gs, false, &p.basis.compliance, stretches, |t| {
+        transmitted_each(on, j, gs, false, &p.basis.compliance, stretches, |t| {
             let sse: f64 = base - own
                 + t.at_rows(&p.sig.sg)
-                    .map(|(k, e)| ((e - p.sig.model[k][j]) * w).powi(2))
+                    .map(|(e, m)| ((e - m) * w).powi(2))
                     .sum::<f64>();
             if sse.is_finite() {
                 sse
@@ -107,13 +109,14 @@ pub(super) fn stiff_rotor<const N: usize>(linear: Fit, j: usize, p: &Prepared<N>
     }
 }
 
-pub(super) fn fit_motor<R: Robot<N>, const N: usize>(c: Candidate, p: &Prepared<N>) -> Fit {
+pub(super) fn fit_motor<R: Robot<N>, const N: usize>(c: Candidate, on: &Against<N>) -> Fit {
+    let p = on.p;
     let (j, backlash) = match c {
         Candidate::Backlash(j) => (j, true),
         Candidate::Elasticity(j) => (j, false),
         _ => (0, false),
     };
-    let (w, base, own) = whitened_nominal(p, j);
+    let (w, base, own) = whitened_nominal(on, j);
     let revolute = R::JOINT_KINDS[j] != JointKind::Prismatic;
     // Whitened SSE with the motor side `g` at joint j (smoothing only the
     // rows' windows of the transmitted effort).
@@ -125,19 +128,9 @@ pub(super) fn fit_motor<R: Robot<N>, const N: usize>(c: Candidate, p: &Prepared<
     let search = Stretches::search(&p.sig, &p.rows);
     let whole = Stretches::whole(&p.sig, &p.rows);
     let rows_on = |stretches: &Stretches, gs: &[MotorGuess]| -> Vec<Vec<f64>> {
-        transmitted_each(
-            &p.sig,
-            j,
-            gs,
-            backlash,
-            &p.basis.compliance,
-            stretches,
-            |t| {
-                t.at_rows(&p.sig.sg)
-                    .map(|(k, e)| (e - p.sig.model[k][j]) * w)
-                    .collect()
-            },
-        )
+        transmitted_each(on, j, gs, backlash, &p.basis.compliance, stretches, |t| {
+            t.at_rows(&p.sig.sg).map(|(e, m)| (e - m) * w).collect()
+        })
     };
     let rows = |gs: &[MotorGuess]| rows_on(&search, gs);
     // Whitened SSE of each guess (infinite outside the physical box,

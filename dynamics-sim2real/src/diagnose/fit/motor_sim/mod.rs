@@ -38,20 +38,53 @@ pub const OBSERVER_HZ: f64 = 3.0;
 /// Lanes integrated side by side.
 pub const LANES: usize = 8;
 
+/// What a motor side at a joint is simulated on: a record's signals and
+/// the nominal model's effort at the joint that the link answers to, the
+/// signals' own ([`Signals::model`]) or with other effects' efforts added
+/// to it (`fit::Against`, what the compound explanation searches a motor
+/// side against).
+pub trait Load<const N: usize>: Sync {
+    /// The record's signals.
+    fn signals(&self) -> &Signals<N>;
+
+    /// What tells this model's efforts from another's on the same motion
+    /// (0: the signals' own): a key for values kept made from them.
+    fn model_key(&self) -> u64;
+
+    /// The model's effort at joint `j` over samples `a..z` of the record.
+    fn model_along(&self, j: usize, a: usize, z: usize) -> Vec<f64>;
+}
+
+impl<const N: usize> Load<N> for Signals<N> {
+    fn signals(&self) -> &Signals<N> {
+        self
+    }
+
+    fn model_key(&self) -> u64 {
+        0
+    }
+
+    fn model_along(&self, j: usize, a: usize, z: usize) -> Vec<f64> {
+        (a..z).map(|k| self.model[k][j]).collect()
+    }
+}
+
 /// The raw transmitted effort (see `transmitted::motor_transmitted_raw`) of
 /// every guess of `gs` at joint `j`, in their order, over the record's
 /// range (NaN outside it); `compliance` per joint is the link's
 /// acceleration per unit of its own effort (`Basis::compliance`).
-pub fn transmitted_raw_many<const N: usize>(
-    sig: &Signals<N>,
+pub fn transmitted_raw_many<const N: usize, L: Load<N> + ?Sized>(
+    on: &L,
     j: usize,
     gs: &[MotorGuess],
     backlash: bool,
     compliance: &SVector<f64, N>,
 ) -> Vec<Vec<f64>> {
+    let sig = on.signals();
     let n = sig.t.len();
     let (a, _) = sig.range;
-    in_lanes(sig, j, gs, backlash, compliance, sig.range)
+    let track = Track::of(on, j, sig.range);
+    in_lanes(sig, &track, j, gs, backlash, compliance, sig.range)
         .into_iter()
         .map(|span| {
             let mut whole = vec![f64::NAN; n];
@@ -66,21 +99,24 @@ pub fn transmitted_raw_many<const N: usize>(
 
 /// One guess's simulation over the stretches of a search: the raw
 /// transmitted effort of each stretch (indexed from the stretch's first
-/// sample; NaN everywhere when the simulation diverged).
+/// sample; NaN everywhere when the simulation diverged), and the joint's
+/// track over each.
 pub struct Simulated<'a> {
     stretches: &'a Stretches,
     efforts: Vec<Vec<f64>>,
+    tracks: &'a [Rc<Track>],
 }
 
 impl Simulated<'_> {
-    /// The smoothed transmitted effort at each scored row, in the rows'
-    /// order: `(sample, effort)`.
-    pub fn at_rows<'s>(&'s self, sg: &'s SavitzkyGolay) -> impl Iterator<Item = (usize, f64)> + 's {
+    /// The smoothed transmitted effort and the model's effort at the
+    /// joint at each scored row, in the rows' order: `(effort, model)`.
+    pub fn at_rows<'s>(&'s self, sg: &'s SavitzkyGolay) -> impl Iterator<Item = (f64, f64)> + 's {
         self.stretches
             .spans()
-            .zip(&self.efforts)
-            .flat_map(move |((first, _, rows), effort)| {
-                rows.iter().map(move |&k| (k, sg.at(effort, 0, k - first)))
+            .zip(self.efforts.iter().zip(self.tracks))
+            .flat_map(move |((first, _, rows), (effort, track))| {
+                rows.iter()
+                    .map(move |&k| (sg.at(effort, 0, k - first), track.model[k - first]))
             })
     }
 }
@@ -89,8 +125,8 @@ impl Simulated<'_> {
 /// handed to `reduce` as soon as its lanes are integrated and then
 /// dropped: at most [`LANES`] guesses' worth of simulation held at once,
 /// however many guesses (a grid holds dozens).
-pub fn transmitted_each<const N: usize, T>(
-    sig: &Signals<N>,
+pub fn transmitted_each<const N: usize, T, L: Load<N> + ?Sized>(
+    on: &L,
     j: usize,
     gs: &[MotorGuess],
     backlash: bool,
@@ -98,27 +134,37 @@ pub fn transmitted_each<const N: usize, T>(
     stretches: &Stretches,
     mut reduce: impl FnMut(&Simulated) -> T,
 ) -> Vec<T> {
+    let sig = on.signals();
     let mut out = Vec::with_capacity(gs.len());
     for now in gs.chunks(LANES) {
         let mut each: Vec<Vec<Vec<f64>>> = vec![Vec::new(); now.len()];
+        let mut tracks = Vec::new();
         for (first, end, _) in stretches.spans() {
-            let spans = in_lanes(sig, j, now, backlash, compliance, (first, end));
+            let track = Track::of(on, j, (first, end));
+            let spans = in_lanes(sig, &track, j, now, backlash, compliance, (first, end));
             for (e, span) in each.iter_mut().zip(spans) {
                 e.push(span);
             }
+            tracks.push(track);
         }
-        out.extend(
-            each.into_iter()
-                .map(|efforts| reduce(&Simulated { stretches, efforts })),
-        );
+        let tracks = &tracks[..];
+        out.extend(each.into_iter().map(|efforts| {
+            reduce(&Simulated {
+                stretches,
+                efforts,
+                tracks,
+            })
+        }));
     }
     out
 }
 
 /// The guesses of `gs` integrated [`LANES`] at a time over samples
-/// `span.0..span.1`, each result indexed from `span.0`.
+/// `span.0..span.1`, each result indexed from `span.0`; `track` is joint
+/// `j`'s over the span.
 fn in_lanes<const N: usize>(
     sig: &Signals<N>,
+    track: &Track,
     j: usize,
     gs: &[MotorGuess],
     backlash: bool,
@@ -127,8 +173,7 @@ fn in_lanes<const N: usize>(
 ) -> Vec<Vec<f64>> {
     let mut out = Vec::with_capacity(gs.len());
     let mut rest = gs;
-    let track = Track::of(sig, j, span);
-    let tr = &*track;
+    let tr = track;
     while !rest.is_empty() {
         let take = rest.len().min(LANES);
         let (now, later) = rest.split_at(take);
@@ -146,14 +191,16 @@ fn in_lanes<const N: usize>(
     out
 }
 
-/// Joint `j`'s smoothed position, velocity and acceleration over the
-/// samples of a span that lie in the record, indexed from the span's
-/// first sample: made once for all the lanes integrated over the span,
-/// and kept by the thread for the next guesses simulated over it.
+/// Joint `j`'s smoothed position, velocity and acceleration and the
+/// model's effort there over the samples of a span that lie in the
+/// record, indexed from the span's first sample: made once for all the
+/// lanes integrated over the span, and kept by the thread for the next
+/// guesses simulated over it.
 struct Track {
     q: Vec<f64>,
     qd: Vec<f64>,
     qdd: Vec<f64>,
+    model: Vec<f64>,
 }
 
 /// Samples of tracks a thread keeps, in seconds of the record: what one
@@ -162,8 +209,9 @@ struct Track {
 /// record makes its track and drops it.
 const KEPT_SECONDS: f64 = 1.25 * stretches::SEARCH_SECONDS;
 
-/// A kept track: the motion's id, the joint, the span.
-type Kept = (u64, usize, (usize, usize), Rc<Track>);
+/// A kept track: the motion's id and the model's key, the joint, the
+/// span.
+type Kept = ((u64, u64), usize, (usize, usize), Rc<Track>);
 
 thread_local! {
     /// The tracks this thread made last (first in, first out).
@@ -171,13 +219,19 @@ thread_local! {
 }
 
 impl Track {
-    /// Joint `j`'s track over `span` of `sig`'s motion, kept or made.
-    fn of<const N: usize>(sig: &Signals<N>, j: usize, span: (usize, usize)) -> Rc<Track> {
-        let id = sig.motion.id();
+    /// Joint `j`'s track over `span` of the motion and model of `on`,
+    /// kept or made.
+    fn of<const N: usize, L: Load<N> + ?Sized>(
+        on: &L,
+        j: usize,
+        span: (usize, usize),
+    ) -> Rc<Track> {
+        let sig = on.signals();
+        let id = (sig.motion.id(), on.model_key());
         let most = (KEPT_SECONDS / sig.dt) as usize;
         let len = |s: (usize, usize)| s.1.saturating_sub(s.0);
         if len(span) > most {
-            return Rc::new(Self::made(sig, j, span));
+            return Rc::new(Self::made(on, j, span));
         }
         KEPT.with(|kept| {
             let mut kept = kept.borrow_mut();
@@ -187,7 +241,7 @@ impl Track {
             if let Some((.., t)) = hit {
                 return Rc::clone(t);
             }
-            let t = Rc::new(Self::made(sig, j, span));
+            let t = Rc::new(Self::made(on, j, span));
             while !kept.is_empty()
                 && kept.iter().map(|x| len(x.2)).sum::<usize>() + len(span) > most
             {
@@ -198,7 +252,8 @@ impl Track {
         })
     }
 
-    fn made<const N: usize>(sig: &Signals<N>, j: usize, (a, z): (usize, usize)) -> Self {
+    fn made<const N: usize, L: Load<N> + ?Sized>(on: &L, j: usize, (a, z): (usize, usize)) -> Self {
+        let sig = on.signals();
         let z = z.min(sig.t.len());
         let m = &sig.motion;
         let z = z.max(a);
@@ -206,6 +261,7 @@ impl Track {
             q: m.joint_stretch(0, j, a, z),
             qd: m.joint_stretch(1, j, a, z),
             qdd: m.joint_stretch(2, j, a, z),
+            model: on.model_along(j, a, z),
         }
     }
 }
@@ -236,8 +292,8 @@ fn lanes<const N: usize, const L: usize, const B: bool>(
     );
     // One buffer per guess (the copies filling the lanes store nothing).
     let mut out = nan();
-    let load = sig.model[a][j];
-    let (q, qd, qdd) = (&track.q, &track.qd, &track.qdd);
+    let (q, qd, qdd, model) = (&track.q, &track.qd, &track.qdd, &track.model);
+    let load = model[0];
     // State per lane: motor angle, motor rate, link angle, link rate.
     let mut x = [[0.0f64; L]; 4];
     for l in 0..L {
@@ -268,8 +324,8 @@ fn lanes<const N: usize, const L: usize, const B: bool>(
             break;
         }
         let r = k - a;
-        let (q0, v0, a0, m0) = (q[r], qd[r], qdd[r], sig.model[k][j]);
-        let (q1, v1, a1, m1) = (q[r + 1], qd[r + 1], qdd[r + 1], sig.model[k + 1][j]);
+        let (q0, v0, a0, m0) = (q[r], qd[r], qdd[r], model[r]);
+        let (q1, v1, a1, m1) = (q[r + 1], qd[r + 1], qdd[r + 1], model[r + 1]);
         let h = (t[k + 1] - t[k]) / SUB as f64;
         let tau = tau_raw[k][j];
         // The link's response to its own effort.

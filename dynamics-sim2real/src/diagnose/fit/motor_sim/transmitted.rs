@@ -3,11 +3,11 @@
 
 use nalgebra::SVector;
 
-use super::transmitted_raw_many;
+use super::{transmitted_raw_many, Load};
 use crate::diagnose::candidates::MotorGuess;
-use crate::diagnose::signals::Signals;
 
-/// Simulates the motor side of joint `j` driven by the measured effort
+/// Simulates the motor side of joint `j` of `on` (the record's signals and
+/// the model's effort at the joint, [`Load`]) driven by the measured effort
 /// (held per sample) and the link of joint `j` (its acceleration per unit
 /// of its own effort `compliance[k][j]`, `Basis::compliance`); returns the
 /// smoothed effort it passes to the link at every sample (NaN outside the
@@ -23,27 +23,28 @@ use crate::diagnose::signals::Signals;
 /// long), and the contact stiffness would turn that blur into effort
 /// (on a generated backlash case, the whitened error of the true
 /// parameters fell from 7258 to 4623, nominal model 20985).
-pub fn motor_transmitted<const N: usize>(
-    sig: &Signals<N>,
+pub fn motor_transmitted<const N: usize, L: Load<N> + ?Sized>(
+    on: &L,
     j: usize,
     g: &MotorGuess,
     backlash: bool,
     compliance: &SVector<f64, N>,
 ) -> Vec<f64> {
-    sig.sg
-        .apply(&motor_transmitted_raw(sig, j, g, backlash, compliance), 0)
+    on.signals()
+        .sg
+        .apply(&motor_transmitted_raw(on, j, g, backlash, compliance), 0)
 }
 
 /// [`motor_transmitted`] before smoothing (NaN outside the range, and
 /// everywhere when the simulation diverged); `sim/` integrates it.
-pub fn motor_transmitted_raw<const N: usize>(
-    sig: &Signals<N>,
+pub fn motor_transmitted_raw<const N: usize, L: Load<N> + ?Sized>(
+    on: &L,
     j: usize,
     g: &MotorGuess,
     backlash: bool,
     compliance: &SVector<f64, N>,
 ) -> Vec<f64> {
-    transmitted_raw_many(sig, j, std::slice::from_ref(g), backlash, compliance)
+    transmitted_raw_many(on, j, std::slice::from_ref(g), backlash, compliance)
         .pop()
         .unwrap_or_default()
 }

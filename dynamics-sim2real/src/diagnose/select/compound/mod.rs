@@ -38,10 +38,11 @@ mod exchange;
 mod order;
 mod select;
 mod strength;
+#[cfg(test)]
+mod tests;
 mod validate;
 mod weights;
 
-use nalgebra::SVector;
 use rayon::prelude::*;
 
 use super::criterion::tie_key;
@@ -49,7 +50,7 @@ use super::nesting::{nested_rival_stands, nesting, simpler};
 use super::pool::prior::STRENGTHS;
 use super::pool::{Pool, Solution};
 use crate::diagnose::candidates::{Candidate, Friction, Prepared};
-use crate::diagnose::fit::{fit, fixed_column, Fit};
+use crate::diagnose::fit::{fit_against, fixed_column_against, Against, Fit};
 use crate::diagnose::Options;
 use crate::effects::Effect;
 use eliminate::{eliminate, full};
@@ -83,29 +84,52 @@ pub struct Explanation {
     pub rivals: Vec<Option<usize>>,
 }
 
+/// `p` against the effort of the linear joint and tip terms of `set`
+/// (fitted `sol`) added to its model: what a motor side at one joint is
+/// searched against. The others' efforts are made where read (at the
+/// rows, and at the motor side's joint over what it simulates), not
+/// along the whole record.
+pub fn against_others<'a, const N: usize>(
+    p: &'a Prepared<N>,
+    pool: &Pool,
+    set: &[usize],
+    sol: &'a Solution,
+) -> Against<'a, N> {
+    let others = set
+        .iter()
+        .enumerate()
+        .filter(|&(_, &t)| {
+            let term = &pool.terms[t];
+            // (A link correction's columns exist on the fit's rows only:
+            // the motor sides are searched without it.)
+            term.fixed.is_none() && term.link.is_none()
+        })
+        .map(|(i, &t)| (pool.terms[t].fit.candidate, sol.theta[i].as_slice()))
+        .collect();
+    Against::others(p, others)
+}
+
 /// `p` with the effort of the linear joint and tip terms of `set` (fitted
-/// `sol`), except position `skip`, added to the model: what a motor side at one joint is
-/// searched against.
+/// `sol`) added to the model and taken from the residual at every sample:
+/// what [`against_others`] gives where read, copied along the record.
+#[cfg(test)]
 pub fn without_others<const N: usize>(
     p: &Prepared<N>,
     pool: &Pool,
     set: &[usize],
     sol: &Solution,
-    skip: Option<usize>,
 ) -> Prepared<N> {
     let mut q = p.clone();
     let (a, z) = p.sig.range;
     for (i, &t) in set.iter().enumerate() {
         let term = &pool.terms[t];
-        // (A link correction's columns exist on the fit's rows only: the
-        // motor sides are searched without it.)
-        if Some(i) == skip || term.fixed.is_some() || term.link.is_some() {
+        if term.fixed.is_some() || term.link.is_some() {
             continue;
         }
         let c = term.fit.candidate;
         for k in a..z {
             let cols = c.columns(&p.sig, &p.basis, k);
-            let mut e = SVector::<f64, N>::zeros();
+            let mut e = nalgebra::SVector::<f64, N>::zeros();
             for (m, th) in sol.theta[i].iter().enumerate() {
                 e += cols[m] * *th;
             }
@@ -113,26 +137,41 @@ pub fn without_others<const N: usize>(
             q.sig.residual[k] -= e;
         }
     }
+    // Another model on the same motion: the motor sides' kept tracks are
+    // told apart by the motion.
+    q.sig.motion = crate::diagnose::signals::Motion::of(&q.sig.record, &q.sig.sg);
     q
 }
 
-/// Searches the motor sides of terms `todo` again on `q` (the others'
-/// effort removed), on the current rayon pool, and puts each in the pool
-/// when its search succeeds.
-fn research<R: Robot<N>, const N: usize>(pool: &mut Pool, todo: &[usize], q: &Prepared<N>) {
+/// Searches the motor sides of terms `todo` again against `on` (the
+/// others' effort removed), on the current rayon pool, and puts each in
+/// the pool when its search succeeds.
+fn research<R: Robot<N>, const N: usize>(pool: &mut Pool, todo: &[usize], on: &Against<N>) {
     let terms = &pool.terms;
-    let found: Vec<_> = todo
+    // Joint by joint: the model's effort along the record at a joint is
+    // made once for the motor sides there and dropped after the last.
+    let joint = |t: usize| terms[t].fit.candidate.joint().unwrap_or(0);
+    let mut order: Vec<usize> = (0..todo.len()).collect();
+    order.sort_by_key(|&i| (joint(todo[i]), i));
+    for &t in todo {
+        on.expect(joint(t), 1);
+    }
+    let mut found: Vec<_> = order
         .par_iter()
         .with_max_len(1)
-        .map(|&t| {
-            let f = fit::<R, N>(terms[t].fit.candidate, q);
-            (f.motor.is_some() && f.sse.is_finite()).then(|| {
-                let col = fixed_column(&f, q);
+        .map(|&i| {
+            let t = todo[i];
+            let f = fit_against::<R, N>(terms[t].fit.candidate, on);
+            let found = (f.motor.is_some() && f.sse.is_finite()).then(|| {
+                let col = fixed_column_against(&f, on);
                 (f, col)
-            })
+            });
+            on.done(joint(t));
+            (i, found)
         })
         .collect();
-    for (&t, found) in todo.iter().zip(found) {
+    found.sort_by_key(|a| a.0);
+    for (&t, (_, found)) in todo.iter().zip(found) {
         if let Some((f, col)) = found {
             pool.set_fixed(t, f, col);
         }
@@ -198,8 +237,8 @@ pub fn explain<R: Robot<N>, const N: usize>(
         if todo.is_empty() {
             break;
         }
-        let base = without_others(p, pool, &set, &sol, None);
-        research::<R, N>(pool, &todo, &base);
+        let on = against_others(p, pool, &set, &sol);
+        research::<R, N>(pool, &todo, &on);
         let next = select::<N>(pool, set.clone(), options);
         if next == set {
             break;
