@@ -158,26 +158,10 @@ impl SavitzkyGolay {
         let mut k = lo;
         while k < hi {
             if k + WIDE <= hi && fits(k) && fits(k + WIDE - 1) {
-                let x = window(k, WIDE - 1);
-                let mut s = [start; WIDE];
-                for (t, a) in w.iter().enumerate() {
-                    let seg = &x[t..t + WIDE];
-                    for r in 0..WIDE {
-                        s[r] += a * seg[r];
-                    }
-                }
-                out.extend_from_slice(&s);
+                out.extend_from_slice(&side_by_side::<WIDE>(w, window(k, WIDE - 1), start));
                 k += WIDE;
             } else if k + 4 <= hi && fits(k) && fits(k + 3) {
-                let x = window(k, 3);
-                let mut s = [start; 4];
-                for (t, a) in w.iter().enumerate() {
-                    let seg = &x[t..t + 4];
-                    for r in 0..4 {
-                        s[r] += a * seg[r];
-                    }
-                }
-                out.extend_from_slice(&s);
+                out.extend_from_slice(&side_by_side::<4>(w, window(k, 3), start));
                 k += 4;
             } else {
                 out.push(if fits(k) {
@@ -190,6 +174,21 @@ impl SavitzkyGolay {
         }
         out
     }
+}
+
+/// The filter `w` at `W` consecutive samples whose windows together are
+/// `x` (`w.len() + W - 1` values), each sum from `start` term by term in
+/// [`SavitzkyGolay::at`]'s order; the `W` sums side by side (the vector
+/// unit's lanes).
+fn side_by_side<const W: usize>(w: &[f64], x: &[f64], start: f64) -> [f64; W] {
+    let mut s = [start; W];
+    for (t, a) in w.iter().enumerate() {
+        let seg = &x[t..t + W];
+        for r in 0..W {
+            s[r] += a * seg[r];
+        }
+    }
+    s
 }
 
 #[cfg(test)]
