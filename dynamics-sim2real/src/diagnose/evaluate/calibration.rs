@@ -286,6 +286,8 @@ mod tests {
             effective_rows: n as f64,
             gain_share: 0.5,
             chance_share: 0.0,
+            size: 1.0,
+            joint_share: 1.0,
             level: 1e-3,
         };
         let mut confirmed = Confirmed {

@@ -38,9 +38,20 @@
 //!    chi-square quantile of the extra parameters, the larger one is the
 //!    one dropped ([`held_out_test`]): a link correction does not stand in
 //!    for a rotor inertia, nor a payload for an encoder offset, unless the
-//!    held-out record shows what its extra parameters add.
+//!    held-out record shows what its extra parameters add;
+//! 5. an effect that passes chance must also be large enough to act on:
+//!    its effort on the held-out record as large as the sensor noise (RMS
+//!    over the samples, summed over the joints: the held-out gain per
+//!    sample at least [`PRACTICAL_SIZE`] squared, in units of the noise
+//!    floor), or removing at least [`PRACTICAL_SHARE`] of one joint's
+//!    held-out gap above noise (1 % of the model's error there, RMS).
+//!    Chance alone names ever smaller effects as the record grows (its
+//!    quantile stays, the gain grows with the rows); an effect below both
+//!    neither shows in the measured efforts nor changes the model's error
+//!    anywhere, so it is a suggestion (`Unconfirmed::TooSmall`), the
+//!    smallest first, the rest tested again.
 
-use nalgebra::SVector;
+use nalgebra::{DVector, SVector};
 
 use super::determinacy::undetermined;
 use super::holdout::{limit_to_windows, Holdout};
@@ -56,6 +67,15 @@ use dynamics_runtime::{JointKind, Robot};
 /// effect without substance passes the held-out test (Bonferroni: each of
 /// `m` tests at `FAMILY_LEVEL / m`).
 pub const FAMILY_LEVEL: f64 = 1e-3;
+
+/// An effect is large enough to name when its effort on the held-out
+/// record, RMS over the samples (summed over the joints), is at least this
+/// share of the sensor noise's standard deviation ...
+pub const PRACTICAL_SIZE: f64 = 1.0;
+
+/// ... or when it removes at least this share of one joint's held-out
+/// gap above noise (sums of squares: 1 % of the model's error, RMS).
+pub const PRACTICAL_SHARE: f64 = 1e-4;
 
 /// How an effect of the explanation was confirmed.
 #[derive(Debug, Clone, Copy, PartialEq)]
@@ -75,6 +95,13 @@ pub struct Confidence {
     pub gain_share: f64,
     /// `threshold` as the same share: what noise alone could explain.
     pub chance_share: f64,
+    /// The effect's effort on the held-out record as a share of the
+    /// sensor noise: the square root of the held-out gain per sample
+    /// (summed over the joints) in units of the noise floor.
+    pub size: f64,
+    /// The largest share of one joint's held-out gap above noise that the
+    /// effect removes.
+    pub joint_share: f64,
     /// The chance level of each effect's test.
     pub level: f64,
 }
@@ -88,6 +115,10 @@ pub enum Unconfirmed {
     NotPhysical,
     /// It does not lower the held-out deviance by more than chance would.
     NotConfirmed(Confidence),
+    /// It lowers the held-out deviance by more than chance would, but its
+    /// effort is below [`PRACTICAL_SIZE`] of the sensor noise and it
+    /// removes less than [`PRACTICAL_SHARE`] of any joint's gap.
+    TooSmall(Confidence),
     /// A simpler effect of the set (fewer parameters) holds on the
     /// held-out record in its place, and this one does not lower the
     /// held-out residual below that simpler one's by more than chance
@@ -316,9 +347,9 @@ pub fn confirm<R: Robot<N>, const N: usize>(
     let mut hold = Holdout::new(h, hlinks, pool, e);
     limit_to_windows(&mut hold, h, pool, e, windows);
     let terms = |pos: &[usize]| -> Vec<usize> { pos.iter().map(|&i| e.set[i]).collect() };
-    let sse = |pos: &[usize]| -> f64 {
+    let sse = |pos: &[usize]| -> Sse {
         let sol = solve(&terms(pos));
-        hold.residual(pos, &sol.theta).norm_squared()
+        Sse::of(&hold.residual(pos, &sol.theta), N)
     };
     let spacing = h.rows.windows(2).map(|w| w[1] - w[0]).min().unwrap_or(1);
     let tau = correlation_time(h.sig.sg.weights(0), spacing);
@@ -326,10 +357,19 @@ pub fn confirm<R: Robot<N>, const N: usize>(
     let level = FAMILY_LEVEL / keep.len().max(1) as f64;
     let y = hold.observed();
     let gap = (y.norm_squared() - y.len() as f64).max(1e-300);
+    let rows_of = |j: usize| (y.len() / N.max(1) + usize::from(j < y.len() % N.max(1))) as f64;
+    let joint_gap = Sse::of(y, N)
+        .joint
+        .iter()
+        .enumerate()
+        .map(|(j, s)| s - rows_of(j))
+        .collect();
     let scale = Scale {
         tau,
         gap,
         effective_rows,
+        samples: (y.len() / N.max(1)).max(1) as f64,
+        joint_gap,
         level,
     };
     let k = |i: usize| pool.terms[e.set[i]].k;
@@ -363,10 +403,46 @@ pub fn confirm<R: Robot<N>, const N: usize>(
     }
 }
 
+/// A held-out residual's sum of squares, in floor units: in all and per
+/// joint.
+#[derive(Debug, Clone, PartialEq)]
+pub struct Sse {
+    /// Over every row.
+    pub total: f64,
+    /// Over each joint's rows.
+    pub joint: Vec<f64>,
+}
+
+impl Sse {
+    /// A residual's sums of squares (rows sample after sample, `n` joints
+    /// each).
+    pub fn of(r: &DVector<f64>, n: usize) -> Sse {
+        let mut joint = vec![0.0; n.max(1)];
+        for (i, x) in r.iter().enumerate() {
+            joint[i % n.max(1)] += x * x;
+        }
+        Sse {
+            total: r.norm_squared(),
+            joint,
+        }
+    }
+
+    /// One joint's sum of squares (it is the total).
+    #[cfg(test)]
+    pub fn one(total: f64) -> Sse {
+        Sse {
+            total,
+            joint: vec![total],
+        }
+    }
+}
+
 /// The held-out record's yardsticks: `tau` rows a noise sample is
 /// correlated over, `gap` the held-out residual's sum of squares above the
-/// noise (in floor units), `effective_rows` the rows over `tau`, `level`
-/// each effect's chance level.
+/// noise (in floor units), `effective_rows` the rows over `tau`, `samples`
+/// the held-out samples (rows over the joints), `level` each effect's
+/// chance level.
+#[derive(Debug, Clone)]
 pub struct Scale {
     /// Integrated autocorrelation time of the noise, in rows.
     pub tau: f64,
@@ -374,6 +450,10 @@ pub struct Scale {
     pub gap: f64,
     /// Held-out rows counted as independent.
     pub effective_rows: f64,
+    /// Held-out samples (each the rows of every joint at one instant).
+    pub samples: f64,
+    /// Per joint, the nominal model's held-out sum of squares above noise.
+    pub joint_gap: Vec<f64>,
     /// The chance level of each effect's test.
     pub level: f64,
 }
@@ -388,37 +468,52 @@ pub struct Scale {
 /// holds once the larger one is out, and the larger one in its place
 /// lowers the held-out residual by no more than chance gives the extra
 /// parameters, the larger one goes instead (`Unconfirmed::Simpler`, its
-/// `rival` a position). Returns the positions kept, their confidence and
-/// the positions dropped, with the reason.
+/// `rival` a position). Once every effect passes chance, one whose effort
+/// is below [`PRACTICAL_SIZE`] of the noise goes, the smallest first
+/// (`Unconfirmed::TooSmall`). Returns the positions kept, their confidence
+/// and the positions dropped, with the reason.
 pub fn held_out_test(
     mut keep: Vec<usize>,
     k: impl Fn(usize) -> usize,
-    sse: impl Fn(&[usize]) -> f64,
+    sse: impl Fn(&[usize]) -> Sse,
     scale: &Scale,
 ) -> (Vec<usize>, Vec<Confidence>, Vec<(usize, Unconfirmed)>) {
     let Scale {
         tau,
         gap,
         effective_rows,
+        samples,
         level,
+        ..
     } = *scale;
+    let joint_share = |with: &Sse, without: &Sse| -> f64 {
+        (with.joint.iter().zip(&without.joint))
+            .zip(&scale.joint_gap)
+            .filter(|(_, &g)| g > 0.0)
+            .map(|((a, b), g)| (b - a) / g)
+            .fold(0.0, f64::max)
+    };
     let mut dropped = Vec::new();
     loop {
         let without = |drop: &[usize]| -> Vec<usize> {
             keep.iter().copied().filter(|i| !drop.contains(i)).collect()
         };
-        let full = sse(&keep);
+        let full_sums = sse(&keep);
+        let full = full_sums.total;
         let confidence = keep
             .iter()
             .map(|&i| {
-                let without = sse(&without(&[i]));
+                let without_sums = sse(&without(&[i]));
+                let without = without_sums.total;
                 let threshold = chi2_upper(k(i), level);
                 Confidence {
+                    joint_share: joint_share(&full_sums, &without_sums),
                     held_out: (without - full) / tau,
                     threshold,
                     effective_rows,
                     gain_share: (without - full) / gap,
                     chance_share: threshold * tau / gap,
+                    size: ((without - full) / samples).max(0.0).sqrt(),
                     level,
                 }
             })
@@ -434,7 +529,18 @@ pub fn held_out_test(
             })
             .map(|(m, c)| (m, *c));
         let Some((m, c)) = worst else {
-            return (keep, confidence, dropped);
+            let smallest = confidence
+                .iter()
+                .enumerate()
+                .filter(|(_, c)| c.size < PRACTICAL_SIZE && c.joint_share < PRACTICAL_SHARE)
+                .min_by(|a, b| a.1.size.total_cmp(&b.1.size));
+            match smallest {
+                Some((m, c)) => {
+                    dropped.push((keep.remove(m), Unconfirmed::TooSmall(*c)));
+                    continue;
+                }
+                None => return (keep, confidence, dropped),
+            }
         };
         // A larger effect standing in for the failing one.
         let i = keep[m];
@@ -444,8 +550,8 @@ pub fn held_out_test(
             .enumerate()
             .filter(|&(n, &j)| n != m && k(j) > k(i))
             .filter_map(|(n, &j)| {
-                let with_i = sse(&without(&[j]));
-                let alone = (sse(&without(&[i, j])) - with_i) / tau;
+                let with_i = sse(&without(&[j])).total;
+                let alone = (sse(&without(&[i, j])).total - with_i) / tau;
                 let extra = (with_i - with_j) / tau;
                 let chance = chi2_upper(k(j) - k(i), level);
                 (alone > c.threshold && extra <= chance).then_some((n, extra, chance))
@@ -491,6 +597,8 @@ mod tests {
             tau: 1.0,
             gap: 1e4,
             effective_rows: 1e3,
+            samples: 1e3,
+            joint_gap: vec![1e4],
             level,
         };
         let k = |i: usize| if i == 0 { 1 } else { 10 };
@@ -502,7 +610,7 @@ mod tests {
                 [1] => full + gain_simple,
                 _ => full,
             };
-            held_out_test(vec![0, 1], k, sse, &scale)
+            held_out_test(vec![0, 1], k, |p| Sse::one(sse(p)), &scale)
         };
         // The larger one gains t10 + 1 beside the simpler one (it passes),
         // the simpler one t1 - 1 beside it (it fails): in each other's
@@ -530,6 +638,53 @@ mod tests {
         let (keep, _, dropped) = judged(t1 - 1.0, t1 - 1.0 + t9 + 1.0);
         assert_eq!(keep, vec![1]);
         assert!(matches!(&dropped[..], [(0, Unconfirmed::NotConfirmed(_))]));
+    }
+
+    /// Four one-parameter effects, each gaining far above chance on a long
+    /// held-out record (1e6 samples, two joints): three at joint 0, whose
+    /// gap is vast, one at joint 1. The one at joint 0 below the noise goes
+    /// as too small (the others refitted without it: here their gains do
+    /// not change); the one as large as the noise stays, and so does the
+    /// one at joint 1, below the noise but a quarter of its joint's gap.
+    #[test]
+    fn an_effect_below_the_noise_and_a_joints_gap_is_too_small_to_name() {
+        let samples = 1e6;
+        let level = FAMILY_LEVEL / 4.0;
+        let scale = Scale {
+            tau: 1.0,
+            gap: 1e12 + 1e6,
+            effective_rows: 2.0 * samples,
+            samples,
+            joint_gap: vec![1e12, 1e6],
+            level,
+        };
+        let floor = PRACTICAL_SIZE * PRACTICAL_SIZE * samples;
+        let gains = [0.5 * floor, 1.01 * floor, 100.0 * floor, 0.25 * floor];
+        let joint = [0, 0, 0, 1];
+        assert!(gains[3] > 100.0 * chi2_upper(1, level));
+        let sse = |pos: &[usize]| -> Sse {
+            let mut by = vec![1e3, 1e3];
+            for i in (0..4).filter(|i| !pos.contains(i)) {
+                by[joint[i]] += gains[i];
+            }
+            Sse {
+                total: by[0] + by[1],
+                joint: by,
+            }
+        };
+        let (keep, confidence, dropped) = held_out_test(vec![0, 1, 2, 3], |_| 1, sse, &scale);
+        assert_eq!(keep, vec![1, 2, 3]);
+        assert!((confidence[0].size - PRACTICAL_SIZE * 1.01f64.sqrt()).abs() < 1e-12);
+        assert!((confidence[2].size - 0.5 * PRACTICAL_SIZE).abs() < 1e-12);
+        assert!((confidence[2].joint_share - 0.25).abs() < 1e-12);
+        match &dropped[..] {
+            [(0, Unconfirmed::TooSmall(c))] => {
+                assert!((c.size - PRACTICAL_SIZE / 2f64.sqrt()).abs() < 1e-12);
+                assert!(c.joint_share < PRACTICAL_SHARE);
+                assert!(c.held_out > c.threshold);
+            }
+            other => panic!("the small effect should go as too small: {other:?}"),
+        }
     }
 
     #[test]

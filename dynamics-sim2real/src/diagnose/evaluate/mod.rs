@@ -25,7 +25,7 @@ mod shrink;
 mod yardstick;
 
 pub use calibration::FrictionSpread;
-pub use confirm::{Confidence, Confirmed, Suggestion, Unconfirmed};
+pub use confirm::{Confidence, Confirmed, Suggestion, Unconfirmed, PRACTICAL_SHARE};
 pub(crate) use determinacy::held_at_zero;
 pub use determinacy::why_not;
 pub use gap_windows::GapWindow;

@@ -10,7 +10,9 @@ use super::ranked::ranked_entry;
 use super::report::{self, EffectWindow, Explained, Parameter, Rival, ShrinkStep, Suggested};
 use super::words::{add_direction_words, link_words, nominal_words};
 use crate::diagnose::candidates::{delta, Candidate, Friction, LinkBasis};
-use crate::diagnose::evaluate::{fraction, Confidence, Holdout, Suggestion, Unconfirmed};
+use crate::diagnose::evaluate::{
+    fraction, Confidence, Holdout, Suggestion, Unconfirmed, PRACTICAL_SHARE,
+};
 use crate::diagnose::fit::{window_of, Windows};
 use crate::diagnose::select::{joint_fit, Explanation, Parts, Pool, Solution};
 use crate::inertial::{check, complete, describe};
@@ -167,12 +169,15 @@ pub fn entries<R: Robot<N>, const N: usize>(
 /// The report's confidence of an effect.
 fn confidence_of(c: Option<&Confidence>) -> report::Confidence {
     let finite = |x: f64| if x.is_finite() { x } else { 0.0 };
-    let (gain, chance, level) =
-        c.map_or((0.0, 0.0, 0.0), |c| (c.gain_share, c.chance_share, c.level));
+    let (gain, chance, size, level) = c.map_or((0.0, 0.0, 0.0, 0.0), |c| {
+        (c.gain_share, c.chance_share, c.size, c.level)
+    });
     report::Confidence {
         status: "confirmed",
         held_out_gain: finite(gain),
         chance: finite(chance),
+        effort_to_noise: finite(size),
+        joint_gap_share: finite(c.map_or(0.0, |c| c.joint_share)),
         level: finite(level),
     }
 }
@@ -232,6 +237,16 @@ pub fn suggested<R: Robot<N>, const N: usize>(
                         share(*chance)
                     )
                 }
+                Unconfirmed::TooSmall(c) => format!(
+                    "too small to act on: on the held-out record it removes {} of the gap above noise (more than chance, {}), \
+                     but its effort is {:.1} % of the sensor noise (RMS) and at most {} of one joint's gap; \
+                     an effect named is as large as the noise or removes {} of a joint's gap",
+                    share(c.gain_share),
+                    share(c.chance_share),
+                    100.0 * c.size,
+                    share(c.joint_share),
+                    share(PRACTICAL_SHARE)
+                ),
                 Unconfirmed::NotConfirmed(c) => format!(
                     "helps only where it was fitted: on the held-out record it removes {} of the gap above noise, no more than noise alone could ({})",
                     share(c.gain_share),

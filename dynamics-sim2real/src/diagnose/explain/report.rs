@@ -161,6 +161,13 @@ pub struct Confidence {
     /// The share noise alone could give at `level` (the chi-square quantile
     /// at its parameter count): `held_out_gain` exceeds it.
     pub chance: f64,
+    /// The effect's effort on the held-out record as a share of the sensor
+    /// noise (RMS over the samples, summed over the joints).
+    pub effort_to_noise: f64,
+    /// The largest share of one joint's held-out gap above noise that the
+    /// effect removes. An effect named has `effort_to_noise` at least 1 or
+    /// this at least 1e-4.
+    pub joint_gap_share: f64,
     /// The chance level of the test (0.001 shared by the effects tested).
     pub level: f64,
 }
@@ -496,6 +503,8 @@ pub(crate) fn test_entry(
             status: "confirmed",
             held_out_gain: 0.1,
             chance: 0.0,
+            effort_to_noise: 3.0,
+            joint_gap_share: 0.1,
             level: 1e-3,
         },
         ambiguous_with: None,
