@@ -40,10 +40,10 @@
 //!    for a rotor inertia, nor a payload for an encoder offset, unless the
 //!    held-out record shows what its extra parameters add;
 //! 5. an effect that passes chance must also be large enough to act on:
-//!    its effort on the held-out record as large as the sensor noise (RMS
-//!    over the samples, summed over the joints: the held-out gain per
-//!    sample at least [`PRACTICAL_SIZE`] squared, in units of the noise
-//!    floor), or removing at least [`PRACTICAL_SHARE`] of one joint's
+//!    its effort on the held-out record as large as the noise floor (what
+//!    the sensors' noise leaves in the smoothed residual; RMS over the
+//!    samples, summed over the joints: the held-out gain per sample at
+//!    least [`PRACTICAL_SIZE`] squared, in units of the floor), or removing at least [`PRACTICAL_SHARE`] of one joint's
 //!    held-out gap above noise (1 % of the model's error there, RMS).
 //!    Chance alone names ever smaller effects as the record grows (its
 //!    quantile stays, the gain grows with the rows); an effect below both
@@ -70,7 +70,8 @@ pub const FAMILY_LEVEL: f64 = 1e-3;
 
 /// An effect is large enough to name when its effort on the held-out
 /// record, RMS over the samples (summed over the joints), is at least this
-/// share of the sensor noise's standard deviation ...
+/// share of the noise floor (what the sensors' noise leaves in the
+/// smoothed residual, the report's "x noise") ...
 pub const PRACTICAL_SIZE: f64 = 1.0;
 
 /// ... or when it removes at least this share of one joint's held-out
@@ -96,7 +97,7 @@ pub struct Confidence {
     /// `threshold` as the same share: what noise alone could explain.
     pub chance_share: f64,
     /// The effect's effort on the held-out record as a share of the
-    /// sensor noise: the square root of the held-out gain per sample
+    /// noise floor: the square root of the held-out gain per sample
     /// (summed over the joints) in units of the noise floor.
     pub size: f64,
     /// The largest share of one joint's held-out gap above noise that the
@@ -116,7 +117,7 @@ pub enum Unconfirmed {
     /// It does not lower the held-out deviance by more than chance would.
     NotConfirmed(Confidence),
     /// It lowers the held-out deviance by more than chance would, but its
-    /// effort is below [`PRACTICAL_SIZE`] of the sensor noise and it
+    /// effort is below [`PRACTICAL_SIZE`] of the noise floor and it
     /// removes less than [`PRACTICAL_SHARE`] of any joint's gap.
     TooSmall(Confidence),
     /// A simpler effect of the set (fewer parameters) holds on the
@@ -469,7 +470,8 @@ pub struct Scale {
 /// lowers the held-out residual by no more than chance gives the extra
 /// parameters, the larger one goes instead (`Unconfirmed::Simpler`, its
 /// `rival` a position). Once every effect passes chance, one whose effort
-/// is below [`PRACTICAL_SIZE`] of the noise goes, the smallest first
+/// is below [`PRACTICAL_SIZE`] of the noise floor and that removes less
+/// than [`PRACTICAL_SHARE`] of any joint's gap goes, the smallest first
 /// (`Unconfirmed::TooSmall`). Returns the positions kept, their confidence
 /// and the positions dropped, with the reason.
 pub fn held_out_test(

@@ -239,8 +239,8 @@ pub fn suggested<R: Robot<N>, const N: usize>(
                 }
                 Unconfirmed::TooSmall(c) => format!(
                     "too small to act on: on the held-out record it removes {} of the gap above noise (more than chance, {}), \
-                     but its effort is {:.1} % of the sensor noise (RMS) and at most {} of one joint's gap; \
-                     an effect named is as large as the noise or removes {} of a joint's gap",
+                     but its effort is {:.1} % of the noise floor (RMS) and at most {} of one joint's gap; \
+                     an effect named is as large as the noise floor or removes {} of a joint's gap",
                     share(c.gain_share),
                     share(c.chance_share),
                     100.0 * c.size,

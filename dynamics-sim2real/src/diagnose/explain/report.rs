@@ -161,8 +161,9 @@ pub struct Confidence {
     /// The share noise alone could give at `level` (the chi-square quantile
     /// at its parameter count): `held_out_gain` exceeds it.
     pub chance: f64,
-    /// The effect's effort on the held-out record as a share of the sensor
-    /// noise (RMS over the samples, summed over the joints).
+    /// The effect's effort on the held-out record as a share of the noise
+    /// floor (what the sensors' noise leaves in the smoothed residual; RMS
+    /// over the samples, summed over the joints).
     pub effort_to_noise: f64,
     /// The largest share of one joint's held-out gap above noise that the
     /// effect removes. An effect named has `effort_to_noise` at least 1 or
