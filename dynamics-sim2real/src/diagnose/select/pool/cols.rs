@@ -198,12 +198,9 @@ impl Cols {
         let (cp, cq) = (&self.cols[p], &self.cols[q]);
         match (cp.joint, cq.joint) {
             (None, None) => dense_dot(&cp.v[a..z], &cq.v[a..z]),
-            (Some(j), None) => self.local_dot(j, &cp.v, |i| cq.v[i], a, z),
-            (None, Some(j)) => self.local_dot(j, &cq.v, |i| cp.v[i], a, z),
-            (Some(j), Some(k)) if j == k => {
-                let nz = self.joints;
-                self.local_dot(j, &cp.v, |i| cq.v[i / nz], a, z)
-            }
+            (Some(j), None) => self.local_dot(j, &cp.v, |_, i| cq.v[i], a, z),
+            (None, Some(j)) => self.local_dot(j, &cq.v, |_, i| cp.v[i], a, z),
+            (Some(j), Some(k)) if j == k => self.local_dot(j, &cp.v, |r, _| cq.v[r], a, z),
             // Zero at every row.
             (Some(_), Some(_)) => 0.0,
         }
@@ -215,15 +212,22 @@ impl Cols {
         let col = &self.cols[c];
         match col.joint {
             None => dense_dot(&col.v[a..z], &v[a..z]),
-            Some(j) => self.local_dot(j, &col.v, |i| v[i], a, z),
+            Some(j) => self.local_dot(j, &col.v, |_, i| v[i], a, z),
         }
     }
 
     /// nalgebra's `dot` over scalar rows `a..z` of the column whole that is
     /// `c[r]` at the rows `r * joints + j` and zero elsewhere, and the
-    /// values `w(i)` at scalar rows `i`: the products of those rows alone,
-    /// each in the partial sum of its scalar row.
-    fn local_dot(&self, j: usize, c: &[f64], w: impl Fn(usize) -> f64, a: usize, z: usize) -> f64 {
+    /// values `w(r, i)` at scalar rows `i = r * joints + j`: the products
+    /// of those rows alone, each in the partial sum of its scalar row.
+    fn local_dot(
+        &self,
+        j: usize,
+        c: &[f64],
+        w: impl Fn(usize, usize) -> f64,
+        a: usize,
+        z: usize,
+    ) -> f64 {
         let nz = self.joints;
         let len = z - a;
         let bulk = a + (len - len % 8);
@@ -231,7 +235,7 @@ impl Cols {
         let mut acc = [0.0f64; 8];
         while r * nz + j < bulk {
             let i = r * nz + j;
-            acc[(i - a) % 8] += c[r] * w(i);
+            acc[(i - a) % 8] += c[r] * w(r, i);
             r += 1;
         }
         let mut d = 0.0;
@@ -241,7 +245,7 @@ impl Cols {
         d += acc[3] + acc[7];
         while r * nz + j < z {
             let i = r * nz + j;
-            d += c[r] * w(i);
+            d += c[r] * w(r, i);
             r += 1;
         }
         d
@@ -267,17 +271,43 @@ impl Cols {
         DVector::from_vec(d)
     }
 
-    /// `r += alpha * x_c` as nalgebra's `r.axpy(alpha, &x.column(c), 1.0)`.
+    /// `r += alpha * x_c` as nalgebra's `r.axpy(alpha, &x.column(c), 1.0)`
+    /// (a zero's product added too: it turns a `-0.0` of `r` into `+0.0`
+    /// as the whole column's would).
     pub fn axpy(&self, c: usize, alpha: f64, r: &mut DVector<f64>) {
-        for (i, y) in r.iter_mut().enumerate() {
-            *y = alpha * self.get(c, i) * 1.0 + 1.0 * *y;
+        let col = &self.cols[c];
+        match col.joint {
+            None => {
+                for (y, x) in r.iter_mut().zip(&col.v) {
+                    *y = alpha * *x * 1.0 + 1.0 * *y;
+                }
+            }
+            Some(j) => {
+                for (row, x) in r.as_mut_slice().chunks_exact_mut(self.joints).zip(&col.v) {
+                    for (k, y) in row.iter_mut().enumerate() {
+                        let x = if k == j { *x } else { 0.0 };
+                        *y = alpha * x * 1.0 + 1.0 * *y;
+                    }
+                }
+            }
         }
     }
 
-    /// `r -= x_c`.
+    /// `r -= x_c` (`y - +0.0` is `y`: the rows off a column's joint are
+    /// left as they are).
     pub fn sub_from(&self, c: usize, r: &mut DVector<f64>) {
-        for (i, y) in r.iter_mut().enumerate() {
-            *y -= self.get(c, i);
+        let col = &self.cols[c];
+        match col.joint {
+            None => {
+                for (y, x) in r.iter_mut().zip(&col.v) {
+                    *y -= *x;
+                }
+            }
+            Some(j) => {
+                for (row, x) in r.as_mut_slice().chunks_exact_mut(self.joints).zip(&col.v) {
+                    row[j] -= *x;
+                }
+            }
         }
     }
 
