@@ -50,7 +50,7 @@ impl Cols {
             joints,
             cols: Vec::new(),
             // One joint: a column at its joint's rows is the whole column.
-            whole: joints < 2 || n % joints != 0,
+            whole: joints < 2 || !n.is_multiple_of(joints),
         }
     }
 
