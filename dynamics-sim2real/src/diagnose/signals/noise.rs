@@ -203,48 +203,59 @@ const BLOCK: usize = 500;
 fn effort_sensor_noise<const N: usize>(m: &Measured<N>, sig: &Signals<N>) -> SVector<f64, N> {
     let sg = &sig.sg;
     let (a, z) = sig.range;
-    let fast = |v: &[SVector<f64, N>]| -> Vec<SVector<f64, N>> {
-        let mut out = vec![SVector::<f64, N>::zeros(); v.len()];
-        for j in 0..N {
-            let x: Vec<f64> = v.iter().map(|s| s[j]).collect();
-            for (k, y) in sg.apply(&x, 0).iter().enumerate() {
-                out[k][j] = x[k] - y;
-            }
-        }
-        out
+    // Joint `j`'s fast part of `v` (raw minus smoothed) at samples
+    // `lo..hi`, the whole series' filter at each (`joint_run`, to the bit),
+    // made a block at a time rather than for the whole record.
+    let fast = |v: &[SVector<f64, N>], j: usize, lo: usize, hi: usize| -> Vec<f64> {
+        let smooth = sg.joint_run(v, 0, j, (lo, hi));
+        smooth
+            .iter()
+            .enumerate()
+            .map(|(i, y)| v[lo + i][j] - y)
+            .collect()
     };
-    let (eq, eqd, et) = (fast(&m.q), fast(&m.qd), fast(&m.tau));
     let cols = if m.qd_measured { 2 * N } else { N };
-    let mut left: Vec<Vec<f64>> = vec![Vec::new(); N];
-    let mut k0 = a;
-    while k0 + BLOCK <= z {
-        if !sig.mask.clear(k0, k0 + BLOCK) {
-            k0 += BLOCK;
-            continue;
-        }
-        let x = DMatrix::from_fn(BLOCK, cols, |r, c| {
-            if c < N {
-                eq[k0 + r][c]
-            } else {
-                eqd[k0 + r][c - N]
-            }
-        });
+    let blocks: Vec<usize> = (a..z)
+        .step_by(BLOCK)
+        .filter(|&k0| k0 + BLOCK <= z && sig.mask.clear(k0, k0 + BLOCK))
+        .collect();
+    let mut left: Vec<Vec<f64>> = vec![Vec::with_capacity(blocks.len() * BLOCK); N];
+    for &k0 in &blocks {
+        let k1 = k0 + BLOCK;
+        let eq: Vec<Vec<f64>> = (0..N).map(|j| fast(&m.q, j, k0, k1)).collect();
+        let eqd: Vec<Vec<f64>> = if m.qd_measured {
+            (0..N).map(|j| fast(&m.qd, j, k0, k1)).collect()
+        } else {
+            vec![]
+        };
+        let x = DMatrix::from_fn(
+            BLOCK,
+            cols,
+            |r, c| {
+                if c < N {
+                    eq[c][r]
+                } else {
+                    eqd[c - N][r]
+                }
+            },
+        );
         let svd = x.clone().svd(true, true);
         for (j, l) in left.iter_mut().enumerate() {
-            let y = DVector::from_fn(BLOCK, |r, _| et[k0 + r][j]);
+            let et = fast(&m.tau, j, k0, k1);
+            let y = DVector::from_fn(BLOCK, |r, _| et[r]);
             match svd.solve(&y, 1e-12) {
                 Ok(theta) => l.extend((&y - &x * theta).iter()),
                 Err(_) => l.extend(y.iter()),
             }
         }
-        k0 += BLOCK;
     }
     SVector::from_fn(|j, _| {
         if left[j].is_empty() {
+            let et = fast(&m.tau, j, a, z);
             robust_std(
                 &(a..z)
                     .filter(|&k| sig.mask.usable(k))
-                    .map(|k| et[k][j])
+                    .map(|k| et[k - a])
                     .collect::<Vec<_>>(),
             )
         } else {

@@ -3,10 +3,10 @@
 //! motor side), each link correction as the combinations the data
 //! determine, and the Gram matrix with the prior (`prior.rs`).
 
-use nalgebra::{DMatrix, DVector, SVector};
+use nalgebra::{DVector, SVector};
 
 use super::prior;
-use super::{penalised, Pool, Term};
+use super::{penalised, Cols, Pool, Term};
 use crate::diagnose::candidates::{
     combined, linear_columns, link_basis, lower_bounds, whitened, Candidate, Prepared,
     EFFORT_SCALE_LIMIT,
@@ -25,23 +25,10 @@ impl Pool {
         nominal: &[SVector<f64, 10>],
         p: &Prepared<N>,
     ) -> Pool {
-        // The columns one after another (column-major, as the matrix
-        // takes them), room made once for the most there can be: each
-        // column is freed as it is copied in, never held twice.
+        // Each column kept as it comes (at its joint's rows alone where it
+        // is zero off one joint: `cols.rs`).
         let n = p.n();
-        let most = fits
-            .iter()
-            .map(|f| match f.motor {
-                Some(_) => 1,
-                None => f.candidate.linear_parameters().len(),
-            })
-            .sum::<usize>()
-            + links.iter().map(|lc| lc.len()).sum::<usize>();
-        let mut cols = Columns {
-            flat: Vec::with_capacity(n * most),
-            n,
-            count: 0,
-        };
+        let mut cols = Cols::new(n, N);
         let mut terms = Vec::new();
         for f in fits {
             if !f.sse.is_finite() {
@@ -53,13 +40,13 @@ impl Pool {
                 if col.iter().all(|x| *x == 0.0) {
                     continue;
                 }
-                cols.push(&col);
+                cols.push(col);
                 terms.push(Term {
                     fit: f.clone(),
                     cols: vec![],
                     lower: vec![],
                     limit: vec![],
-                    fixed: Some(cols.len() - 1),
+                    fixed: Some(cols.ncols() - 1),
                     k: f.k,
                     link: None,
                 });
@@ -68,13 +55,13 @@ impl Pool {
                 if new.iter().all(|c| c.iter().all(|x| *x == 0.0)) {
                     continue;
                 }
-                let at = cols.len();
+                let at = cols.ncols();
                 for c in new {
-                    cols.push(&c);
+                    cols.push(c);
                 }
                 terms.push(Term {
                     fit: f.clone(),
-                    cols: (at..cols.len()).collect(),
+                    cols: (at..cols.ncols()).collect(),
                     lower: lower_bounds(c, p),
                     limit: c
                         .linear_parameters()
@@ -97,10 +84,10 @@ impl Pool {
             };
             basis.tip = l + 1 == links.len();
             let new = combined(lc, &basis);
-            let at = cols.len();
+            let at = cols.ncols();
             let r = new.len();
             for c in new {
-                cols.push(&c);
+                cols.push(c);
             }
             terms.push(Term {
                 fit: Fit {
@@ -112,7 +99,7 @@ impl Pool {
                     sse: f64::NAN,
                     k: r,
                 },
-                cols: (at..cols.len()).collect(),
+                cols: (at..cols.ncols()).collect(),
                 lower: vec![f64::NEG_INFINITY; r],
                 limit: vec![f64::INFINITY; r],
                 fixed: None,
@@ -120,10 +107,13 @@ impl Pool {
                 link: Some(basis),
             });
         }
-        let m = cols.len();
-        let x = DMatrix::from_vec(n, m, cols.flat);
+        let m = cols.ncols();
+        let mut x = cols;
         let y = DVector::from_vec(whitened(p, |k| p.sig.residual[k]));
-        let xty = x.tr_mul(&y);
+        if !y.iter().all(|v| v.is_finite()) {
+            x.keep_whole();
+        }
+        let xty = x.tr_mul(y.as_slice(), 0, y.len());
         let yy = y.norm_squared();
         let prior = prior::Prior::new(&terms, m, nominal);
         let strength = prior::STRENGTHS[0];
@@ -140,26 +130,5 @@ impl Pool {
             strength,
             blocks: Default::default(),
         }
-    }
-}
-
-/// Whitened columns of `n` rows, one after another.
-struct Columns {
-    flat: Vec<f64>,
-    n: usize,
-    count: usize,
-}
-
-impl Columns {
-    /// Appends `col` (`n` rows).
-    fn push(&mut self, col: &[f64]) {
-        debug_assert_eq!(col.len(), self.n);
-        self.flat.extend_from_slice(col);
-        self.count += 1;
-    }
-
-    /// How many columns.
-    fn len(&self) -> usize {
-        self.count
     }
 }

@@ -14,13 +14,14 @@
 use std::sync::{Mutex, MutexGuard};
 
 use nalgebra::{DMatrix, DVector};
-use rayon::prelude::*;
 
 use crate::diagnose::candidates::{Candidate, LinkBasis};
 use crate::diagnose::fit::Fit;
+use cols::Cols;
 use prior::{weight, Prior};
 
 mod build;
+mod cols;
 mod physical;
 pub mod prior;
 mod solve;
@@ -82,8 +83,9 @@ impl Term {
 /// Whitened columns, the Gram matrix and the terms.
 #[derive(Debug, Clone)]
 pub struct Pool {
-    /// Columns (rows x joints, whitened by the noise floor).
-    x: DMatrix<f64>,
+    /// Columns (rows x joints, whitened by the noise floor; those zero
+    /// off one joint kept at its rows alone, `cols.rs`).
+    x: Cols,
     /// The whitened residual.
     y: DVector<f64>,
     /// `X^T X`.
@@ -168,19 +170,25 @@ impl Pool {
             return;
         }
         let s: Vec<f64> = (0..joints).map(|j| w[j] / self.weights[j]).collect();
-        for mut col in self.x.column_iter_mut() {
-            for (i, x) in col.iter_mut().enumerate() {
-                *x *= s[i % joints];
-            }
-        }
+        self.x.scale(&s);
         for (i, y) in self.y.iter_mut().enumerate() {
             *y *= s[i % joints];
         }
-        self.xty = self.x.tr_mul(&self.y);
+        self.finite_residual();
+        self.xty = self.x.tr_mul(self.y.as_slice(), 0, self.y.len());
         self.yy = self.y.norm_squared();
         self.gram = penalised(&self.x, &self.prior, self.yy, self.strength);
         self.weights = w.to_vec();
         self.changed();
+    }
+
+    /// Keeps every column whole once the residual is not finite (a
+    /// column kept at one joint's rows leaves out products of zeros with
+    /// it: `cols.rs`).
+    fn finite_residual(&mut self) {
+        if !self.y.iter().all(|y| y.is_finite()) {
+            self.x.keep_whole();
+        }
     }
 
     /// Forgets the blocks' Gram matrices once the columns or the residual
@@ -215,11 +223,11 @@ impl Pool {
             .enumerate()
             .map(|(i, x)| x * self.weights.get(i % joints).copied().unwrap_or(1.0))
             .collect();
-        self.x.set_column(c, &DVector::from_vec(col));
-        let v = self.x.tr_mul(&self.x.column(c));
+        self.x.set(c, col);
+        let v = self.x.against(c);
         self.gram.set_column(c, &v);
         self.gram.set_row(c, &v.transpose());
-        self.xty[c] = self.x.column(c).dot(&self.y);
+        self.xty[c] = self.x.dot_with(c, self.y.as_slice(), 0, self.y.len());
         self.terms[t].fit = fit;
         self.changed();
     }
@@ -271,11 +279,10 @@ impl Pool {
         if let Some((.., g)) = self.blocks.held().iter().find(|b| (b.0, b.1) == (a, z)) {
             return g.clone();
         }
-        let xb = self.x.rows(a, z - a);
         let yb = self.y.rows(a, z - a);
         let g = RowsGram {
-            gram: gram_of_rows(&self.x, a, z),
-            xty: xb.tr_mul(&yb),
+            gram: self.x.gram(a, z),
+            xty: self.x.tr_mul(self.y.as_slice(), a, z),
             yy: yb.norm_squared(),
         };
         let mut held = self.blocks.held();
@@ -291,7 +298,7 @@ impl Pool {
     /// solves.
     pub fn without(&self, rows: &RowsGram, removed: usize) -> Pool {
         Pool {
-            x: DMatrix::zeros(0, 0),
+            x: Cols::new(0, self.weights.len()),
             y: DVector::zeros(self.n() - removed),
             gram: &self.gram - &rows.gram,
             xty: &self.xty - &rows.xty,
@@ -329,104 +336,20 @@ impl Pool {
         for (i, &t) in set.iter().enumerate() {
             let term = &self.terms[t];
             for (c, th) in term.cols.iter().zip(&sol.theta[i]) {
-                r.axpy(-th, &self.x.column(*c), 1.0);
+                self.x.axpy(*c, -th, &mut r);
             }
             if let Some(f) = term.fixed {
-                r -= self.x.column(f);
+                self.x.sub_from(f, &mut r);
             }
         }
         r
     }
 }
 
-/// `x^T x` with each product of two columns formed once: the entries
-/// below the diagonal are their mirrors' (a column's dot product with
-/// another does not depend on which comes first, to the bit), half the
-/// work of `x.tr_mul(&x)` for the same matrix.
-pub(in crate::diagnose) fn gram_of(x: &DMatrix<f64>) -> DMatrix<f64> {
-    gram_of_rows(x, 0, x.nrows())
-}
-
-/// Columns a tile of [`gram_of_rows`].
-const TILE: usize = 8;
-
-/// `x_b^T x_b` of rows `a..z` of `x`, each entry nalgebra's dot product of
-/// its two columns to the bit (eight partial sums of every eighth row,
-/// summed as `dot` sums them, then the rows left over in order), formed
-/// tile by tile: the products of eight columns with eight others row
-/// after row, so that each column is read once a tile of others instead
-/// of once for every other column (a long record's columns do not stay in
-/// the cache between two of their dot products).
-pub(in crate::diagnose) fn gram_of_rows(x: &DMatrix<f64>, a: usize, z: usize) -> DMatrix<f64> {
-    let (rows, c) = x.shape();
-    let (a, z) = (a.min(rows), z.min(rows).max(a.min(rows)));
-    let n = z - a;
-    let bulk = n - n % 8;
-    let data = x.as_slice();
-    let col = |i: usize| &data[i * rows + a..i * rows + z];
-    // Each tile of columns against itself and those after it, the tiles
-    // side by side on the threads.
-    let tiles: Vec<Vec<(usize, usize, f64)>> = (0..c)
-        .step_by(TILE)
-        .collect::<Vec<_>>()
-        .into_par_iter()
-        .map(|ti| {
-            let mut out = Vec::new();
-            let ci: Vec<&[f64]> = (ti..(ti + TILE).min(c)).map(col).collect();
-            for tj in (ti..c).step_by(TILE) {
-                let cj: Vec<&[f64]> = (tj..(tj + TILE).min(c)).map(col).collect();
-                let mut acc = [[[0.0f64; 8]; TILE]; TILE];
-                for off in (0..bulk).step_by(8) {
-                    for (u, xu) in ci.iter().enumerate() {
-                        let xu = &xu[off..off + 8];
-                        for (v, xv) in cj.iter().enumerate() {
-                            let xv = &xv[off..off + 8];
-                            let s = &mut acc[u][v];
-                            for r in 0..8 {
-                                s[r] += xu[r] * xv[r];
-                            }
-                        }
-                    }
-                }
-                for (u, xu) in ci.iter().enumerate() {
-                    for (v, xv) in cj.iter().enumerate() {
-                        let (i, j) = (ti + u, tj + v);
-                        if j < i {
-                            continue;
-                        }
-                        let s = &acc[u][v];
-                        let mut d = 0.0;
-                        d += s[0] + s[4];
-                        d += s[1] + s[5];
-                        d += s[2] + s[6];
-                        d += s[3] + s[7];
-                        for k in bulk..n {
-                            d += xu[k] * xv[k];
-                        }
-                        out.push((i, j, d));
-                    }
-                }
-            }
-            out
-        })
-        .collect();
-    let mut g = DMatrix::zeros(c, c);
-    for (i, j, d) in tiles.into_iter().flatten() {
-        g[(i, j)] = d;
-        g[(j, i)] = d;
-    }
-    g
-}
-
 /// `X^T X` plus the prior's matrix at its weight for a residual of sum of
 /// squares `yy` and a prior of `strength` (`prior.rs`).
-pub(in crate::diagnose) fn penalised(
-    x: &DMatrix<f64>,
-    p: &Prior,
-    yy: f64,
-    strength: f64,
-) -> DMatrix<f64> {
-    let mut g = gram_of(x);
+fn penalised(x: &Cols, p: &Prior, yy: f64, strength: f64) -> DMatrix<f64> {
+    let mut g = x.gram(0, x.nrows());
     p.add_to(&mut g, yy, x.nrows(), strength);
     g
 }
@@ -471,7 +394,7 @@ pub(crate) fn test_pool(x: DMatrix<f64>, y: DVector<f64>, terms: Vec<Term>, join
         gram: x.tr_mul(&x),
         xty: x.tr_mul(&y),
         yy: y.norm_squared(),
-        x,
+        x: Cols::from_matrix(&x, joints),
         y,
         terms,
         weights: vec![1.0; joints],

@@ -165,9 +165,10 @@ mod tests {
         let x = DMatrix::from_fn(n, cols.len(), |r, c| cols[c][r]);
         let yv = DVector::from_vec(y);
         let yy = yv.norm_squared();
+        let x = crate::diagnose::select::pool::Cols::from_matrix(&x, 1);
         Pool {
             gram: crate::diagnose::select::pool::penalised(&x, &prior, yy, STRENGTHS[0]),
-            xty: x.tr_mul(&yv),
+            xty: x.tr_mul(yv.as_slice(), 0, n),
             yy,
             x,
             y: yv,

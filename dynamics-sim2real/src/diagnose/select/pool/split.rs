@@ -63,16 +63,19 @@ impl Pool {
             terms.push(term);
         }
         let kept = cols.len();
-        let mut x = DMatrix::<f64>::zeros(n, kept + 2);
-        for (k, &c) in cols.iter().enumerate() {
-            x.set_column(k, &self.x.column(c));
-        }
+        let mut x = self.x.subset(&cols);
+        let whole = self.x.column(col);
+        let mut part_col = vec![0.0; n];
+        let mut rest_col = vec![0.0; n];
         for r in 0..n {
             let a = part[r] * self.weights[r % joints];
             let a = if a.is_finite() { a } else { 0.0 };
-            x[(r, kept)] = a;
-            x[(r, kept + 1)] = self.x[(r, col)] - a;
+            part_col[r] = a;
+            rest_col[r] = whole[r] - a;
         }
+        drop(whole);
+        x.push(part_col);
+        x.push(rest_col);
         for c in [kept, kept + 1] {
             let mut term = split.clone();
             term.cols = vec![c];
@@ -99,7 +102,7 @@ impl Pool {
             scales: sub(&self.prior.scales),
         };
         let gram = penalised(&x, &prior, self.yy, self.strength);
-        let xty = x.tr_mul(&self.y);
+        let xty = x.tr_mul(self.y.as_slice(), 0, n);
         let count = terms.len();
         let pool = Pool {
             x,

@@ -198,27 +198,6 @@ fn a_link_correction_is_held_to_a_body() {
     assert_eq!(a.theta, z.theta);
 }
 
-/// The Gram matrix formed from one triangle is `tr_mul`'s to the bit, on a
-/// whole matrix and on a block of its rows.
-#[test]
-fn the_gram_from_one_triangle_is_tr_muls() {
-    let mut rng = crate::synth::Rng::new(17);
-    let x = DMatrix::from_fn(203, 19, |_, _| rng.normal() * 1e3);
-    for (a, n) in [(0, 203), (5, 97), (100, 1), (3, 8), (7, 0), (11, 192)] {
-        let xb = x.rows(a, n);
-        let (g, t) = (gram_of_rows(&x, a, a + n), xb.tr_mul(&xb));
-        assert_eq!(g.shape(), t.shape());
-        for (u, v) in g.iter().zip(t.iter()) {
-            assert_eq!(u.to_bits(), v.to_bits());
-        }
-    }
-    let (g, t) = (gram_of(&x), x.tr_mul(&x));
-    assert!(g
-        .iter()
-        .zip(t.iter())
-        .all(|(u, v)| u.to_bits() == v.to_bits()));
-}
-
 /// A block's Gram matrix kept by the pool is the one its rows give as they
 /// are, to the bit: the same when asked again, and formed again once a
 /// fixed column is replaced or the rows reweighted.
@@ -235,7 +214,8 @@ fn a_blocks_gram_kept_is_its_rows_as_they_are() {
     ];
     let mut pool = test_pool(x, y, terms, 2);
     let fresh = |pool: &Pool, a: usize, z: usize| {
-        let xb = pool.x.rows(a, z - a);
+        let x = pool.x.to_matrix();
+        let xb = x.rows(a, z - a);
         let yb = pool.y.rows(a, z - a);
         (xb.tr_mul(&xb), xb.tr_mul(&yb), yb.norm_squared())
     };
@@ -272,4 +252,91 @@ fn a_blocks_gram_kept_is_its_rows_as_they_are() {
     other.reweight(&[1.0, 1.0]);
     assert!(same(&other.rows_gram(30, 60), &fresh(&other, 30, 60)));
     assert!(same(&pool.rows_gram(30, 60), &fresh(&pool, 30, 60)));
+}
+
+/// A pool whose columns zero off one joint are kept at that joint's rows
+/// gives what the same pool with every column whole gives, to the bit:
+/// its Gram matrices (all rows, blocks), fits, residuals, a fixed column
+/// replaced, the rows reweighted, a term's column split; and keeps less.
+#[test]
+fn columns_kept_at_their_joints_rows_change_nothing() {
+    let mut rng = crate::synth::Rng::new(41);
+    let (rows, joints) = (203, 3);
+    let n = rows * joints;
+    let local = |rng: &mut crate::synth::Rng, j: usize| -> Vec<f64> {
+        (0..n)
+            .map(|i| {
+                if i % joints == j {
+                    rng.normal() * 3.0
+                } else {
+                    0.0
+                }
+            })
+            .collect()
+    };
+    let cols = [
+        local(&mut rng, 0),
+        local(&mut rng, 1),
+        (0..n).map(|_| rng.normal()).collect::<Vec<_>>(),
+        local(&mut rng, 2),
+        local(&mut rng, 1),
+    ];
+    let x = DMatrix::from_fn(n, cols.len(), |r, c| cols[c][r]);
+    let y = DVector::from_fn(n, |r, _| {
+        0.7 * cols[0][r] - 0.2 * cols[1][r] + 0.4 * cols[2][r] + cols[4][r] + rng.normal() * 0.1
+    });
+    let terms = vec![
+        term(Candidate::Viscous(0), vec![0], vec![true], None),
+        term(Candidate::EffortOffset(1), vec![1], vec![false], None),
+        term(Candidate::TimeDelay, vec![2], vec![false], None),
+        term(Candidate::EffortScale(2), vec![3], vec![false], None),
+        term(Candidate::Elasticity(1), vec![], vec![], Some(4)),
+    ];
+    let mut kept = test_pool(x.clone(), y.clone(), terms.clone(), joints);
+    let mut whole = test_pool(x, y, terms, joints);
+    whole.x.keep_whole();
+    assert_eq!(kept.x.kept(), n + 4 * rows);
+    assert_eq!(whole.x.kept(), 5 * n);
+    let bits = |m: &[f64]| m.iter().map(|v| v.to_bits()).collect::<Vec<_>>();
+    let all = [0, 1, 2, 3, 4];
+    let check = |kept: &Pool, whole: &Pool| {
+        assert_eq!(bits(kept.gram().as_slice()), bits(whole.gram().as_slice()));
+        assert_eq!(bits(kept.xty().as_slice()), bits(whole.xty().as_slice()));
+        for (a, z) in [(0, n), (13, 301), (600, 609), (5, 9)] {
+            let (gk, gw) = (kept.rows_gram(a, z), whole.rows_gram(a, z));
+            assert_eq!(bits(gk.gram.as_slice()), bits(gw.gram.as_slice()));
+            assert_eq!(bits(gk.xty.as_slice()), bits(gw.xty.as_slice()));
+        }
+        let (sk, sw) = (kept.solve(&all), whole.solve(&all));
+        assert_eq!(sk.sse.to_bits(), sw.sse.to_bits());
+        let (rk, rw) = (kept.residual(&all, &sk), whole.residual(&all, &sw));
+        assert_eq!(bits(rk.as_slice()), bits(rw.as_slice()));
+        let part: Vec<f64> = (0..n).map(|i| (i as f64 * 0.01).sin()).collect();
+        let split = |p: &Pool| p.split_off(&all, 2, &part, |q, s| q.solve(s));
+        assert_eq!(split(kept), split(whole));
+        assert!(split(kept).is_some());
+    };
+    check(&kept, &whole);
+    // A fixed column searched again, at its joint.
+    let col: Vec<f64> = (0..n)
+        .map(|i| {
+            if i % joints == 1 {
+                (i as f64 * 0.1).sin()
+            } else {
+                0.0
+            }
+        })
+        .collect();
+    for p in [&mut kept, &mut whole] {
+        let fit = p.terms[4].fit.clone();
+        p.set_fixed(4, fit, col.clone());
+    }
+    check(&kept, &whole);
+    assert_eq!(kept.x.kept(), n + 4 * rows);
+    // The joints' rows reweighted.
+    for p in [&mut kept, &mut whole] {
+        p.reweight(&[0.5, 2.0, 1.5]);
+    }
+    check(&kept, &whole);
+    assert_eq!(kept.x.kept(), n + 4 * rows);
 }

@@ -1,8 +1,6 @@
 //! Effects limited in time within the pool: their columns multiplied by
 //! the indicator of the window found on the training record.
 
-use nalgebra::DVector;
-
 use super::Pool;
 use crate::diagnose::candidates::Prepared;
 use crate::diagnose::fit::{inside, window_of, Windows};
@@ -21,14 +19,20 @@ impl Pool {
             if pool.terms[t].fixed.is_some() || pool.terms[t].link.is_some() {
                 continue;
             }
-            let m = DVector::from_vec(inside(p, &w));
+            let m = inside(p, &w);
             for &c in &pool.terms[t].cols.clone() {
-                let col = pool.x.column(c).component_mul(&m);
-                pool.x.set_column(c, &col);
-                let v = pool.x.tr_mul(&pool.x.column(c));
+                let col: Vec<f64> = pool
+                    .x
+                    .column(c)
+                    .iter()
+                    .zip(&m)
+                    .map(|(x, m)| x * m)
+                    .collect();
+                pool.x.set(c, col);
+                let v = pool.x.against(c);
                 pool.gram.set_column(c, &v);
                 pool.gram.set_row(c, &v.transpose());
-                pool.xty[c] = pool.x.column(c).dot(&pool.y);
+                pool.xty[c] = pool.x.dot_with(c, pool.y.as_slice(), 0, pool.y.len());
             }
             pool.terms[t].k += 2;
             pool.terms[t].fit.k = pool.terms[t].k;

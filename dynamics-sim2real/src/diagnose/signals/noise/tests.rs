@@ -64,3 +64,93 @@ fn the_floor_in_chunks_is_the_whole_twins() {
         }
     }
 }
+
+/// [`effort_sensor_noise`] from the whole record's fast parts (raw minus
+/// smoothed, every sample, every joint, made before the blocks).
+fn whole_record_effort_noise<const N: usize>(m: &Measured<N>, sig: &Signals<N>) -> SVector<f64, N> {
+    let sg = &sig.sg;
+    let (a, z) = sig.range;
+    let fast = |v: &[SVector<f64, N>]| -> Vec<SVector<f64, N>> {
+        let mut out = vec![SVector::<f64, N>::zeros(); v.len()];
+        for j in 0..N {
+            let x: Vec<f64> = v.iter().map(|s| s[j]).collect();
+            for (k, y) in sg.apply(&x, 0).iter().enumerate() {
+                out[k][j] = x[k] - y;
+            }
+        }
+        out
+    };
+    let (eq, eqd, et) = (fast(&m.q), fast(&m.qd), fast(&m.tau));
+    let cols = if m.qd_measured { 2 * N } else { N };
+    let mut left: Vec<Vec<f64>> = vec![Vec::new(); N];
+    let mut k0 = a;
+    while k0 + BLOCK <= z {
+        if !sig.mask.clear(k0, k0 + BLOCK) {
+            k0 += BLOCK;
+            continue;
+        }
+        let x = DMatrix::from_fn(BLOCK, cols, |r, c| {
+            if c < N {
+                eq[k0 + r][c]
+            } else {
+                eqd[k0 + r][c - N]
+            }
+        });
+        let svd = x.clone().svd(true, true);
+        for (j, l) in left.iter_mut().enumerate() {
+            let y = DVector::from_fn(BLOCK, |r, _| et[k0 + r][j]);
+            match svd.solve(&y, 1e-12) {
+                Ok(theta) => l.extend((&y - &x * theta).iter()),
+                Err(_) => l.extend(y.iter()),
+            }
+        }
+        k0 += BLOCK;
+    }
+    SVector::from_fn(|j, _| {
+        if left[j].is_empty() {
+            robust_std(
+                &(a..z)
+                    .filter(|&k| sig.mask.usable(k))
+                    .map(|k| et[k][j])
+                    .collect::<Vec<_>>(),
+            )
+        } else {
+            robust_std(&left[j])
+        }
+    })
+}
+
+/// The efforts' sensor noise from fast parts made a block at a time is
+/// the whole record's to the bit: with measured velocities and without,
+/// a record of many blocks and one shorter than a block (the spread of
+/// every usable sample's fast part).
+#[test]
+fn the_effort_noise_a_block_at_a_time_is_the_whole_records() {
+    let robot = Arm2::default();
+    let effects = [Effect::ViscousFriction { joint: 0, fv: 0.2 }];
+    for duration in [7.3, 0.4] {
+        let opts = SynthOptions {
+            duration,
+            seed: 9,
+            ..Default::default()
+        };
+        let record = synthesize(&robot, &effects, &opts).expect("a generated record");
+        for measured in [true, false] {
+            let mut m = record.clone();
+            m.qd_measured = measured && m.qd_measured;
+            let sig = Signals::unfloored(&robot, &m);
+            let (x, y) = (
+                effort_sensor_noise(&m, &sig),
+                whole_record_effort_noise(&m, &sig),
+            );
+            assert!(x.iter().all(|v| *v > 0.0 && v.is_finite()), "{x}");
+            for (u, v) in x.iter().zip(y.iter()) {
+                assert_eq!(
+                    u.to_bits(),
+                    v.to_bits(),
+                    "{x} against {y} ({duration} s, {measured})"
+                );
+            }
+        }
+    }
+}
