@@ -43,8 +43,9 @@
 //!    its effort on the held-out record as large as the noise floor (what
 //!    the sensors' noise leaves in the smoothed residual; RMS over the
 //!    samples, summed over the joints: the held-out gain per sample at
-//!    least [`PRACTICAL_SIZE`] squared, in units of the floor), or removing at least [`PRACTICAL_SHARE`] of one joint's
-//!    held-out gap above noise (1 % of the model's error there, RMS).
+//!    least [`PRACTICAL_SIZE`] squared, in units of the floor), or
+//!    removing at least [`PRACTICAL_SHARE`] of one joint's held-out gap
+//!    above noise (1 % of the model's error there, RMS).
 //!    Chance alone names ever smaller effects as the record grows (its
 //!    quantile stays, the gain grows with the rows); an effect below both
 //!    neither shows in the measured efforts nor changes the model's error
