@@ -16,7 +16,9 @@
 //! draws others, `COMPOUND_ONLY=3,17` runs only those cases (the targets
 //! are then not asserted). `COMPOUND_HOLD_LINKS=1` diagnoses with
 //! [`Options::hold_links`] (link corrections held to the nearest physical
-//! body) and scores that.
+//! body) and scores that. `COMPOUND_DUMP=DIR` writes each case's training
+//! and held-out records (CSV), its drawn effects and the report (JSON)
+//! into `DIR`, named by case and robot.
 //!
 //! `COMPOUND_MOTION=designed` drives every training run with a motion
 //! designed once per robot by `dynamics_sim2real::excite` (6 s, the
@@ -206,12 +208,32 @@ fn case_on<R: Robot<N> + Clone + Send + Sync + 'static, const N: usize>(
         through_csv(&train, "train"),
         through_csv(&holdout, "holdout"),
     );
+    let dump = std::env::var_os("COMPOUND_DUMP").map(std::path::PathBuf::from);
+    if let Some(dir) = &dump {
+        std::fs::create_dir_all(dir).map_err(|e| e.to_string())?;
+        for (m, file) in [(&train, "train"), (&holdout, "holdout")] {
+            let mut text = Vec::new();
+            write_csv(&mut text, m, &R::JOINT_NAMES).map_err(|e| e.to_string())?;
+            std::fs::write(dir.join(format!("{i:03}-{name}-{file}.csv")), text)
+                .map_err(|e| e.to_string())?;
+        }
+        std::fs::write(
+            dir.join(format!("{i:03}-{name}-truth.txt")),
+            format!("{effects:#?}\n"),
+        )
+        .map_err(|e| e.to_string())?;
+    }
     let options = Options {
         hold_links: env("COMPOUND_HOLD_LINKS", 0) == 1,
         ..Options::default()
     };
     let report: Report =
         diagnose(robot, &train, &holdout, &options, &|_, _| {}).map_err(|e| e.to_string())?;
+    if let Some(dir) = &dump {
+        let json = serde_json::to_string_pretty(&report).map_err(|e| e.to_string())?;
+        std::fs::write(dir.join(format!("{i:03}-{name}-report.json")), json)
+            .map_err(|e| e.to_string())?;
+    }
     // Only now the truth: which effects are large enough to be seen
     // (friction on every joint of a realistic arm is, at 2-8 % of the
     // peak effort against noise of at most 0.4 %).

@@ -112,3 +112,23 @@ fn cases_from_mujoco_are_diagnosed_by_what_they_hold() {
         "recall {recall:.3}, precision {precision:.3}"
     );
 }
+
+/// A link correction must earn its parameters over every simpler effect
+/// of the pool in its place, not only over those the selection chose
+/// (docs/diagnosis.md, "Confirmed, or not said", rule 6): on the UR5 case
+/// of seed base 7 with an effort scale at `wrist_3_joint`, the selection
+/// chooses a correction of `wrist_3_link` (ten parameters), which the
+/// held-out record does not prefer to the effort scale (one).
+#[test]
+fn a_link_correction_does_not_stand_in_for_an_effort_scale() {
+    let dir = fixtures().join("s7-017-ur5-mix");
+    let found = named(&robots::Ur5::default(), &dir);
+    assert!(
+        found.contains("effort_scale@wrist_3_joint"),
+        "named {found:?}"
+    );
+    assert!(
+        !found.iter().any(|u| u.starts_with("inertial_parameters")),
+        "named {found:?}"
+    );
+}

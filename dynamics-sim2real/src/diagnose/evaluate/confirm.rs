@@ -50,12 +50,24 @@
 //!    quantile stays, the gain grows with the rows); an effect below both
 //!    neither shows in the measured efforts nor changes the model's error
 //!    anywhere, so it is a suggestion (`Unconfirmed::TooSmall`), the
-//!    smallest first, the rest tested again.
+//!    smallest first, the rest tested again;
+//! 6. a link correction named must also earn its parameters over every
+//!    simpler term of the pool in its place, not only over the set's (rule
+//!    4): a term with fewer parameters (not a motor side, a delay or a
+//!    family the set already holds) that holds on the held-out record in
+//!    the link's place, its values determined and physical, and that the
+//!    link correction beats there by no more than the chi-square quantile
+//!    of its extra parameters, takes its place (the closest such term;
+//!    `Unconfirmed::Simpler`), and the test runs again. The selection
+//!    compares a link correction with what it nests (a payload at the
+//!    tip) on the training record; a ten-parameter correction can also
+//!    fit there what an effort scale or an offset explains, and only the
+//!    held-out record tells the two apart.
 
 use nalgebra::{DVector, SVector};
 
 use super::determinacy::undetermined;
-use super::holdout::{limit_to_windows, Holdout};
+use super::holdout::{free_columns, limit_to_windows, Holdout};
 use crate::diagnose::candidates::{
     delta, model_part, whitened, Candidate, Excitation, LinkBasis, Prepared,
 };
@@ -348,10 +360,33 @@ pub fn confirm<R: Robot<N>, const N: usize>(
     // The held-out test, weakest first.
     let mut hold = Holdout::new(h, hlinks, pool, e);
     limit_to_windows(&mut hold, h, pool, e, windows);
-    let terms = |pos: &[usize]| -> Vec<usize> { pos.iter().map(|&i| e.set[i]).collect() };
-    let sse = |pos: &[usize]| -> Sse {
-        let sol = solve(&terms(pos));
-        Sse::of(&hold.residual(pos, &sol.theta), N)
+    // Positions past the set's: terms of the pool swapped in for a link
+    // correction (rule 6), with their held-out columns and their fit.
+    let set_len = e.set.len();
+    let mut all: Vec<usize> = e.set.clone();
+    let mut outside: Vec<Vec<DVector<f64>>> = Vec::new();
+    let mut outside_fit: Vec<(Vec<f64>, Vec<f64>)> = Vec::new();
+    // The held-out sums of squares of the effects at positions `pos` of
+    // `all` (`tmp`: the term and columns at position `all.len()`).
+    let sse_of = |all: &[usize],
+                  outside: &[Vec<DVector<f64>>],
+                  tmp: Option<(usize, &[DVector<f64>])>,
+                  pos: &[usize]|
+     -> Sse {
+        let term = |i: usize| all.get(i).copied().or(tmp.map(|t| t.0)).unwrap_or(0);
+        let sol = solve(&pos.iter().map(|&i| term(i)).collect::<Vec<_>>());
+        let (mut inner, mut theta, mut extra) = (Vec::new(), Vec::new(), Vec::new());
+        for (m, &i) in pos.iter().enumerate() {
+            if i < set_len {
+                inner.push(i);
+                theta.push(sol.theta[m].clone());
+            } else if let Some(cols) = outside.get(i - set_len) {
+                extra.push((cols.as_slice(), sol.theta[m].as_slice()));
+            } else if let Some((_, cols)) = tmp {
+                extra.push((cols, sol.theta[m].as_slice()));
+            }
+        }
+        Sse::of(&hold.residual_with(&inner, &theta, &extra), N)
     };
     let spacing = h.rows.windows(2).map(|w| w[1] - w[0]).min().unwrap_or(1);
     let tau = correlation_time(h.sig.sg.weights(0), spacing);
@@ -374,8 +409,111 @@ pub fn confirm<R: Robot<N>, const N: usize>(
         joint_gap,
         level,
     };
-    let k = |i: usize| pool.terms[e.set[i]].k;
-    let (keep, confidence, dropped) = held_out_test(keep, k, sse, &scale);
+    let k_of = |all: &[usize], i: usize| all.get(i).map_or(0, |&t| pool.terms[t].k);
+    let (mut keep, mut confidence, mut dropped) = held_out_test(
+        keep,
+        |i| k_of(&all, i),
+        |pos| sse_of(&all, &outside, None, pos),
+        &scale,
+    );
+    // Rule 6: a link correction named must earn its parameters over every
+    // simpler term of the pool in its place, not only over those of the set.
+    let stand_in = |all: &[usize], outside: &[Vec<DVector<f64>>], keep: &[usize], p: usize| {
+        let big = k_of(all, p);
+        let others: Vec<usize> = keep.iter().copied().filter(|&i| i != p).collect();
+        let families: Vec<_> = others
+            .iter()
+            .map(|&i| pool.terms[all[i]].family())
+            .collect();
+        let with_link = sse_of(all, outside, None, keep).total;
+        let without = sse_of(all, outside, None, &others).total;
+        let mut swapped = others.clone();
+        swapped.push(all.len());
+        let mut best: Option<StandIn> = None;
+        for (t, term) in pool.terms.iter().enumerate() {
+            let c = term.fit.candidate;
+            if term.link.is_some()
+                || term.fixed.is_some()
+                || term.k == 0
+                || term.k >= big
+                || families.contains(&term.family())
+                || matches!(
+                    c,
+                    Candidate::TimeDelay | Candidate::LatePositions | Candidate::LateEffort(_)
+                )
+            {
+                continue;
+            }
+            let cols = free_columns(h, hlinks, pool, t);
+            if cols.is_empty() {
+                continue;
+            }
+            let s = sse_of(all, outside, Some((t, &cols)), &swapped).total;
+            let rival = Rival {
+                extra: (s - with_link) / tau,
+                chance: chi2_upper(big - term.k, level),
+                alone: (without - s) / tau,
+                threshold: chi2_upper(term.k, level),
+            };
+            if !rival.stands_in()
+                || best
+                    .as_ref()
+                    .is_some_and(|b| b.rival.margin() <= rival.margin())
+            {
+                continue;
+            }
+            // Its values determined and physical in the set it joins.
+            let terms: Vec<usize> = others.iter().map(|&i| all[i]).chain([t]).collect();
+            let sol = solve(&terms);
+            let (theta, std) = match (sol.theta.last(), sol.std.last()) {
+                (Some(a), Some(b)) => (a.clone(), b.clone()),
+                _ => continue,
+            };
+            let f = joint_fit(pool, t, &theta, &std);
+            if undetermined(&f, joint_of(c)).is_some() {
+                continue;
+            }
+            best = Some(StandIn {
+                term: t,
+                cols,
+                theta,
+                std,
+                rival,
+            });
+        }
+        best
+    };
+    // One link correction at a time, the test run again on the new set.
+    while let Some((p, s)) = keep
+        .iter()
+        .filter(|&&p| pool.terms[all[p]].link.is_some())
+        .find_map(|&p| stand_in(&all, &outside, &keep, p).map(|s| (p, s)))
+    {
+        let q = all.len();
+        all.push(s.term);
+        outside.push(s.cols);
+        outside_fit.push((s.theta, s.std));
+        for i in keep.iter_mut().filter(|i| **i == p) {
+            *i = q;
+        }
+        dropped.push((
+            p,
+            Unconfirmed::Simpler {
+                rival: q,
+                extra: s.rival.extra * tau / gap,
+                chance: s.rival.chance * tau / gap,
+            },
+        ));
+        let (k2, c2, d2) = held_out_test(
+            keep,
+            |i| k_of(&all, i),
+            |pos| sse_of(&all, &outside, None, pos),
+            &scale,
+        );
+        keep = k2;
+        confidence = c2;
+        dropped.extend(d2);
+    }
     for (i, why) in dropped {
         let why = match why {
             Unconfirmed::Simpler {
@@ -383,19 +521,33 @@ pub fn confirm<R: Robot<N>, const N: usize>(
                 extra,
                 chance,
             } => Unconfirmed::Simpler {
-                rival: e.set[rival],
+                rival: all[rival],
                 extra,
                 chance,
             },
             why => why,
         };
-        suggested.push(suggest(i, why));
+        match outside_fit.get(i.wrapping_sub(set_len)) {
+            Some((theta, std)) if i >= set_len => suggested.push(Suggestion {
+                term: all[i],
+                theta: theta.clone(),
+                std: std.clone(),
+                why,
+            }),
+            _ => suggested.push(suggest(i, why)),
+        }
     }
-    let set = terms(&keep);
+    let set: Vec<usize> = keep.iter().map(|&i| all[i]).collect();
     let sol = solve(&set);
     let rivals = keep
         .iter()
-        .map(|&i| e.rivals[i].filter(|r| !set.contains(r)))
+        .map(|&i| {
+            e.rivals
+                .get(i)
+                .copied()
+                .flatten()
+                .filter(|r| !set.contains(r))
+        })
         .collect();
     Confirmed {
         explanation: Explanation { set, sol, rivals },
@@ -403,6 +555,46 @@ pub fn confirm<R: Robot<N>, const N: usize>(
         suggested,
         within_sample,
     }
+}
+
+/// A simpler term of the pool in a link correction's place, judged on the
+/// held-out record (floor units over the correlation time): `extra`, what
+/// the link correction gains over it, against `chance` for its extra
+/// parameters; `alone`, what the simpler term gains in the link's place,
+/// against `threshold` for its own parameters.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct Rival {
+    /// The link correction's gain over the simpler term.
+    pub extra: f64,
+    /// The chi-square quantile of the extra parameters.
+    pub chance: f64,
+    /// The simpler term's gain in the link's place.
+    pub alone: f64,
+    /// The chi-square quantile of its own parameters.
+    pub threshold: f64,
+}
+
+impl Rival {
+    /// The simpler term holds in the link's place, and the link does not
+    /// gain over it more than chance would with its extra parameters.
+    pub fn stands_in(&self) -> bool {
+        self.extra <= self.chance && self.alone > self.threshold
+    }
+
+    /// How far below chance the link's gain over it stays (the most
+    /// negative: the closest stand-in).
+    pub fn margin(&self) -> f64 {
+        self.extra - self.chance
+    }
+}
+
+/// The closest simpler term found for a link correction.
+struct StandIn {
+    term: usize,
+    cols: Vec<DVector<f64>>,
+    theta: Vec<f64>,
+    std: Vec<f64>,
+    rival: Rival,
 }
 
 /// A held-out residual's sum of squares, in floor units: in all and per

@@ -20,6 +20,32 @@ pub struct Holdout<'a, const N: usize> {
     y: DVector<f64>,
 }
 
+/// The free columns of pool term `t` on the held-out record `h` (`links`:
+/// its link regressor columns); a motor side's are none (its column is
+/// simulated against the others, [`Holdout::new`]).
+pub fn free_columns<const N: usize>(
+    h: &Prepared<N>,
+    links: &[Vec<Vec<f64>>],
+    pool: &Pool,
+    t: usize,
+) -> Vec<DVector<f64>> {
+    let term = &pool.terms[t];
+    if let Some(b) = &term.link {
+        let cols = links
+            .get(b.link)
+            .map(|lc| combined(lc, b))
+            .unwrap_or_else(|| vec![vec![0.0; h.n()]; b.v.ncols()]);
+        return cols.into_iter().map(DVector::from_vec).collect();
+    }
+    if term.fixed.is_some() {
+        return Vec::new();
+    }
+    linear_columns(term.fit.candidate, h)
+        .into_iter()
+        .map(DVector::from_vec)
+        .collect()
+}
+
 /// Effort scale of the plain measure (noise included): the raw effort
 /// minus the model, per row and joint.
 fn raw_residual<const N: usize>(h: &Prepared<N>) -> Vec<f64> {
@@ -50,25 +76,12 @@ impl<'a, const N: usize> Holdout<'a, N> {
             .iter()
             .map(|&t| {
                 let term = &pool.terms[t];
-                if let Some(b) = &term.link {
-                    let cols = links
-                        .get(b.link)
-                        .map(|lc| combined(lc, b))
-                        .unwrap_or_else(|| vec![vec![0.0; h.n()]; b.v.ncols()]);
-                    return (cols.into_iter().map(DVector::from_vec).collect(), None);
-                }
                 match (term.fixed.as_ref(), hm.as_ref()) {
-                    (Some(_), Some(hm)) => (
+                    (Some(_), Some(hm)) if term.link.is_none() => (
                         vec![],
                         Some(DVector::from_vec(fixed_column_against(&term.fit, hm))),
                     ),
-                    _ => (
-                        linear_columns(term.fit.candidate, h)
-                            .into_iter()
-                            .map(DVector::from_vec)
-                            .collect(),
-                        None,
-                    ),
+                    _ => (free_columns(h, links, pool, t), None),
                 }
             })
             .collect();
@@ -102,6 +115,25 @@ impl<'a, const N: usize> Holdout<'a, N> {
             }
             if let Some(f) = fixed {
                 r -= f;
+            }
+        }
+        r
+    }
+
+    /// [`residual`](Self::residual) with further free columns taken off,
+    /// each with its parameters (terms outside the set).
+    pub fn residual_with(
+        &self,
+        which: &[usize],
+        theta: &[Vec<f64>],
+        extra: &[(&[DVector<f64>], &[f64])],
+    ) -> DVector<f64> {
+        let mut r = self.residual(which, theta);
+        for (cols, th) in extra {
+            for (c, th) in cols.iter().zip(th.iter()) {
+                if th.is_finite() {
+                    r.axpy(-th, c, 1.0);
+                }
             }
         }
         r
