@@ -2,7 +2,7 @@
 //! fixtures of `dynamics-sim2real/tests/data/mujoco/` (made by
 //! `scripts/mujoco/generate.py`; the robots' URDFs imported into MuJoCo,
 //! its own controller, integrator, effects and logging). The full scoring
-//! (44 cases a seed base) is `scripts/mujoco/score.py`; here the six small
+//! (44 cases a seed base) is `scripts/mujoco/score.py`; here the seven small
 //! fixtures guard it, matched by its rules: friction of any law at a joint
 //! is one unit, a payload and a delay match by kind, any other effect by
 //! kind and place. Every control names nothing; every mix names friction
