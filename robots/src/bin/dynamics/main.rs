@@ -14,7 +14,7 @@
 //! ```
 
 fn main() -> std::process::ExitCode {
-    return_large_blocks();
+    tune_allocator();
     dynamics_cli::run_set("dynamics", &robots::builtin::Builtin)
 }
 
@@ -49,7 +49,7 @@ const ARENA_MAX: libc::c_int = 1;
 /// values land does not change them: the results are the same.
 #[cfg(all(target_os = "linux", target_env = "gnu"))]
 #[allow(unsafe_code)]
-fn return_large_blocks() {
+fn tune_allocator() {
     for (variable, parameter, value) in [
         (
             "MALLOC_MMAP_THRESHOLD_",
@@ -79,4 +79,4 @@ fn return_large_blocks() {
 
 /// Other systems' allocators: left as they are.
 #[cfg(not(all(target_os = "linux", target_env = "gnu")))]
-fn return_large_blocks() {}
+fn tune_allocator() {}
