@@ -527,8 +527,8 @@ pub fn confirm<R: Robot<N>, const N: usize>(
             },
             why => why,
         };
-        match outside_fit.get(i.wrapping_sub(set_len)) {
-            Some((theta, std)) if i >= set_len => suggested.push(Suggestion {
+        match i.checked_sub(set_len).and_then(|j| outside_fit.get(j)) {
+            Some((theta, std)) => suggested.push(Suggestion {
                 term: all[i],
                 theta: theta.clone(),
                 std: std.clone(),
