@@ -5,7 +5,8 @@
 //! smoothed as the diagnosis smooths them (Savitzky-Golay, order 3, 40 ms
 //! half-width). Rows weighted by each joint's training residual RMS;
 //! unidentifiable combinations take the minimum-norm solution (SVD).
-//! Stand-in until `dynamics_sim2real::identify` is on main.
+//! With `BASELINE_LINKS=moments`, each link's mass and first moments
+//! alone (its first four parameters).
 
 use dynamics_runtime::Robot;
 use dynamics_sim2real::data::Measured;
@@ -62,8 +63,12 @@ fn rows<R: Robot<N>, const N: usize>(robot: &R, s: &Signals<N>, k: usize) -> DMa
         .inertial_regressor(&s.q[k], &s.qd[k], &s.qdd[k], &mut y)
         .is_ok()
     {
+        // BASELINE_LINKS=moments: each link's mass and first moments alone.
+        let moments = std::env::var_os("BASELINE_LINKS").is_some_and(|v| v == "moments");
+        let width = if moments { 4 } else { 10 };
         for (l, yl) in y.iter().enumerate() {
-            out.view_mut((0, 10 * l), (N, 10)).copy_from(yl);
+            out.view_mut((0, 10 * l), (N, width))
+                .copy_from(&yl.columns(0, width));
         }
     }
     for j in 0..N {

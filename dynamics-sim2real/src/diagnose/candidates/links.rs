@@ -7,6 +7,13 @@
 //! the link's columns whose singular value is at least [`IDENTIFIABLE`]
 //! of the largest): a link's correction is reported as the minimum-norm
 //! parameter change along them.
+//!
+//! Each link also comes as its mass and centre of mass alone
+//! ([`moment_basis`]: the first four parameters, `m` and `m c`, the
+//! rotational inertia about the link frame's origin kept as the model's):
+//! what the static load of the arm and most of a log's gap depend on, and
+//! what a user measures or weighs, where the data seldom determine the
+//! six parameters of the rotational inertia as well.
 
 use nalgebra::{DMatrix, SMatrix, SVector};
 
@@ -33,13 +40,22 @@ pub struct LinkBasis {
     /// its correction and a payload at the tip are one place
     /// (`Term::family`).
     pub tip: bool,
+    /// Whether the correction is of the link's mass and centre of mass
+    /// alone (its rotational inertia about the link frame's origin as the
+    /// model's): `v` has rows 4.. zero, and the combinations left free are
+    /// those of the first four parameters only.
+    pub moments: bool,
 }
 
 impl LinkBasis {
     /// An orthonormal basis of the combinations of the link's ten
     /// parameters the data do not determine (the complement of `v`).
+    /// For a correction of the mass and centre of mass alone, those of the
+    /// first four parameters: its rotational inertia is not moved.
     pub fn free_combinations(&self) -> DMatrix<f64> {
-        let p = DMatrix::<f64>::identity(10, 10) - &self.v * self.v.transpose();
+        let span = if self.moments { MOMENTS } else { 10 };
+        let p = DMatrix::<f64>::from_fn(10, 10, |r, c| if r == c && r < span { 1.0 } else { 0.0 })
+            - &self.v * self.v.transpose();
         let eig = p.symmetric_eigen();
         let keep: Vec<usize> = (0..10).filter(|&i| eig.eigenvalues[i] > 0.5).collect();
         eig.eigenvectors.select_columns(&keep)
@@ -160,28 +176,59 @@ impl<const N: usize> RegressorWindow<N> {
     }
 }
 
+/// The parameters of a link's mass and centre of mass: `m`, `m c`.
+pub const MOMENTS: usize = 4;
+
 /// A link's determined combinations from its whitened columns.
 pub fn link_basis(link: usize, cols: &[Vec<f64>]) -> Option<LinkBasis> {
+    let v = determined(cols, 10)?;
+    Some(LinkBasis {
+        link,
+        v,
+        tip: false,
+        moments: false,
+    })
+}
+
+/// The determined combinations of a link's mass and centre of mass alone
+/// (its first [`MOMENTS`] parameters; rows 4.. of `v` zero).
+pub fn moment_basis(link: usize, cols: &[Vec<f64>]) -> Option<LinkBasis> {
+    let sub = determined(cols, MOMENTS)?;
+    let v = DMatrix::from_fn(
+        10,
+        sub.ncols(),
+        |r, c| if r < MOMENTS { sub[(r, c)] } else { 0.0 },
+    );
+    Some(LinkBasis {
+        link,
+        v,
+        tip: false,
+        moments: true,
+    })
+}
+
+/// An orthonormal basis (`width` x r) of the combinations of the first
+/// `width` columns whose singular value is at least [`IDENTIFIABLE`] of the
+/// largest.
+fn determined(cols: &[Vec<f64>], width: usize) -> Option<DMatrix<f64>> {
     let n = cols.first()?.len();
-    let x = DMatrix::from_fn(n, 10, |r, c| cols[c][r]);
+    if cols.len() < width {
+        return None;
+    }
+    let x = DMatrix::from_fn(n, width, |r, c| cols[c][r]);
     let g = x.tr_mul(&x);
     let eig = g.symmetric_eigen();
     let top = eig.eigenvalues.iter().cloned().fold(0.0, f64::max);
     if !(top > 0.0 && top.is_finite()) {
         return None;
     }
-    let keep: Vec<usize> = (0..10)
+    let keep: Vec<usize> = (0..width)
         .filter(|&i| eig.eigenvalues[i] >= IDENTIFIABLE * IDENTIFIABLE * top)
         .collect();
     if keep.is_empty() {
         return None;
     }
-    let v = eig.eigenvectors.select_columns(&keep);
-    Some(LinkBasis {
-        link,
-        v,
-        tip: false,
-    })
+    Some(eig.eigenvectors.select_columns(&keep))
 }
 
 /// The link's combinations as columns: `X v`.
@@ -205,4 +252,45 @@ pub fn delta(basis: &LinkBasis, theta: &[f64]) -> SVector<f64, 10> {
         }
     }
     d
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    /// Ten columns of 40 rows: the first four independent, the fifth a
+    /// copy of the first (a combination the data do not determine).
+    fn columns() -> Vec<Vec<f64>> {
+        let mut cols: Vec<Vec<f64>> = (0..10)
+            .map(|c| {
+                (0..40)
+                    .map(|r| ((r * (c + 3) + c * c) as f64 * 0.37).sin())
+                    .collect()
+            })
+            .collect();
+        cols[4] = cols[0].clone();
+        cols
+    }
+
+    /// The mass and centre of mass alone: four determined combinations of
+    /// the first four parameters, none of the rotational inertia, and no
+    /// combination of the inertia left free to move (the model's stays).
+    #[test]
+    fn a_mass_and_centre_of_mass_correction_leaves_the_rotational_inertia_alone() {
+        let cols = columns();
+        let b = moment_basis(2, &cols).expect("determined");
+        assert!(b.moments && b.link == 2);
+        assert_eq!(b.v.shape(), (10, 4));
+        assert!((b.v.tr_mul(&b.v) - DMatrix::<f64>::identity(4, 4)).norm() < 1e-12);
+        assert!(b.v.rows(MOMENTS, 10 - MOMENTS).iter().all(|x| *x == 0.0));
+        assert_eq!(b.free_combinations().ncols(), 0);
+        let d = delta(&b, &[1.0, -2.0, 0.5, 0.25]);
+        assert!(d.rows(MOMENTS, 10 - MOMENTS).iter().all(|x| *x == 0.0));
+        // All ten: the copied column leaves one combination undetermined,
+        // free to move.
+        let full = link_basis(2, &cols).expect("determined");
+        assert!(!full.moments);
+        assert_eq!(full.v.ncols(), 9);
+        assert_eq!(full.free_combinations().ncols(), 1);
+    }
 }

@@ -333,10 +333,15 @@ fn link_parameters(
                     -d[0]
                 );
             }
+            if b.moments {
+                t += "; its mass and centre of mass alone (the rotational inertia about the link \
+                      frame's origin is the model's)";
+            }
             if c.moved && !c.projected {
                 t += &format!(
-                    "; the data determine {} of the 10 combinations, the others are set to keep the link physical",
-                    b.v.ncols()
+                    "; the data determine {} of the {} combinations, the others are set to keep the link physical",
+                    b.v.ncols(),
+                    if b.moments { 4 } else { 10 }
                 );
             }
             if c.projected {

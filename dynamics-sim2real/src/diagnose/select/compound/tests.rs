@@ -76,6 +76,7 @@ fn the_others_made_where_read_are_the_copys() {
         link: 0,
         v: DMatrix::zeros(10, 1),
         tip: false,
+        moments: false,
     });
     let pool = test_pool(DMatrix::zeros(1, 9), DVector::zeros(1), terms, 2);
     let set: Vec<usize> = (0..8).collect();

@@ -8,8 +8,8 @@ use nalgebra::{DVector, SVector};
 use super::prior;
 use super::{penalised, Cols, Pool, Term};
 use crate::diagnose::candidates::{
-    combined, linear_columns, link_basis, lower_bounds, whitened, Candidate, Prepared,
-    EFFORT_SCALE_LIMIT,
+    combined, linear_columns, link_basis, lower_bounds, moment_basis, whitened, Candidate,
+    Prepared, EFFORT_SCALE_LIMIT,
 };
 use crate::diagnose::fit::{fixed_column, Fit};
 
@@ -77,35 +77,39 @@ impl Pool {
                 });
             }
         }
-        // Link inertial corrections: the combinations the data determine.
+        // Link inertial corrections: the combinations the data determine,
+        // of all ten parameters and of the mass and centre of mass alone
+        // (a link other than the tip's: there the payload with its centre
+        // of mass is that term).
         for (l, lc) in links.iter().enumerate() {
-            let Some(mut basis) = link_basis(l, lc) else {
-                continue;
-            };
-            basis.tip = l + 1 == links.len();
-            let new = combined(lc, &basis);
-            let at = cols.ncols();
-            let r = new.len();
-            for c in new {
-                cols.push(c);
-            }
-            terms.push(Term {
-                fit: Fit {
-                    candidate: Candidate::Inertial(l),
-                    theta: vec![],
-                    std: vec![],
-                    motor: None,
-                    motor_std: None,
-                    sse: f64::NAN,
+            let tip = l + 1 == links.len();
+            let bases = [link_basis(l, lc), moment_basis(l, lc).filter(|_| !tip)];
+            for mut basis in bases.into_iter().flatten() {
+                basis.tip = tip;
+                let new = combined(lc, &basis);
+                let at = cols.ncols();
+                let r = new.len();
+                for c in new {
+                    cols.push(c);
+                }
+                terms.push(Term {
+                    fit: Fit {
+                        candidate: Candidate::Inertial(l),
+                        theta: vec![],
+                        std: vec![],
+                        motor: None,
+                        motor_std: None,
+                        sse: f64::NAN,
+                        k: r,
+                    },
+                    cols: (at..cols.ncols()).collect(),
+                    lower: vec![f64::NEG_INFINITY; r],
+                    limit: vec![f64::INFINITY; r],
+                    fixed: None,
                     k: r,
-                },
-                cols: (at..cols.ncols()).collect(),
-                lower: vec![f64::NEG_INFINITY; r],
-                limit: vec![f64::INFINITY; r],
-                fixed: None,
-                k: r,
-                link: Some(basis),
-            });
+                    link: Some(basis),
+                });
+            }
         }
         let m = cols.ncols();
         let mut x = cols;

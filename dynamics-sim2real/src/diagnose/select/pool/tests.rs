@@ -161,6 +161,7 @@ fn a_link_correction_is_held_to_a_body() {
             link: 0,
             v,
             tip: false,
+            moments: false,
         });
         let offset = term(Candidate::EffortOffset(0), vec![1], vec![false], None);
         test_pool(x.clone(), y, vec![link, offset], 1)
