@@ -15,6 +15,7 @@ mod excite_follow;
 mod excite_plot;
 mod identify;
 mod linearize;
+mod link_mass;
 mod logs;
 mod mar_eq10;
 mod mar_vibration;
