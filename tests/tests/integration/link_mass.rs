@@ -16,26 +16,11 @@
 use dynamics_runtime::Robot;
 use dynamics_sim2real::diagnose::{diagnose, Options};
 use dynamics_sim2real::effects::{Effect, SIGN_SMOOTHING};
-use dynamics_sim2real::synth::{synthesize, ExcitationKind, Noise, SynthOptions};
+use dynamics_sim2real::synth::synthesize;
 use nalgebra::{SMatrix, SVector};
 use robots::Panda;
 
-fn options(seed: u64) -> SynthOptions<7> {
-    let m = robots::builtin::motion("panda");
-    SynthOptions::<7> {
-        duration: 6.0,
-        excitation: ExcitationKind::Sines,
-        home: SVector::from_fn(|k, _| m.home[k]),
-        amplitude: SVector::from_fn(|k, _| m.amplitude[k]),
-        noise: Noise {
-            q: 2e-5,
-            qd: 2e-3,
-            tau_relative: 2e-3,
-        },
-        seed,
-        ..Default::default()
-    }
-}
+use crate::payload::options;
 
 #[test]
 fn a_heavier_middle_link_is_named_by_its_mass_and_centre_of_mass() {

@@ -42,7 +42,8 @@ fn friction() -> Vec<Effect> {
         .collect()
 }
 
-fn options(seed: u64) -> SynthOptions<7> {
+/// The Panda's builtin motion as sines for 6 s, light sensor noise.
+pub(crate) fn options(seed: u64) -> SynthOptions<7> {
     let m = robots::builtin::motion("panda");
     SynthOptions::<7> {
         duration: 6.0,
