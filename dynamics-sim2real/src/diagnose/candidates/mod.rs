@@ -39,7 +39,7 @@ pub use candidate::{payload_com, Candidate, Channel, Unnamed};
 pub use columns::{linear_columns, lower_bounds, whitened, whitened_rows};
 pub use grids::EFFORT_SCALE_LIMIT;
 pub use late::offer_delays;
-pub use links::{combined, delta, link_basis, moment_basis, regressor_columns, LinkBasis};
+pub use links::{combined, delta, link_basis, moment_basis, regressor_columns, LinkBasis, MOMENTS};
 pub use motor::{motor_feasible, motor_grid, signature_limit, MotorGuess};
 pub use prepared::Prepared;
 pub use records::{Record, Records};

@@ -9,7 +9,7 @@ use nalgebra::{DVector, SVector};
 use super::ranked::ranked_entry;
 use super::report::{self, EffectWindow, Explained, Parameter, Rival, ShrinkStep, Suggested};
 use super::words::{add_direction_words, link_words, nominal_words};
-use crate::diagnose::candidates::{delta, Candidate, Friction, LinkBasis};
+use crate::diagnose::candidates::{delta, Candidate, Friction, LinkBasis, MOMENTS};
 use crate::diagnose::evaluate::{
     fraction, Confidence, Holdout, Suggestion, Unconfirmed, PRACTICAL_SHARE,
 };
@@ -341,7 +341,7 @@ fn link_parameters(
                 t += &format!(
                     "; the data determine {} of the {} combinations, the others are set to keep the link physical",
                     b.v.ncols(),
-                    if b.moments { 4 } else { 10 }
+                    if b.moments { MOMENTS } else { 10 }
                 );
             }
             if c.projected {
