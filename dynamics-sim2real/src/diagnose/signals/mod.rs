@@ -438,13 +438,28 @@ fn smoothed_effort_at<const N: usize>(
         .sum()
 }
 
-/// [`smoothed_effort_at`] at every joint.
+/// [`smoothed_effort_at`] at every joint, to the bit: each joint's sum
+/// term by term in the same order, the joints' sums side by side (one
+/// chain of dependent additions for all of them, not one a joint).
 fn smoothed_effort<const N: usize>(
     sg: &SavitzkyGolay,
     raw: &[SVector<f64, N>],
     k: usize,
 ) -> SVector<f64, N> {
-    SVector::from_fn(|j, _| smoothed_effort_at(sg, raw, k, j))
+    let h = sg.half();
+    if k < h || k + h >= raw.len() {
+        return SVector::from_element(f64::NAN);
+    }
+    // The value a float sum starts from (`Iterator::sum`).
+    let start: f64 = std::iter::empty::<f64>().sum();
+    let mut s = SVector::<f64, N>::from_element(start);
+    for (w, i) in sg.weights(0).iter().zip(k - h..=k + h) {
+        let (a, b) = (&raw[i.saturating_sub(1)], &raw[i]);
+        for j in 0..N {
+            s[j] += w * (0.5 * (a[j] + b[j]));
+        }
+    }
+    s
 }
 
 /// 1.4826 x median absolute deviation from the median.
