@@ -85,21 +85,29 @@ fn undone<R: Robot<N> + Clone + Send + Sync + 'static, const N: usize>(
     undo(robot, &m).map_err(|e| GapError::Request(format!("--baseline: {e}")))
 }
 
-/// Reads both files, corrects each by `fix` (the record as read is dropped
-/// once corrected: a long log is not held twice) and diagnoses them,
-/// handing the records over (the diagnosis shares them, not copies them).
+/// Reads both files, each on a thread of its own, corrects each by `fix`
+/// (the record as read is dropped once corrected: a long log is not held
+/// twice) and diagnoses them, handing the records over (the diagnosis
+/// shares them, not copies them). An error of the training file is told
+/// before one of the held-out file.
 fn diagnose_read<R: Robot<N> + Clone + Send + Sync + 'static, const N: usize>(
     robot: &R,
-    fix: &dyn Fn(Measured<N>) -> Result<Measured<N>, GapError>,
+    fix: &(dyn Fn(Measured<N>) -> Result<Measured<N>, GapError> + Sync),
     train: &DataFile,
     holdout: &DataFile,
     options: &Options,
     progress: &(dyn Fn(usize, usize) + Sync),
 ) -> Result<(Report, Vec<String>, Vec<String>), GapError> {
-    let (a, about_a) = train.read_described(&R::JOINT_NAMES)?;
-    let a = fix(a)?;
-    let (b, about_b) = holdout.read_described(&R::JOINT_NAMES)?;
-    let b = fix(b)?;
+    let read = |file: &DataFile| -> Result<(Measured<N>, Option<String>), GapError> {
+        let (m, about) = file.read_described(&R::JOINT_NAMES)?;
+        Ok((fix(m)?, about))
+    };
+    let (a, b) = std::thread::scope(|s| {
+        let b = s.spawn(|| read(holdout));
+        (read(train), b.join())
+    });
+    let (a, about_a) = a?;
+    let (b, about_b) = b.unwrap_or_else(|panic| std::panic::resume_unwind(panic))?;
     let report = diagnose_owned(robot, a, b, options, progress)?;
     let warnings = crate::warnings::lines(&report.warnings);
     let about = [

@@ -35,11 +35,26 @@ pub fn read_parquet<const N: usize>(
     joints: &[&str; N],
 ) -> Result<Measured<N>, BagError> {
     let file = path.display().to_string();
-    let bytes = std::fs::read(path).map_err(|source| BagError::Io {
+    let io = |source| BagError::Io {
         file: file.clone(),
         source,
-    })?;
-    read_parquet_bytes(bytes, joints, &file)
+    };
+    // Read from the file page by page, not copied into memory whole.
+    let source = std::fs::File::open(path).map_err(io)?;
+    let size = source.metadata().map_err(io)?.len();
+    #[cfg(feature = "parquet")]
+    {
+        guarded(|| imp::read(source, size, joints, &file), &file)
+    }
+    #[cfg(not(feature = "parquet"))]
+    {
+        let _ = (source, size, joints);
+        Err(BagError::NotBuilt {
+            file,
+            format: "Parquet",
+            feature: "parquet",
+        })
+    }
 }
 
 /// Whether `path` is named `.parquet` or starts with Parquet's magic bytes.
@@ -66,7 +81,7 @@ mod imp {
     use parquet::basic::{Compression, Repetition, Type as PhysicalType};
     use parquet::data_type::DoubleType;
     use parquet::file::properties::WriterProperties;
-    use parquet::file::reader::{FileReader, SerializedFileReader};
+    use parquet::file::reader::{ChunkReader, FileReader, SerializedFileReader};
     use parquet::file::writer::SerializedFileWriter;
     use parquet::record::Field;
     use parquet::schema::types::Type;
@@ -115,8 +130,10 @@ mod imp {
         })
     }
 
-    pub(super) fn read<const N: usize>(
-        bytes: Vec<u8>,
+    /// The file `file` of `size` bytes, read from `source`.
+    pub(super) fn read<const N: usize, C: ChunkReader + 'static>(
+        source: C,
+        size: u64,
         joints: &[&str; N],
         file: &str,
     ) -> Result<Measured<N>, BagError> {
@@ -124,8 +141,8 @@ mod imp {
             file: file.to_string(),
             message: e.to_string(),
         };
-        let size = bytes.len() as i64;
-        let reader = SerializedFileReader::new(bytes::Bytes::from(bytes)).map_err(err)?;
+        let size = i64::try_from(size).unwrap_or(i64::MAX);
+        let reader = SerializedFileReader::new(source).map_err(err)?;
         // Every column chunk inside the file: the crate asserts (panics on)
         // a negative offset or length in the footer it has just parsed.
         for (g, group) in reader.metadata().row_groups().iter().enumerate() {
@@ -153,6 +170,18 @@ mod imp {
             .iter()
             .map(|f| f.name().to_string())
             .collect();
+        if let Some(columns) = columns_of_numbers(&reader).map_err(err)? {
+            // The cells straight from the columns' values, row by row (the
+            // columns dropped with the rows, once read).
+            drop(reader);
+            let rows = (0..columns.first().map_or(0, |c| c.values.len())).map(move |k| {
+                Ok(ParquetRow {
+                    cells: columns.iter().map(|c| c.cell(k)).collect(),
+                    line: k + 2,
+                })
+            });
+            return Ok(read_rows(&header, rows, joints, file)?);
+        }
         let rows = reader.get_row_iter(None).map_err(err)?;
         let rows = rows.enumerate().map(|(k, row)| {
             let row = row.map_err(|e| crate::data::DataError::Csv {
@@ -165,6 +194,118 @@ mod imp {
             })
         });
         Ok(read_rows(&header, rows, joints, file)?)
+    }
+
+    /// One column of numbers read whole: its values, each row's (NaN in
+    /// a null's place), and which rows are null (none when the column is
+    /// required).
+    struct Numbers {
+        values: Vec<f64>,
+        nulls: Option<Vec<bool>>,
+    }
+
+    impl Numbers {
+        /// Row `k`'s cell as the record reader gives it ([`number`]).
+        fn cell(&self, k: usize) -> Result<f64, String> {
+            match (&self.nulls, self.values.get(k)) {
+                (Some(nulls), _) if nulls.get(k).copied().unwrap_or(true) => Err("null".into()),
+                (_, Some(v)) => Ok(*v),
+                (_, None) => Err("null".into()),
+            }
+        }
+    }
+
+    /// Every column of a flat file whose columns are all DOUBLE or FLOAT
+    /// (required or optional, no logical type), read a column at a time:
+    /// the values the record reader gives row by row, at a small part of
+    /// its cost (it builds every row's named fields). `None` for any other
+    /// schema, which is read row by row.
+    fn columns_of_numbers(
+        reader: &SerializedFileReader<impl ChunkReader + 'static>,
+    ) -> parquet::errors::Result<Option<Vec<Numbers>>> {
+        use parquet::column::reader::ColumnReader;
+        let meta = reader.metadata();
+        let schema = meta.file_metadata().schema_descr();
+        let flat = schema.root_schema().get_fields().len() == schema.num_columns();
+        let numbers = schema.columns().iter().all(|c| {
+            matches!(
+                c.physical_type(),
+                PhysicalType::DOUBLE | PhysicalType::FLOAT
+            ) && c.max_rep_level() == 0
+                && c.max_def_level() <= 1
+                && c.logical_type_ref().is_none()
+        });
+        if !flat || !numbers {
+            return Ok(None);
+        }
+        let rows: usize = meta
+            .row_groups()
+            .iter()
+            .map(|g| usize::try_from(g.num_rows()).unwrap_or(0))
+            .sum();
+        let mut columns: Vec<Numbers> = schema
+            .columns()
+            .iter()
+            .map(|c| Numbers {
+                values: Vec::with_capacity(rows),
+                nulls: (c.max_def_level() == 1).then(|| Vec::with_capacity(rows)),
+            })
+            .collect();
+        const BATCH: usize = 1 << 16;
+        // Rows of the groups read so far.
+        let mut done = 0;
+        for g in 0..meta.num_row_groups() {
+            let group = reader.get_row_group(g)?;
+            done += usize::try_from(group.metadata().num_rows()).unwrap_or(0);
+            for (c, column) in columns.iter_mut().enumerate() {
+                let nullable = column.nulls.is_some();
+                let mut defs: Vec<i16> = Vec::new();
+                let mut present: Vec<f64> = Vec::new();
+                match group.get_column_reader(c)? {
+                    ColumnReader::DoubleColumnReader(mut r) => {
+                        let defs = &mut defs;
+                        while r
+                            .read_records(
+                                BATCH,
+                                nullable.then_some(&mut *defs),
+                                None,
+                                &mut present,
+                            )?
+                            .0
+                            > 0
+                        {}
+                    }
+                    ColumnReader::FloatColumnReader(mut r) => {
+                        let (defs, mut floats) = (&mut defs, Vec::<f32>::new());
+                        while r
+                            .read_records(BATCH, nullable.then_some(&mut *defs), None, &mut floats)?
+                            .0
+                            > 0
+                        {}
+                        present.extend(floats.into_iter().map(f64::from));
+                    }
+                    _ => return Ok(None),
+                }
+                match &mut column.nulls {
+                    None => column.values.extend(present),
+                    Some(nulls) => {
+                        let mut values = present.into_iter();
+                        for d in &defs {
+                            let null = *d < 1;
+                            nulls.push(null);
+                            let v = if null { None } else { values.next() };
+                            column.values.push(v.unwrap_or(f64::NAN));
+                        }
+                    }
+                }
+                // A column whose values do not fill its rows: read row by
+                // row, which says where.
+                if column.values.len() != done {
+                    return Ok(None);
+                }
+            }
+        }
+        Ok(Some(columns))
     }
 
     pub(super) fn write(
@@ -222,18 +363,11 @@ pub fn read_parquet_bytes<const N: usize>(
 ) -> Result<Measured<N>, BagError> {
     #[cfg(feature = "parquet")]
     {
-        // The `parquet` crate panics on some malformed pages (an index out
-        // of bounds in its byte-stream-split decoder, found by fuzzing):
-        // a hostile file is an error here, never a crash.
-        std::panic::catch_unwind(std::panic::AssertUnwindSafe(|| {
-            imp::read(bytes, joints, file)
-        }))
-        .unwrap_or_else(|_| {
-            Err(BagError::Parquet {
-                file: file.to_string(),
-                message: "malformed data: the Parquet decoder failed on a page".into(),
-            })
-        })
+        let size = bytes.len() as u64;
+        guarded(
+            || imp::read(bytes::Bytes::from(bytes), size, joints, file),
+            file,
+        )
     }
     #[cfg(not(feature = "parquet"))]
     {
@@ -244,6 +378,23 @@ pub fn read_parquet_bytes<const N: usize>(
             feature: "parquet",
         })
     }
+}
+
+/// `read`, a panic of the `parquet` crate on some malformed pages (an
+/// index out of bounds in its byte-stream-split decoder, found by fuzzing)
+/// told as an error of `file`: a hostile file is an error here, never a
+/// crash.
+#[cfg(feature = "parquet")]
+fn guarded<const N: usize>(
+    read: impl FnOnce() -> Result<Measured<N>, BagError>,
+    file: &str,
+) -> Result<Measured<N>, BagError> {
+    std::panic::catch_unwind(std::panic::AssertUnwindSafe(read)).unwrap_or_else(|_| {
+        Err(BagError::Parquet {
+            file: file.to_string(),
+            message: "malformed data: the Parquet decoder failed on a page".into(),
+        })
+    })
 }
 
 /// Writes columns of numbers, each named by `header`, as one row group of

@@ -226,6 +226,8 @@ pub(crate) fn read_rows<const N: usize, R: Row>(
             m.qd.push(vec(c)?);
         }
     }
+    // (What the rows were read from is not held while they are prepared.)
+    drop(records);
     if m.len() < MIN_SAMPLES {
         return Err(DataError::TooFewSamples {
             file: file.to_string(),
