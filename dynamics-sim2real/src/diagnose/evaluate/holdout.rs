@@ -4,6 +4,7 @@
 //! measures of a gap (above the noise floor, plain RMS).
 
 use nalgebra::{DVector, SVector};
+use rayon::prelude::*;
 
 use crate::diagnose::candidates::{combined, linear_columns, Prepared};
 use crate::diagnose::fit::{fixed_column_against, holdout_window_in, inside, window_of, Windows};
@@ -73,7 +74,7 @@ impl<'a, const N: usize> Holdout<'a, N> {
         let hm = fixed.then(|| against_others(h, pool, &e.set, &e.sol));
         let cols = e
             .set
-            .iter()
+            .par_iter()
             .map(|&t| {
                 let term = &pool.terms[t];
                 match (term.fixed.as_ref(), hm.as_ref()) {

@@ -33,6 +33,7 @@ pub use holdout::{fraction, limit_to_windows, Holdout};
 pub use shrink::ShrinkFigures;
 
 use nalgebra::{DVector, SVector};
+use rayon::prelude::*;
 
 use crate::diagnose::candidates::{regressor_columns, Records};
 use crate::diagnose::select::{effects, Selection};
@@ -89,6 +90,7 @@ pub fn evaluate<'a, R: Robot<N> + Clone + Sync, const N: usize>(
         .ok();
     let prediction_noise = yardstick::prediction_floor(robot, &records.train, p);
     let gap_windows = (0..N)
+        .into_par_iter()
         .map(|j| gap_windows::gap_windows(p, &p.sig.residual, j, 3.0, 5))
         .collect();
 

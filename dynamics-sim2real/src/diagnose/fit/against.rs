@@ -19,9 +19,10 @@ use std::sync::{Arc, Mutex, MutexGuard};
 
 use nalgebra::SVector;
 
-use super::motor_sim::Load;
+use super::motor_sim::{Load, ALONG_APART};
 use crate::diagnose::candidates::{Candidate, Prepared};
 use crate::diagnose::signals::Signals;
+use rayon::prelude::*;
 
 /// Where each set of others' efforts is told from another (0: the
 /// record's own model).
@@ -137,6 +138,25 @@ impl<'a, const N: usize> Against<'a, N> {
         m
     }
 
+    /// [`Against::made_along`] made on the threads a piece of samples at a
+    /// time where `a..z` is long (the same values: each sample's sum in the
+    /// same order). Never under a joint's lock: the caller waits on other
+    /// threads' pieces and meanwhile runs other work, which may take it.
+    fn made_along_apart(&self, j: usize, a: usize, z: usize) -> Vec<f64> {
+        if z.saturating_sub(a) < ALONG_APART {
+            return self.made_along(j, a, z);
+        }
+        let pieces: Vec<(usize, usize)> = (a..z)
+            .step_by(ALONG_APART)
+            .map(|s| (s, (s + ALONG_APART).min(z)))
+            .collect();
+        let made: Vec<Vec<f64>> = pieces
+            .into_par_iter()
+            .map(|(s, e)| self.made_along(j, s, e))
+            .collect();
+        made.concat()
+    }
+
     /// Whether sample `k` is in the record's range (where the others'
     /// efforts are moved).
     fn within(&self, k: usize) -> bool {
@@ -226,7 +246,7 @@ impl<const N: usize> Load<N> for Against<'_, N> {
             })
         });
         let Some(along) = kept else {
-            return self.made_along(j, a, z);
+            return self.made_along_apart(j, a, z);
         };
         // The kept efforts over the range, the record's own outside it.
         (a..z)

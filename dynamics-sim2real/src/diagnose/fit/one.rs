@@ -4,7 +4,7 @@
 use nalgebra::SVector;
 
 use super::against::Against;
-use super::motor_sim::transmitted::motor_transmitted;
+use super::motor_sim::transmitted::motor_transmitted_raw;
 use crate::diagnose::candidates::{whitened_rows, Candidate, MotorGuess, Prepared};
 use crate::diagnose::numeric::aicc;
 use crate::effects::Effect;
@@ -105,16 +105,20 @@ impl Fit {
         let on = Against::record(p);
         let mut r = p.sig.residual.clone();
         let (a, z) = p.sig.range;
-        let motor = self.transmitted(&on);
+        let motor = self
+            .transmitted_raw(&on)
+            .map(|(j, raw)| (j, p.sig.sg.apply(&raw, 0)));
         for (k, rk) in r.iter_mut().enumerate().take(z).skip(a) {
-            *rk = self.corrected_at(&on, motor.as_ref(), k, *rk);
+            let m = motor.as_ref().map(|(j, t)| (*j, t[k]));
+            *rk = self.corrected_at(&on, m, k, *rk);
         }
         r
     }
 
     /// [`Fit::corrected`] at the rows of `p` only, one entry a row: the
     /// same values, the candidate's columns made at the rows alone (a
-    /// motor side is still simulated over the whole record).
+    /// motor side is still simulated over the whole record, its effort
+    /// smoothed at the rows alone).
     pub fn corrected_rows<const N: usize>(&self, p: &Prepared<N>) -> Vec<SVector<f64, N>> {
         self.corrected_rows_against(&Against::record(p))
     }
@@ -127,14 +131,15 @@ impl Fit {
     ) -> Vec<SVector<f64, N>> {
         let p = on.p;
         let (a, z) = p.sig.range;
-        let motor = self.transmitted(on);
+        let motor = self.transmitted_raw(on);
         p.rows
             .iter()
             .enumerate()
             .map(|(i, &k)| {
                 let r = on.residual_row(i);
                 if k >= a && k < z {
-                    self.corrected_at(on, motor.as_ref(), k, r)
+                    let m = motor.as_ref().map(|(j, raw)| (*j, p.sig.sg.at(raw, 0, k)));
+                    self.corrected_at(on, m, k, r)
                 } else {
                     r
                 }
@@ -143,15 +148,15 @@ impl Fit {
     }
 
     /// A motor side's joint and the effort its transmission carries there
-    /// along the record of `on` (NaN outside the range); `None` for the
-    /// other fits.
-    fn transmitted<const N: usize>(&self, on: &Against<N>) -> Option<(usize, Vec<f64>)> {
+    /// along the record of `on`, before smoothing (NaN outside the range);
+    /// `None` for the other fits.
+    fn transmitted_raw<const N: usize>(&self, on: &Against<N>) -> Option<(usize, Vec<f64>)> {
         match (self.candidate, self.motor) {
             (Candidate::Elasticity(j), Some(g))
             | (Candidate::Backlash(j), Some(g))
             | (Candidate::Armature(j), Some(g)) => {
                 let backlash = matches!(self.candidate, Candidate::Backlash(_));
-                let t = motor_transmitted(on, j, &g, backlash, &on.p.basis.compliance);
+                let t = motor_transmitted_raw(on, j, &g, backlash, &on.p.basis.compliance);
                 Some((j, t))
             }
             _ => None,
@@ -159,20 +164,21 @@ impl Fit {
     }
 
     /// The residual `r` at sample `k` of the range once this effect is
-    /// added: a motor side's transmitted effort `motor`
-    /// ([`Fit::transmitted`]) in place of the model's at its joint where
-    /// finite, else the columns times the parameters taken away.
+    /// added: a motor side's smoothed transmitted effort at `k` and its
+    /// joint, `motor` ([`Fit::transmitted_raw`]), in place of the model's
+    /// at its joint where finite, else the columns times the parameters
+    /// taken away.
     fn corrected_at<const N: usize>(
         &self,
         on: &Against<N>,
-        motor: Option<&(usize, Vec<f64>)>,
+        motor: Option<(usize, f64)>,
         k: usize,
         mut r: SVector<f64, N>,
     ) -> SVector<f64, N> {
         match motor {
             Some((j, t)) => {
-                if t[k].is_finite() {
-                    r[*j] = t[k] - on.model_at(k, *j);
+                if t.is_finite() {
+                    r[j] = t - on.model_at(k, j);
                 }
             }
             None => {

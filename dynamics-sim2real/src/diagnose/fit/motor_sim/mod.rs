@@ -9,7 +9,7 @@
 //! its result does not depend on its companions.
 //!
 //! - here: the lanes' integration (two Runge-Kutta steps a sample);
-//! - `transmitted.rs`: one guess's transmitted effort, raw or smoothed;
+//! - `transmitted.rs`: one guess's transmitted effort;
 //! - `derivative.rs`: the coupling's force (spring or dead zone) and the
 //!   lanes' state derivative, the link pulled back to the measured motion;
 //! - `tests.rs`: the one-at-a-time simulation each lane must reproduce.
@@ -209,6 +209,10 @@ struct Track {
 /// record makes its track and drops it.
 const KEPT_SECONDS: f64 = 1.25 * stretches::SEARCH_SECONDS;
 
+/// Samples from which a track's series are made on the threads at once
+/// (a search's stretches are shorter and many at a time already).
+pub const ALONG_APART: usize = 1 << 16;
+
 /// A kept track: the motion's id and the model's key, the joint, the
 /// span.
 type Kept = ((u64, u64), usize, (usize, usize), Rc<Track>);
@@ -233,23 +237,30 @@ impl Track {
         if len(span) > most {
             return Rc::new(Self::made(on, j, span));
         }
+        let key = (id, j, span);
+        let hit = KEPT.with(|kept| {
+            let kept = kept.borrow();
+            kept.iter()
+                .find(|(i, jj, s, _)| (*i, *jj, *s) == key)
+                .map(|(.., t)| Rc::clone(t))
+        });
+        if let Some(t) = hit {
+            return t;
+        }
+        // (Made with the thread's tracks not borrowed: the making may wait
+        // on other threads, and this one meanwhile run a simulation that
+        // reads them.)
+        let t = Rc::new(Self::made(on, j, span));
         KEPT.with(|kept| {
             let mut kept = kept.borrow_mut();
-            let hit = kept
-                .iter()
-                .find(|(i, jj, s, _)| *i == id && *jj == j && *s == span);
-            if let Some((.., t)) = hit {
-                return Rc::clone(t);
-            }
-            let t = Rc::new(Self::made(on, j, span));
             while !kept.is_empty()
                 && kept.iter().map(|x| len(x.2)).sum::<usize>() + len(span) > most
             {
                 kept.remove(0);
             }
             kept.push((id, j, span, Rc::clone(&t)));
-            t
-        })
+        });
+        t
     }
 
     fn made<const N: usize, L: Load<N> + ?Sized>(on: &L, j: usize, (a, z): (usize, usize)) -> Self {
@@ -257,12 +268,21 @@ impl Track {
         let z = z.min(sig.t.len());
         let m = &sig.motion;
         let z = z.max(a);
-        Track {
-            q: m.joint_stretch(0, j, a, z),
-            qd: m.joint_stretch(1, j, a, z),
-            qdd: m.joint_stretch(2, j, a, z),
-            model: on.model_along(j, a, z),
+        let stretch = |d: usize| m.joint_stretch(d, j, a, z);
+        if z - a < ALONG_APART {
+            return Track {
+                q: stretch(0),
+                qd: stretch(1),
+                qdd: stretch(2),
+                model: on.model_along(j, a, z),
+            };
         }
+        // A long span (a whole record): the four made on the threads.
+        let ((q, qd), (qdd, model)) = rayon::join(
+            || rayon::join(|| stretch(0), || stretch(1)),
+            || rayon::join(|| stretch(2), || on.model_along(j, a, z)),
+        );
+        Track { q, qd, qdd, model }
     }
 }
 

@@ -4,6 +4,7 @@
 //! determine, and the Gram matrix with the prior (`prior.rs`).
 
 use nalgebra::{DVector, SVector};
+use rayon::prelude::*;
 
 use super::prior;
 use super::{penalised, Cols, Pool, Term};
@@ -30,51 +31,51 @@ impl Pool {
         let n = p.n();
         let mut cols = Cols::new(n, N);
         let mut terms = Vec::new();
-        for f in fits {
-            if !f.sse.is_finite() {
-                continue;
-            }
-            let c = f.candidate;
-            if f.motor.is_some() {
-                let col = fixed_column(f, p);
-                if col.iter().all(|x| *x == 0.0) {
-                    continue;
+        // The fits' columns made on the threads a few fits at a time (a
+        // motor side's is a simulation over the whole record), kept in the
+        // fits' order; at most a batch's columns held beside the pool's.
+        let threads = rayon::current_num_threads().max(1);
+        for batch in fits.chunks(2 * threads) {
+            let made: Vec<Option<Made>> = batch.par_iter().map(|f| made(f, p)).collect();
+            for (f, made) in batch.iter().zip(made) {
+                let c = f.candidate;
+                match made {
+                    None => {}
+                    Some(Made::Fixed(col)) => {
+                        cols.push(col);
+                        terms.push(Term {
+                            fit: f.clone(),
+                            cols: vec![],
+                            lower: vec![],
+                            limit: vec![],
+                            fixed: Some(cols.ncols() - 1),
+                            k: f.k,
+                            link: None,
+                        });
+                    }
+                    Some(Made::Free(new)) => {
+                        let at = cols.ncols();
+                        for c in new {
+                            cols.push(c);
+                        }
+                        terms.push(Term {
+                            fit: f.clone(),
+                            cols: (at..cols.ncols()).collect(),
+                            lower: lower_bounds(c, p),
+                            limit: c
+                                .linear_parameters()
+                                .iter()
+                                .map(|_| match c {
+                                    Candidate::EffortScale(_) => EFFORT_SCALE_LIMIT,
+                                    _ => f64::INFINITY,
+                                })
+                                .collect(),
+                            fixed: None,
+                            k: f.k,
+                            link: None,
+                        });
+                    }
                 }
-                cols.push(col);
-                terms.push(Term {
-                    fit: f.clone(),
-                    cols: vec![],
-                    lower: vec![],
-                    limit: vec![],
-                    fixed: Some(cols.ncols() - 1),
-                    k: f.k,
-                    link: None,
-                });
-            } else if !c.linear_parameters().is_empty() {
-                let new = linear_columns(c, p);
-                if new.iter().all(|c| c.iter().all(|x| *x == 0.0)) {
-                    continue;
-                }
-                let at = cols.ncols();
-                for c in new {
-                    cols.push(c);
-                }
-                terms.push(Term {
-                    fit: f.clone(),
-                    cols: (at..cols.ncols()).collect(),
-                    lower: lower_bounds(c, p),
-                    limit: c
-                        .linear_parameters()
-                        .iter()
-                        .map(|_| match c {
-                            Candidate::EffortScale(_) => EFFORT_SCALE_LIMIT,
-                            _ => f64::INFINITY,
-                        })
-                        .collect(),
-                    fixed: None,
-                    k: f.k,
-                    link: None,
-                });
             }
         }
         // Link inertial corrections: the combinations the data determine,
@@ -134,5 +135,30 @@ impl Pool {
             strength,
             blocks: Default::default(),
         }
+    }
+}
+
+/// A fit's columns on the pool's rows.
+enum Made {
+    /// A motor side's fixed column.
+    Fixed(Vec<f64>),
+    /// A linear candidate's free columns.
+    Free(Vec<Vec<f64>>),
+}
+
+/// The columns of `f` on `p`; `None` for a fit that failed or whose
+/// columns are zero (nothing the pool could use).
+fn made<const N: usize>(f: &Fit, p: &Prepared<N>) -> Option<Made> {
+    if !f.sse.is_finite() {
+        return None;
+    }
+    if f.motor.is_some() {
+        let col = fixed_column(f, p);
+        (!col.iter().all(|x| *x == 0.0)).then_some(Made::Fixed(col))
+    } else if !f.candidate.linear_parameters().is_empty() {
+        let new = linear_columns(f.candidate, p);
+        (!new.iter().all(|c| c.iter().all(|x| *x == 0.0))).then_some(Made::Free(new))
+    } else {
+        None
     }
 }
