@@ -4,7 +4,6 @@
 //! measures of a gap (above the noise floor, plain RMS).
 
 use nalgebra::{DVector, SVector};
-use rayon::prelude::*;
 
 use crate::diagnose::candidates::{combined, linear_columns, Prepared};
 use crate::diagnose::fit::{fixed_column_against, holdout_window_in, inside, window_of, Windows};
@@ -72,9 +71,12 @@ impl<'a, const N: usize> Holdout<'a, N> {
             term.link.is_none() && term.fixed.is_some()
         });
         let hm = fixed.then(|| against_others(h, pool, &e.set, &e.sol));
+        // (One term after another: a motor side's simulation over the
+        // whole record uses the threads itself, and would otherwise be
+        // held beside the link terms' columns.)
         let cols = e
             .set
-            .par_iter()
+            .iter()
             .map(|&t| {
                 let term = &pool.terms[t];
                 match (term.fixed.as_ref(), hm.as_ref()) {
