@@ -186,7 +186,13 @@ pub fn keep_changes(
             .collect();
         let sol = solve(&set);
         confirmed.suggested.extend(moved);
-        confirmed.explanation = Explanation { set, sol, rivals };
+        let bodiless = std::mem::take(&mut confirmed.explanation.bodiless);
+        confirmed.explanation = Explanation {
+            set,
+            sol,
+            rivals,
+            bodiless,
+        };
         confirmed.confidence = confidence;
     }
 }
@@ -295,6 +301,7 @@ mod tests {
                 set: vec![0, 1],
                 sol,
                 rivals: vec![None, None],
+                bodiless: vec![],
             },
             confidence: vec![confidence, confidence],
             suggested: vec![],

@@ -317,6 +317,13 @@ pub fn confirm<R: Robot<N>, const N: usize>(
     let spacing = p.rows.windows(2).map(|w| w[1] - w[0]).min().unwrap_or(1);
     let inflate = correlation_time(p.sig.sg.weights(0), spacing).sqrt();
     let solve = |set: &[usize]| solve_in(pool, set);
+    // The link corrections the selection left out for want of a body.
+    suggested.extend(e.bodiless.iter().map(|b| Suggestion {
+        term: b.term,
+        theta: b.theta.clone(),
+        std: b.std.clone(),
+        why: Unconfirmed::NotPhysical,
+    }));
     // Positions into `e.set` still in the explanation.
     let mut keep: Vec<usize> = Vec::new();
     for (i, &t) in e.set.iter().enumerate() {
@@ -550,7 +557,12 @@ pub fn confirm<R: Robot<N>, const N: usize>(
         })
         .collect();
     Confirmed {
-        explanation: Explanation { set, sol, rivals },
+        explanation: Explanation {
+            set,
+            sol,
+            rivals,
+            bodiless: e.bodiless.clone(),
+        },
         confidence,
         suggested,
         within_sample,

@@ -77,7 +77,7 @@ pub fn select<R: Robot<N> + Clone + Sync, const N: usize>(
     // The pool holds the links' combinations: their columns are done.
     drop(plinks);
     pool.limit_to_windows(&fitted.windows, p);
-    let explanation = compound::explain::<R, N>(&mut pool, p, options);
+    let explanation = compound::explain::<R, N>(&mut pool, p, &nominal, options);
     let best = rank::rank(fitted.fits, p, h, &fitted.windows, options);
     Selection {
         best,

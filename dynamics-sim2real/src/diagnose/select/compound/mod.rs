@@ -33,6 +33,7 @@
 //! better (`exchange.rs`). The set is read in the order of its gains
 //! (`order.rs`).
 
+mod bodies;
 mod eliminate;
 mod exchange;
 mod order;
@@ -43,6 +44,7 @@ mod tests;
 mod validate;
 mod weights;
 
+use nalgebra::SVector;
 use rayon::prelude::*;
 
 use super::criterion::tie_key;
@@ -53,6 +55,8 @@ use crate::diagnose::candidates::{Candidate, Friction, Prepared};
 use crate::diagnose::fit::{fit_against, fixed_column_against, Against, Fit};
 use crate::diagnose::Options;
 use crate::effects::Effect;
+use bodies::without_bodiless;
+pub use bodies::Bodiless;
 use eliminate::{eliminate, full};
 use select::{crit, explicit_crit, reweighted, select};
 use validate::Folds;
@@ -82,6 +86,9 @@ pub struct Explanation {
     /// (swapped in for it, the criterion moves less than the ambiguity
     /// margin).
     pub rivals: Vec<Option<usize>>,
+    /// Link corrections the selection chose that leave no physical body,
+    /// left out of it (`bodies.rs`).
+    pub bodiless: Vec<Bodiless>,
 }
 
 /// `p` against the effort of the linear joint and tip terms of `set`
@@ -129,7 +136,7 @@ pub fn without_others<const N: usize>(
         let c = term.fit.candidate;
         for k in a..z {
             let cols = c.columns(&p.sig, &p.basis, k);
-            let mut e = nalgebra::SVector::<f64, N>::zeros();
+            let mut e = SVector::<f64, N>::zeros();
             for (m, th) in sol.theta[i].iter().enumerate() {
                 e += cols[m] * *th;
             }
@@ -183,6 +190,7 @@ fn research<R: Robot<N>, const N: usize>(pool: &mut Pool, todo: &[usize], on: &A
 pub fn explain<R: Robot<N>, const N: usize>(
     pool: &mut Pool,
     p: &Prepared<N>,
+    nominal: &[SVector<f64, 10>],
     options: &Options,
 ) -> Explanation {
     let mut set = select::<N>(pool, vec![], options);
@@ -245,6 +253,9 @@ pub fn explain<R: Robot<N>, const N: usize>(
         }
         set = next;
     }
+    // Link corrections that leave no physical body: out, and the
+    // selection resumes without them (`bodies.rs`).
+    let (mut set, bodiless) = without_bodiless::<N>(pool, set, nominal, options);
     // Parsimony once more: a richer nested term the simpler one at its
     // place now fits within the nesting margin gives way to it, and so
     // does a motor side where the rigid rotor in its stead leaves its joint
@@ -320,7 +331,12 @@ pub fn explain<R: Robot<N>, const N: usize>(
                 .map(|(t, _)| t)
         })
         .collect();
-    Explanation { set, sol, rivals }
+    Explanation {
+        set,
+        sol,
+        rivals,
+        bodiless,
+    }
 }
 
 /// The fit of term `t` with the joint fit's parameters.

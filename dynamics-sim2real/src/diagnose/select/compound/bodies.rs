@@ -1,0 +1,161 @@
+//! Link corrections that leave no physical body are not candidates: the
+//! selection resumes without them.
+//!
+//! A link correction whose fit leaves no physical body once the
+//! combinations the data do not determine are moved (mass <= 0, or a
+//! pseudo-inertia that is not positive semi-definite) is not named
+//! (`evaluate/confirm.rs`, rule 3). Chosen, it has also taken from the
+//! other terms what it explains on the training record: left out only
+//! afterwards, its place stays empty, and a joint whose gap it took (an
+//! effort scale at a shoulder, a payload at the tip) is left unexplained.
+//! So every term of such a link leaves the pool's candidates, and the
+//! selection resumes from the rest of the set under the same criterion,
+//! until the set's link corrections are bodies (at most [`BODY_ROUNDS`]
+//! times). The links left out are reported as suggestions with the fit
+//! that asked for them. With `hold_links` they are held to the nearest
+//! body instead (`Pool::solve_physical`) and nothing is left out here.
+
+use nalgebra::SVector;
+
+use super::select::select_except;
+use crate::diagnose::candidates::delta;
+use crate::diagnose::select::pool::{leaves_a_body, Pool};
+use crate::diagnose::Options;
+
+/// Rounds of leaving links out at most.
+pub const BODY_ROUNDS: usize = 4;
+
+/// A link correction the selection chose that leaves no physical body,
+/// with its fit in the set it was chosen in.
+#[derive(Debug, Clone)]
+pub struct Bodiless {
+    /// Term index into the pool.
+    pub term: usize,
+    /// Its parameters in that set's joint fit.
+    pub theta: Vec<f64>,
+    /// Their standard deviations.
+    pub std: Vec<f64>,
+}
+
+/// `set` with every link correction that leaves no physical body (links
+/// of `nominal` parameters) left out and the selection resumed without
+/// the terms of those links; the corrections left out, in the order found.
+pub fn without_bodiless<const N: usize>(
+    pool: &Pool,
+    mut set: Vec<usize>,
+    nominal: &[SVector<f64, 10>],
+    options: &Options,
+) -> (Vec<usize>, Vec<Bodiless>) {
+    let mut left_out: Vec<Bodiless> = Vec::new();
+    if options.hold_links || nominal.is_empty() {
+        return (set, left_out);
+    }
+    let mut banned: Vec<usize> = Vec::new();
+    for _ in 0..BODY_ROUNDS {
+        let sol = pool.solve(&set);
+        let mut links: Vec<usize> = Vec::new();
+        for (i, &t) in set.iter().enumerate() {
+            let Some(b) = pool.terms[t].link.as_ref() else {
+                continue;
+            };
+            let Some(nom) = nominal.get(b.link) else {
+                continue;
+            };
+            if !leaves_a_body(nom, &delta(b, &sol.theta[i]), &b.free_combinations()) {
+                links.push(b.link);
+                left_out.push(Bodiless {
+                    term: t,
+                    theta: sol.theta[i].clone(),
+                    std: sol.std[i].clone(),
+                });
+            }
+        }
+        if links.is_empty() {
+            break;
+        }
+        banned.extend((0..pool.terms.len()).filter(|&t| {
+            pool.terms[t]
+                .link
+                .as_ref()
+                .is_some_and(|b| links.contains(&b.link))
+        }));
+        set.retain(|t| !banned.contains(t));
+        set = select_except::<N>(pool, set, options, &banned);
+    }
+    (set, left_out)
+}
+
+#[cfg(test)]
+mod tests {
+    use nalgebra::{DMatrix, DVector, SVector};
+
+    use super::*;
+    use crate::diagnose::candidates::{Candidate, LinkBasis};
+    use crate::diagnose::select::compound::select::select;
+    use crate::diagnose::select::pool::{test_pool, test_term};
+    use crate::rng::Rng;
+
+    /// Two joints' rows interleaved; joint 0's gap is mostly its effort
+    /// scale's column `s`, and a little of a column `c`. A link's mass
+    /// column is `0.9 s + c`: it fits the gap better than the scale, with
+    /// a mass change of -2 kg where the nominal link weighs 1 kg: no body.
+    /// The selection without the link chooses the effort scale, and the
+    /// link is reported with its fit; held to bodies, nothing is left out.
+    #[test]
+    fn a_link_that_leaves_no_body_gives_its_place_to_what_explains_the_gap() {
+        let (n, joints) = (400, 2);
+        let mut rng = Rng::new(11);
+        let mut x = DMatrix::<f64>::zeros(n * joints, 2);
+        let mut y = DVector::<f64>::zeros(n * joints);
+        // Mass change per unit of the link's column: -2 kg fits the gap.
+        let a = 0.05 / 0.9 / 2.0;
+        for i in 0..n {
+            let s = (i as f64 * 0.05).sin() * 20.0;
+            let c = (i as f64 * 0.31).cos() * 4.0;
+            x[(i * joints, 0)] = a * (0.9 * s + c);
+            x[(i * joints, 1)] = s;
+            y[i * joints] = -2.0 * a * (0.9 * s + c);
+            for j in 0..joints {
+                y[i * joints + j] += rng.normal();
+            }
+        }
+        let mut link = test_term(Candidate::Inertial(0), vec![0], vec![false], None);
+        let mut v = DMatrix::<f64>::zeros(10, 1);
+        v[(0, 0)] = 1.0;
+        link.link = Some(LinkBasis {
+            link: 0,
+            v,
+            tip: false,
+            moments: true,
+        });
+        let terms = vec![
+            link,
+            test_term(Candidate::EffortScale(0), vec![1], vec![false], None),
+        ];
+        let pool = test_pool(x, y, terms, joints);
+        let options = Options::default();
+        let set = select::<2>(&pool, vec![], &options);
+        assert_eq!(set, vec![0], "the link is chosen first");
+        let mut nominal = SVector::<f64, 10>::zeros();
+        nominal[0] = 1.0;
+        for i in [4, 7, 9] {
+            nominal[i] = 0.01;
+        }
+        let (set, left_out) = without_bodiless::<2>(&pool, set.clone(), &[nominal], &options);
+        assert_eq!(set, vec![1]);
+        match &left_out[..] {
+            [b] => {
+                assert_eq!(b.term, 0);
+                assert!(b.theta[0] < -1.0, "{:?}", b.theta);
+            }
+            other => panic!("{other:?}"),
+        }
+        let held = Options {
+            hold_links: true,
+            ..Options::default()
+        };
+        let (kept, none) = without_bodiless::<2>(&pool, vec![0], &[nominal], &held);
+        assert_eq!(kept, vec![0]);
+        assert!(none.is_empty());
+    }
+}
