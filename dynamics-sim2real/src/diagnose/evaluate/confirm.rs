@@ -68,11 +68,9 @@ use nalgebra::{DVector, SVector};
 
 use super::determinacy::undetermined;
 use super::holdout::{free_columns, limit_to_windows, Holdout};
-use crate::diagnose::candidates::{
-    delta, model_part, whitened, Candidate, Excitation, LinkBasis, Prepared,
-};
+use crate::diagnose::candidates::{model_part, whitened, Candidate, Excitation, Prepared};
 use crate::diagnose::fit::Windows;
-use crate::diagnose::select::{joint_fit, leaves_a_body, Explanation, Parts, Pool, Solution};
+use crate::diagnose::select::{is_body, joint_fit, Explanation, Parts, Pool, Solution};
 use crate::effects::Effect;
 use dynamics_runtime::{JointKind, Robot};
 
@@ -232,13 +230,6 @@ pub fn correlation_time(w: &[f64], spacing: usize) -> f64 {
     tau.max(1.0)
 }
 
-/// Whether link correction `theta` (combinations `b`) leaves the link with
-/// nominal parameters `nominal` a physical body once the combinations the
-/// data do not determine are moved (unknown nominal parameters: assumed).
-fn physical(b: &LinkBasis, theta: &[f64], nominal: Option<&SVector<f64, 10>>) -> bool {
-    nominal.is_none_or(|nom| leaves_a_body(nom, &delta(b, theta), &b.free_combinations()))
-}
-
 /// Whether a common delay `common` (> 0) is shown to help a part of the
 /// delay's column whose own lag is `lag` (standard deviation `std`): a
 /// part of weight `w` fitted with lag `d_p` has its sum of squares lowered
@@ -354,7 +345,7 @@ pub fn confirm<R: Robot<N>, const N: usize>(
             }
         }
         if let Some(b) = &term.link {
-            if !physical(b, &allowed.theta[i], nominal.get(b.link)) {
+            if !is_body(b, &allowed.theta[i], nominal.get(b.link)) {
                 suggested.push(suggest(i, Unconfirmed::NotPhysical));
                 continue;
             }

@@ -20,7 +20,7 @@ mod rank;
 
 pub use compound::{against_others, effects, joint_fit, Explanation};
 pub use nesting::{breakaway_data_needed, nested_rival_stands};
-pub(in crate::diagnose) use pool::leaves_a_body;
+pub(in crate::diagnose) use pool::is_body;
 #[cfg(test)]
 pub(crate) use pool::{test_pool, test_term};
 pub use pool::{Parts, Pool, Solution};

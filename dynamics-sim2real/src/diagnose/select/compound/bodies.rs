@@ -18,8 +18,7 @@
 use nalgebra::SVector;
 
 use super::select::select_except;
-use crate::diagnose::candidates::delta;
-use crate::diagnose::select::pool::{leaves_a_body, Pool};
+use crate::diagnose::select::pool::{is_body, Pool};
 use crate::diagnose::Options;
 
 /// Rounds of leaving links out at most.
@@ -58,10 +57,7 @@ pub fn without_bodiless<const N: usize>(
             let Some(b) = pool.terms[t].link.as_ref() else {
                 continue;
             };
-            let Some(nom) = nominal.get(b.link) else {
-                continue;
-            };
-            if !leaves_a_body(nom, &delta(b, &sol.theta[i]), &b.free_combinations()) {
+            if !is_body(b, &sol.theta[i], nominal.get(b.link)) {
                 links.push(b.link);
                 left_out.push(Bodiless {
                     term: t,

@@ -27,7 +27,9 @@ pub mod prior;
 mod solve;
 mod split;
 mod windows;
-pub(in crate::diagnose) use physical::leaves_a_body;
+pub(in crate::diagnose) use physical::is_body;
+#[cfg(test)]
+use physical::leaves_a_body;
 pub(in crate::diagnose) use solve::independent;
 pub use split::Parts;
 

@@ -13,7 +13,7 @@
 use nalgebra::{DMatrix, DVector, SVector};
 
 use super::{independent, Pool, Solution};
-use crate::diagnose::candidates::delta;
+use crate::diagnose::candidates::{delta, LinkBasis};
 use crate::inertial::{complete, nearest_in_metric, MetricLink};
 
 /// Whether link correction `theta` along the link's determined
@@ -31,6 +31,18 @@ pub(in crate::diagnose) fn leaves_a_body(
     }
 }
 
+/// Whether link correction `theta` (combinations `b`) leaves the link with
+/// nominal parameters `nominal` a physical body once the combinations the
+/// data do not determine are moved ([`leaves_a_body`]; unknown nominal
+/// parameters: assumed).
+pub(in crate::diagnose) fn is_body(
+    b: &LinkBasis,
+    theta: &[f64],
+    nominal: Option<&SVector<f64, 10>>,
+) -> bool {
+    nominal.is_none_or(|nom| leaves_a_body(nom, &delta(b, theta), &b.free_combinations()))
+}
+
 impl Pool {
     /// The joint fit of `set` ([`Pool::solve`]) with every link correction
     /// whose completion is not a physical body moved to the nearest
@@ -45,11 +57,10 @@ impl Pool {
             .iter()
             .enumerate()
             .filter(|(i, &t)| {
-                self.terms[t].link.as_ref().is_some_and(|b| {
-                    nominal.get(b.link).is_some_and(|nom| {
-                        !leaves_a_body(nom, &delta(b, &sol.theta[*i]), &b.free_combinations())
-                    })
-                })
+                self.terms[t]
+                    .link
+                    .as_ref()
+                    .is_some_and(|b| !is_body(b, &sol.theta[*i], nominal.get(b.link)))
             })
             .map(|(i, _)| i)
             .collect();
