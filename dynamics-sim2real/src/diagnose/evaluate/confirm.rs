@@ -67,7 +67,7 @@
 use nalgebra::{DVector, SVector};
 
 use super::determinacy::undetermined;
-use super::holdout::{free_columns, limit_to_windows, Holdout};
+use super::holdout::{free_columns, limit_to_windows, offset_joint, Holdout};
 use crate::diagnose::candidates::{model_part, whitened, Candidate, Excitation, Prepared};
 use crate::diagnose::fit::Windows;
 use crate::diagnose::select::{is_body, joint_fit, Explanation, Parts, Pool, Solution};
@@ -269,6 +269,7 @@ pub fn model_lag(
 /// ([`Pool::solve_physical`]) instead of left out when they leave none.
 #[allow(clippy::too_many_arguments)]
 pub fn confirm<R: Robot<N>, const N: usize>(
+    robot: &R,
     p: &Prepared<N>,
     h: &Prepared<N>,
     hlinks: &[Vec<Vec<f64>>],
@@ -356,7 +357,7 @@ pub fn confirm<R: Robot<N>, const N: usize>(
         keep.push(i);
     }
     // The held-out test, weakest first.
-    let mut hold = Holdout::new(h, hlinks, pool, e);
+    let mut hold = Holdout::new(robot, h, hlinks, pool, e);
     limit_to_windows(&mut hold, h, pool, e, windows);
     // Positions past the set's: terms of the pool swapped in for a link
     // correction (rule 6), with their held-out columns and their fit.
@@ -374,17 +375,34 @@ pub fn confirm<R: Robot<N>, const N: usize>(
         let term = |i: usize| all.get(i).copied().or(tmp.map(|t| t.0)).unwrap_or(0);
         let sol = solve(&pos.iter().map(|&i| term(i)).collect::<Vec<_>>());
         let (mut inner, mut theta, mut extra) = (Vec::new(), Vec::new(), Vec::new());
+        // Encoder offsets outside the set (the holdout judges the set's as
+        // they act): joint, value and first-order column.
+        let mut offsets = Vec::new();
         for (m, &i) in pos.iter().enumerate() {
-            if i < set_len {
+            let cols = if i < set_len {
                 inner.push(i);
                 theta.push(sol.theta[m].clone());
+                continue;
             } else if let Some(cols) = outside.get(i - set_len) {
-                extra.push((cols.as_slice(), sol.theta[m].as_slice()));
+                cols.as_slice()
             } else if let Some((_, cols)) = tmp {
-                extra.push((cols, sol.theta[m].as_slice()));
+                cols
+            } else {
+                continue;
+            };
+            match (
+                offset_joint(pool.terms[term(i)].fit.candidate),
+                sol.theta[m].first(),
+            ) {
+                (Some(j), Some(&d)) if d.is_finite() => offsets.push((j, d)),
+                _ => extra.push((cols, sol.theta[m].as_slice())),
             }
         }
-        Sse::of(&hold.residual_with(&inner, &theta, &extra), N)
+        let mut r = hold.residual_with(&inner, &theta, &extra);
+        for (j, d) in offsets {
+            r -= hold.offset_acts(j, d);
+        }
+        Sse::of(&r, N)
     };
     let spacing = h.rows.windows(2).map(|w| w[1] - w[0]).min().unwrap_or(1);
     let tau = correlation_time(h.sig.sg.weights(0), spacing);

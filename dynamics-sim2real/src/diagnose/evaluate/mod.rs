@@ -72,7 +72,7 @@ pub struct Evaluation<'a, const N: usize> {
 /// The nominal model on the training record of `records` (where the gap
 /// is), and the explanation of `selection` on the held-out record.
 pub fn evaluate<'a, R: Robot<N> + Clone + Sync, const N: usize>(
-    robot: &R,
+    robot: &'a R,
     records: &'a Records<N>,
     selection: &Selection,
     options: &Options,
@@ -101,6 +101,7 @@ pub fn evaluate<'a, R: Robot<N> + Clone + Sync, const N: usize>(
         vec![]
     };
     let mut confirmed = confirm::confirm::<R, N>(
+        robot,
         p,
         h,
         &hlinks,
@@ -128,7 +129,7 @@ pub fn evaluate<'a, R: Robot<N> + Clone + Sync, const N: usize>(
     }
     let friction_spread = calibration::friction_spread(pool, &confirmed.explanation);
     let e = &confirmed.explanation;
-    let mut hold = Holdout::new(h, &hlinks, pool, e);
+    let mut hold = Holdout::new(robot, h, &hlinks, pool, e);
     limit_to_windows(&mut hold, h, pool, e, &selection.windows);
     let all: Vec<usize> = (0..e.set.len()).collect();
     let r = hold.residual(&all, &e.sol.theta);

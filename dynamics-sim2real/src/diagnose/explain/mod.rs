@@ -43,8 +43,33 @@ use crate::diagnose::select::Selection;
 use crate::diagnose::Options;
 use crate::effects::Tip;
 use dynamics_runtime::Robot;
+use nalgebra::SVector;
 use rayon::prelude::*;
 use report::{JointGap, JointShrink, Ranked, Report, Shrink, Where, Which};
+
+/// The joints beyond which no joint moves: the frames a later joint
+/// moves are none of those the joint moves (in the depth-first order of
+/// the coordinates, a later joint is beyond it or on another branch).
+fn leaf_joints<R: Robot<N>, const N: usize>(robot: &R) -> [bool; N] {
+    let q0 = SVector::<f64, N>::from_fn(|j, _| 0.3 + 0.37 * j as f64);
+    let frames = R::FRAME_NAMES.len();
+    let moves = |j: usize| -> Vec<bool> {
+        let mut q = q0;
+        q[j] += 1e-3;
+        (0..frames)
+            .map(
+                |f| match (robot.frame_pose(f, &q0), robot.frame_pose(f, &q)) {
+                    (Some(a), Some(b)) => (a - b).amax() > 1e-9,
+                    _ => false,
+                },
+            )
+            .collect()
+    };
+    let moved: Vec<Vec<bool>> = (0..N).map(moves).collect();
+    std::array::from_fn(|j| {
+        (j + 1..N).all(|k| !moved[k].iter().zip(&moved[j]).any(|(a, b)| *a && *b))
+    })
+}
 
 /// The report of a diagnosis of `robot`: where the gap is, the ranking and verdict,
 /// the explanation in words with its friction table, how far it shrinks
@@ -126,7 +151,12 @@ pub fn report<R: Robot<N>, const N: usize>(
     let mut suggested = suggested::<R, N>(pool, &evaluation.confirmed.suggested, &tip_name);
     determinacy::mark_suggested(&mut suggested, &joint_at);
     add_spring_words(&mut effects, &R::JOINT_NAMES, &records.excitation.range);
-    add_encoder_words(&mut effects, &R::JOINT_NAMES, &R::JOINT_KINDS);
+    add_encoder_words(
+        &mut effects,
+        &R::JOINT_NAMES,
+        &R::JOINT_KINDS,
+        &leaf_joints(robot),
+    );
     add_payload_words(&mut effects);
     add_placement_words(&mut effects, R::LINK_NAMES);
     annotate(&mut effects, pool, e, &selection.windows);
@@ -193,5 +223,32 @@ pub fn report<R: Robot<N>, const N: usize>(
         },
         shrink,
         warnings,
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    dynamics_macros::robot! {
+        robot Fork;
+        gravity = [0.0, 0.0, -9.81];
+        link base;
+        link a { mass = 1.0; com = [0.2, 0.0, 0.0]; inertia = [1e-3, 1e-2, 1e-2]; }
+        link b { mass = 1.0; com = [0.2, 0.0, 0.0]; inertia = [1e-3, 1e-2, 1e-2]; }
+        link c { mass = 1.0; com = [0.2, 0.0, 0.0]; inertia = [1e-3, 1e-2, 1e-2]; }
+        joint j1 = revolute(base -> a) { transfer = [rot_z(q)]; }
+        joint j2 = revolute(a -> b) { transfer = [trans_x(0.4), rot_y(q)]; }
+        joint j3 = revolute(a -> c) { transfer = [trans_x(0.4), rot_x(q)]; }
+    }
+
+    /// A fork: j1 carries both branches; j2 and j3 carry one body each,
+    /// j3 coming after j2 in the coordinates but on another branch. In a
+    /// chain only the last joint is one.
+    #[test]
+    fn a_joint_is_a_leaf_when_no_joint_moves_beyond_it() {
+        assert_eq!(leaf_joints(&Fork::default()), [false, true, true]);
+        let serial = crate::test_robots::Arm2::default();
+        assert_eq!(leaf_joints(&serial), [false, true]);
     }
 }

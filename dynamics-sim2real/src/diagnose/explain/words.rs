@@ -147,11 +147,14 @@ pub fn add_spring_words<const N: usize>(
 /// `-offset` about (along) its axis from where the model puts it, so to
 /// gravity an offset is the same as those links' centres of mass placed
 /// wrong by that much; only the inertial efforts of faster motion tell the
-/// two apart.
+/// two apart. Where no joint moves beyond it (`leaf`), what lies beyond
+/// is one rigid body, and the offset is exactly that body's mass
+/// properties turned (moved) in the model: no motion tells them apart.
 pub fn add_encoder_words<const N: usize>(
     entries: &mut [Explained],
     names: &[&str; N],
     kinds: &[JointKind; N],
+    leaf: &[bool; N],
 ) {
     for e in entries
         .iter_mut()
@@ -169,13 +172,22 @@ pub fn add_encoder_words<const N: usize>(
         let Some(j) = names.iter().position(|n| *n == joint) else {
             continue;
         };
-        let words = match kinds[j] {
-            JointKind::Revolute => format!(
+        let words = match (kinds[j], leaf[j]) {
+            (JointKind::Revolute, true) => format!(
+                "{joint}: the encoder reads {offset:+.4} rad ({:+.1} deg) off the joint's angle; no joint moves beyond it, so this is exactly the body it carries turned by {:+.4} rad about its axis in the model (its centre of mass and inertia placed wrong), which no motion tells apart: a measured joint angle or the body's mass properties decide",
+                offset.to_degrees(),
+                -offset
+            ),
+            (JointKind::Prismatic, true) => format!(
+                "{joint}: the encoder reads {offset:+.4} m off the joint's position; no joint moves beyond it, so this is exactly the body it carries moved by {:+.4} m along its axis in the model (its centre of mass placed wrong), which no motion tells apart: a measured joint position or the body's mass properties decide",
+                -offset
+            ),
+            (JointKind::Revolute, false) => format!(
                 "{joint}: the encoder reads {offset:+.4} rad ({:+.1} deg) off the joint's angle; to gravity this is the same as every link beyond the joint turned by {:+.4} rad about its axis (centres of mass placed wrong in the model), which only the inertial efforts of faster motion tell apart",
                 offset.to_degrees(),
                 -offset
             ),
-            JointKind::Prismatic => format!(
+            (JointKind::Prismatic, false) => format!(
                 "{joint}: the encoder reads {offset:+.4} m off the joint's position; to gravity this is the same as every link beyond the joint moved by {:+.4} m along its axis (centres of mass placed wrong in the model), which only the inertial efforts of faster motion tell apart",
                 -offset
             ),
@@ -448,6 +460,7 @@ mod tests {
             &mut entries,
             &["j1", "j2"],
             &[JointKind::Revolute, JointKind::Prismatic],
+            &[false, false],
         );
         let w0 = entries[0].description.as_deref().unwrap_or("");
         assert!(
@@ -461,5 +474,29 @@ mod tests {
             "{w1}"
         );
         assert!(w1.contains("moved by -0.0100 m along its axis"), "{w1}");
+    }
+
+    /// At a joint beyond which nothing moves, the offset is said to be
+    /// the carried body turned, which no motion tells apart.
+    #[test]
+    fn an_encoder_offset_at_the_last_joint_is_the_body_turned() {
+        let mut entries = vec![
+            entry(EffectKind::EncoderOffset, "j1", "offset", -0.2),
+            entry(EffectKind::EncoderOffset, "j2", "offset", -1.02),
+        ];
+        add_encoder_words(
+            &mut entries,
+            &["j1", "j2"],
+            &[JointKind::Revolute, JointKind::Revolute],
+            &[false, true],
+        );
+        let w0 = entries[0].description.as_deref().unwrap_or("");
+        assert!(w0.contains("faster motion tell apart"), "{w0}");
+        let w1 = entries[1].description.as_deref().unwrap_or("");
+        assert!(
+            w1.contains("exactly the body it carries turned by +1.0200 rad")
+                && w1.contains("no motion tells apart"),
+            "{w1}"
+        );
     }
 }
