@@ -560,8 +560,37 @@ pub fn confirm<R: Robot<N>, const N: usize>(
             _ => suggested.push(suggest(i, why)),
         }
     }
-    let set: Vec<usize> = keep.iter().map(|&i| all[i]).collect();
-    let sol = solve(&set);
+    // Rule 3 once more on the final fit: the effects dropped above leave
+    // the others refitted, and one of them can come to a value the data do
+    // not determine or that is not physical (an effort scale pushed to its
+    // bound). It goes too, with the reason, and the rest is refitted.
+    let (set, sol) = loop {
+        let set: Vec<usize> = keep.iter().map(|&i| all[i]).collect();
+        let sol = solve(&set);
+        let bad = set.iter().enumerate().find_map(|(m, &t)| {
+            let f = joint_fit(pool, t, &sol.theta[m], &sol.std[m]);
+            let why = match &pool.terms[t].link {
+                Some(b) => (!is_body(b, &sol.theta[m], nominal.get(b.link)))
+                    .then_some(Unconfirmed::NotPhysical),
+                None if payload_leaves_no_body(carrier, f.candidate, &sol.theta[m]) => {
+                    Some(Unconfirmed::NotPhysical)
+                }
+                None => undetermined(&f, joint_of(f.candidate)).map(Unconfirmed::Undetermined),
+            };
+            why.map(|why| (m, why))
+        });
+        let Some((m, why)) = bad else {
+            break (set, sol);
+        };
+        keep.remove(m);
+        confidence.remove(m);
+        suggested.push(Suggestion {
+            term: set[m],
+            theta: sol.theta[m].clone(),
+            std: sol.std[m].clone(),
+            why,
+        });
+    };
     let rivals = keep
         .iter()
         .map(|&i| {
