@@ -66,7 +66,7 @@
 
 use nalgebra::{DVector, SVector};
 
-use super::determinacy::undetermined;
+use super::determinacy::{undetermined, unphysical};
 use super::holdout::{free_columns, limit_to_windows, offset_joint, Holdout};
 use crate::diagnose::candidates::{model_part, whitened, Candidate, Excitation, Prepared};
 use crate::diagnose::fit::Windows;
@@ -353,7 +353,7 @@ pub fn confirm<R: Robot<N>, const N: usize>(
                 suggested.push(suggest(i, Unconfirmed::NotPhysical));
                 continue;
             }
-        } else if payload_leaves_no_body(carrier, f.candidate, &e.sol.theta[i]) {
+        } else if payload_leaves_no_body(carrier, f.candidate, &e.sol.theta[i], &e.sol.std[i]) {
             suggested.push(suggest(i, Unconfirmed::NotPhysical));
             continue;
         } else if let Some(why) = undetermined(&f, joint_of(f.candidate)) {
@@ -492,7 +492,8 @@ pub fn confirm<R: Robot<N>, const N: usize>(
                 _ => continue,
             };
             let f = joint_fit(pool, t, &theta, &std);
-            if undetermined(&f, joint_of(c)).is_some() || payload_leaves_no_body(carrier, c, &theta)
+            if undetermined(&f, joint_of(c)).is_some()
+                || payload_leaves_no_body(carrier, c, &theta, &std)
             {
                 continue;
             }
@@ -561,9 +562,11 @@ pub fn confirm<R: Robot<N>, const N: usize>(
         }
     }
     // Rule 3 once more on the final fit: the effects dropped above leave
-    // the others refitted, and one of them can come to a value the data do
-    // not determine or that is not physical (an effort scale pushed to its
-    // bound). It goes too, with the reason, and the rest is refitted.
+    // the others refitted, and one of them can come to a value no robot
+    // has (an effort scale pushed to its bound, a body that is none). It
+    // goes too, with the reason, and the rest is refitted. (A value the
+    // refit leaves undetermined, or a sign-constrained one now at zero,
+    // is the report's note: its effect held on the held-out record.)
     let (set, sol) = loop {
         let set: Vec<usize> = keep.iter().map(|&i| all[i]).collect();
         let sol = solve(&set);
@@ -572,10 +575,16 @@ pub fn confirm<R: Robot<N>, const N: usize>(
             let why = match &pool.terms[t].link {
                 Some(b) => (!is_body(b, &sol.theta[m], nominal.get(b.link)))
                     .then_some(Unconfirmed::NotPhysical),
-                None if payload_leaves_no_body(carrier, f.candidate, &sol.theta[m]) => {
+                None if payload_leaves_no_body(
+                    carrier,
+                    f.candidate,
+                    &sol.theta[m],
+                    &sol.std[m],
+                ) =>
+                {
                     Some(Unconfirmed::NotPhysical)
                 }
-                None => undetermined(&f, joint_of(f.candidate)).map(Unconfirmed::Undetermined),
+                None => unphysical(&f).map(Unconfirmed::Undetermined),
             };
             why.map(|why| (m, why))
         });

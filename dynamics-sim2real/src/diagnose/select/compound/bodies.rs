@@ -70,7 +70,13 @@ pub fn without_bodiless<const N: usize>(
                     true
                 }
                 Some(_) => false,
-                None if payload_leaves_no_body(carrier, term.fit.candidate, &sol.theta[i]) => {
+                None if payload_leaves_no_body(
+                    carrier,
+                    term.fit.candidate,
+                    &sol.theta[i],
+                    &sol.std[i],
+                ) =>
+                {
                     payloads.push(t);
                     true
                 }

@@ -83,10 +83,14 @@ impl Carrier {
     }
 
     /// Whether payload term `c` fitted `theta` (a mass, and for a payload
-    /// with its centre of mass the mass times it, in the tip's frame)
-    /// leaves the carrier a physical body: its pseudo-inertia's least
-    /// eigenvalue not below `-1e-9` of its largest.
-    pub fn carries(&self, c: Candidate, theta: &[f64]) -> bool {
+    /// with its centre of mass the mass times it, in the tip's frame) with
+    /// standard deviations `std` leaves the carrier a physical body: its
+    /// pseudo-inertia's least eigenvalue not below `-1e-9` of its largest
+    /// with the centre of mass as fitted, or anywhere within two standard
+    /// deviations of it on each axis (a grid of five points an axis: the
+    /// data that leave a centre of mass loose do not say it is where no
+    /// body could give its mass).
+    pub fn carries(&self, c: Candidate, theta: &[f64], std: &[f64]) -> bool {
         let mass = theta.first().copied().unwrap_or(0.0);
         let com = match c {
             Candidate::PayloadCom => Vector3::from(payload_com(theta)),
@@ -96,22 +100,46 @@ impl Carrier {
         if !mass.is_finite() || com.iter().any(|x| !x.is_finite()) {
             return false;
         }
-        let e = pseudo_inertia(&self.with_point_mass(mass, &com)).symmetric_eigenvalues();
-        let scale = e.amax().max(1e-300);
-        e.min() >= -1e-9 * scale
+        let body = |com: &Vector3<f64>| {
+            let e = pseudo_inertia(&self.with_point_mass(mass, com)).symmetric_eigenvalues();
+            e.min() >= -1e-9 * e.amax().max(1e-300)
+        };
+        if body(&com) {
+            return true;
+        }
+        // The centre of mass's spread on each axis: its first moment's
+        // over the mass.
+        let spread = Vector3::from_fn(|i, _| match (c, std.get(i + 1)) {
+            (Candidate::PayloadCom, Some(s)) if s.is_finite() && mass != 0.0 => {
+                2.0 * s / mass.abs()
+            }
+            _ => 0.0,
+        });
+        if spread == Vector3::zeros() {
+            return false;
+        }
+        const STEPS: [f64; 5] = [-1.0, -0.5, 0.0, 0.5, 1.0];
+        STEPS.iter().any(|&a| {
+            STEPS.iter().any(|&b| {
+                STEPS
+                    .iter()
+                    .any(|&d| body(&(com + Vector3::new(a, b, d).component_mul(&spread))))
+            })
+        })
     }
 }
 
-/// Whether term `c` fitted `theta` is a payload that leaves the body
-/// carrying the tip no physical body (`carrier`: unknown, none is said
-/// not to).
+/// Whether term `c` fitted `theta` (standard deviations `std`) is a
+/// payload that leaves the body carrying the tip no physical body
+/// ([`Carrier::carries`]; `carrier` unknown: none is said not to).
 pub(in crate::diagnose) fn payload_leaves_no_body(
     carrier: Option<&Carrier>,
     c: Candidate,
     theta: &[f64],
+    std: &[f64],
 ) -> bool {
     matches!(c, Candidate::Payload | Candidate::PayloadCom)
-        && carrier.is_some_and(|k| !k.carries(c, theta))
+        && carrier.is_some_and(|k| !k.carries(c, theta, std))
 }
 
 #[cfg(test)]
@@ -122,7 +150,8 @@ mod tests {
     /// each axis), the tip 0.1 m out along z: taking 0.2 kg away at the
     /// tip leaves a body, so does adding 2 kg 0.3 m out; taking 0.296 kg
     /// away 0.18 m beyond the tip leaves 4 g with its centre of mass metres
-    /// away, no body; nor does taking more than the flange has.
+    /// away, no body, unless the data leave its centre of mass loose
+    /// enough; nor does taking more than the flange has.
     #[test]
     fn a_payload_must_leave_the_tip_body_a_body() {
         let k = Carrier {
@@ -130,23 +159,38 @@ mod tests {
             rot: Matrix3::identity(),
             at: Vector3::new(0.0, 0.0, 0.1),
         };
-        assert!(k.carries(Candidate::Payload, &[-0.2]));
-        assert!(k.carries(Candidate::PayloadCom, &[2.0, 0.0, 0.0, 0.6]));
+        assert!(k.carries(Candidate::Payload, &[-0.2], &[]));
+        assert!(k.carries(Candidate::PayloadCom, &[2.0, 0.0, 0.0, 0.6], &[]));
         let (m, c) = (-0.296, Vector3::new(0.014, -0.036, 0.18));
         let theta = [m, m * c.x, m * c.y, m * c.z];
-        assert!(!k.carries(Candidate::PayloadCom, &theta));
+        assert!(!k.carries(Candidate::PayloadCom, &theta, &[]));
+        assert!(!k.carries(Candidate::PayloadCom, &theta, &[0.01, 1e-3, 1e-3, 1e-3]));
         assert!(payload_leaves_no_body(
             Some(&k),
             Candidate::PayloadCom,
-            &theta
+            &theta,
+            &[]
         ));
-        assert!(!payload_leaves_no_body(None, Candidate::PayloadCom, &theta));
-        assert!(!k.carries(Candidate::Payload, &[-0.4]));
+        // 0.25 kg taken 0.1 m beyond the tip leaves none; with the centre
+        // of mass's height loose by 5 cm (a first moment's spread of 12.5
+        // g m), the mass could come from the tip's frame, 0.1 m from the
+        // body's: a body.
+        let theta = [-0.25, 0.0, 0.0, -0.025];
+        assert!(!k.carries(Candidate::PayloadCom, &theta, &[0.01, 1e-4, 1e-4, 1e-3]));
+        assert!(k.carries(Candidate::PayloadCom, &theta, &[0.01, 1e-4, 1e-4, 0.0125]));
+        assert!(!payload_leaves_no_body(
+            None,
+            Candidate::PayloadCom,
+            &theta,
+            &[]
+        ));
+        assert!(!k.carries(Candidate::Payload, &[-0.4], &[0.05]));
         // Other terms are not payloads.
         assert!(!payload_leaves_no_body(
             Some(&k),
             Candidate::Viscous(0),
-            &[-9.0]
+            &[-9.0],
+            &[]
         ));
     }
 
@@ -174,6 +218,6 @@ mod tests {
         );
         assert!((k.nominal[0] - 1.5).abs() < 1e-12);
         // 1 kg at the tip of a 1.5 kg rod: a body.
-        assert!(k.carries(Candidate::Payload, &[1.0]));
+        assert!(k.carries(Candidate::Payload, &[1.0], &[]));
     }
 }
