@@ -10,3 +10,13 @@ dynamics_macros::robot! {
     joint j1 = revolute(base -> upper) { transfer = [rot(q)]; }
     joint j2 = revolute(upper -> lower) { transfer = [tu(0.25), rot(q)]; }
 }
+
+dynamics_macros::robot! {
+    /// A pendulum in the vertical plane: a 1 kg rod, its centre of mass
+    /// 0.2 m from the joint.
+    pub robot Pendulum;
+    gravity = [0.0, -9.81, 0.0];
+    link base;
+    link rod { mass = 1.0; com = [0.2, 0.0, 0.0]; inertia = [1e-3, 1e-2, 1e-2]; }
+    joint j = revolute(base -> rod) { transfer = [rot_z(q)]; }
+}

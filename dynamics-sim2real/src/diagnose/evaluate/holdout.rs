@@ -32,6 +32,9 @@ pub struct Holdout<'a, const N: usize> {
     y: DVector<f64>,
     /// Per effect of the set, the joint of an encoder offset.
     offsets: Vec<Option<usize>>,
+    /// Per effect of the set, the rows it acts on where it is limited to
+    /// a window (1 inside, 0 outside).
+    windows: Vec<Option<DVector<f64>>>,
     /// What an encoder offset does to the residual as it acts.
     acts: Acts<'a>,
 }
@@ -147,6 +150,7 @@ impl<'a, const N: usize> Holdout<'a, N> {
             .collect();
         Holdout {
             h,
+            windows: vec![None; e.set.len()],
             cols,
             y,
             offsets,
@@ -165,10 +169,13 @@ impl<'a, const N: usize> Holdout<'a, N> {
         &self.y
     }
 
-    /// The free held-out columns of the effect at position `i` of the set
-    /// (limited to a window by `window.rs`).
-    pub fn free_mut(&mut self, i: usize) -> &mut [DVector<f64>] {
-        &mut self.cols[i].0
+    /// Limits the effect at position `i` of the set to the rows where
+    /// `inside` is 1 (a window found on the held-out record).
+    pub fn limit(&mut self, i: usize, inside: DVector<f64>) {
+        for col in &mut self.cols[i].0 {
+            col.component_mul_assign(&inside);
+        }
+        self.windows[i] = Some(inside);
     }
 
     /// The whitened held-out residual of the effects at positions `which`
@@ -179,7 +186,11 @@ impl<'a, const N: usize> Holdout<'a, N> {
         for (i, &w) in which.iter().enumerate() {
             if let (Some(j), Some(&d)) = (self.offsets[w], theta[i].first()) {
                 if d.is_finite() {
-                    r -= self.offset_acts(j, d);
+                    let mut acts = self.offset_acts(j, d);
+                    if let Some(inside) = &self.windows[w] {
+                        acts.component_mul_assign(inside);
+                    }
+                    r -= acts;
                 }
                 continue;
             }
@@ -288,9 +299,7 @@ pub fn limit_to_windows<const N: usize>(
             Some(w) => DVector::from_vec(inside(h, &w)),
             None => DVector::zeros(h.n()),
         };
-        for col in hold.free_mut(i) {
-            col.component_mul_assign(&m);
-        }
+        hold.limit(i, m);
     }
 }
 
@@ -298,14 +307,7 @@ pub fn limit_to_windows<const N: usize>(
 mod tests {
     use super::*;
     use crate::synth::{synthesize, SynthOptions};
-
-    dynamics_macros::robot! {
-        robot Pendulum;
-        gravity = [0.0, -9.81, 0.0];
-        link base;
-        link rod { mass = 1.0; com = [0.2, 0.0, 0.0]; inertia = [1e-3, 1e-2, 1e-2]; }
-        joint j = revolute(base -> rod) { transfer = [rot_z(q)]; }
-    }
+    use crate::test_robots::Pendulum;
 
     /// An encoder offset's column is its first-order effect: the model at
     /// the corrected positions departs from it by the offset's square (at

@@ -114,14 +114,7 @@ fn position_noise<const N: usize>(m: &Measured<N>, p: &Prepared<N>) -> SVector<f
 mod tests {
     use super::*;
     use crate::synth::{synthesize, SynthOptions};
-
-    dynamics_macros::robot! {
-        robot Pendulum;
-        gravity = [0.0, -9.81, 0.0];
-        link base;
-        link rod { mass = 1.0; com = [0.2, 0.0, 0.0]; inertia = [1e-3, 1e-2, 1e-2]; }
-        joint j = revolute(base -> rod) { transfer = [rot_z(q)]; }
-    }
+    use crate::test_robots::Pendulum;
 
     /// Effects no plant can take (taking away damping the pendulum does
     /// not have): the simulation after is left out, the fraction too, and
