@@ -66,13 +66,11 @@
 
 use nalgebra::{DVector, SVector};
 
-use super::determinacy::{undetermined, unphysical};
+use super::determinacy::undetermined;
 use super::holdout::{free_columns, limit_to_windows, offset_joint, Holdout};
 use crate::diagnose::candidates::{model_part, whitened, Candidate, Excitation, Prepared};
 use crate::diagnose::fit::Windows;
-use crate::diagnose::select::{
-    is_body, joint_fit, payload_leaves_no_body, Carrier, Explanation, Parts, Pool, Solution,
-};
+use crate::diagnose::select::{is_body, joint_fit, Explanation, Parts, Pool, Solution};
 use crate::effects::Effect;
 use dynamics_runtime::{JointKind, Robot};
 
@@ -280,7 +278,6 @@ pub fn confirm<R: Robot<N>, const N: usize>(
     windows: &Windows,
     excitation: &Excitation,
     nominal: &[SVector<f64, 10>],
-    carrier: Option<&Carrier>,
     hold_links: bool,
 ) -> Confirmed {
     let mut suggested = Vec::new();
@@ -353,9 +350,6 @@ pub fn confirm<R: Robot<N>, const N: usize>(
                 suggested.push(suggest(i, Unconfirmed::NotPhysical));
                 continue;
             }
-        } else if payload_leaves_no_body(carrier, f.candidate, &e.sol.theta[i], &e.sol.std[i]) {
-            suggested.push(suggest(i, Unconfirmed::NotPhysical));
-            continue;
         } else if let Some(why) = undetermined(&f, joint_of(f.candidate)) {
             suggested.push(suggest(i, Unconfirmed::Undetermined(why)));
             continue;
@@ -492,9 +486,7 @@ pub fn confirm<R: Robot<N>, const N: usize>(
                 _ => continue,
             };
             let f = joint_fit(pool, t, &theta, &std);
-            if undetermined(&f, joint_of(c)).is_some()
-                || payload_leaves_no_body(carrier, c, &theta, &std)
-            {
+            if undetermined(&f, joint_of(c)).is_some() {
                 continue;
             }
             best = Some(StandIn {
@@ -561,45 +553,8 @@ pub fn confirm<R: Robot<N>, const N: usize>(
             _ => suggested.push(suggest(i, why)),
         }
     }
-    // Rule 3 once more on the final fit: the effects dropped above leave
-    // the others refitted, and one of them can come to a value no robot
-    // has (an effort scale pushed to its bound, a body that is none). It
-    // goes too, with the reason, and the rest is refitted. (A value the
-    // refit leaves undetermined, or a sign-constrained one now at zero,
-    // is the report's note: its effect held on the held-out record.)
-    let (set, sol) = loop {
-        let set: Vec<usize> = keep.iter().map(|&i| all[i]).collect();
-        let sol = solve(&set);
-        let bad = set.iter().enumerate().find_map(|(m, &t)| {
-            let f = joint_fit(pool, t, &sol.theta[m], &sol.std[m]);
-            let why = match &pool.terms[t].link {
-                Some(b) => (!is_body(b, &sol.theta[m], nominal.get(b.link)))
-                    .then_some(Unconfirmed::NotPhysical),
-                None if payload_leaves_no_body(
-                    carrier,
-                    f.candidate,
-                    &sol.theta[m],
-                    &sol.std[m],
-                ) =>
-                {
-                    Some(Unconfirmed::NotPhysical)
-                }
-                None => unphysical(&f).map(Unconfirmed::Undetermined),
-            };
-            why.map(|why| (m, why))
-        });
-        let Some((m, why)) = bad else {
-            break (set, sol);
-        };
-        keep.remove(m);
-        confidence.remove(m);
-        suggested.push(Suggestion {
-            term: set[m],
-            theta: sol.theta[m].clone(),
-            std: sol.std[m].clone(),
-            why,
-        });
-    };
+    let set: Vec<usize> = keep.iter().map(|&i| all[i]).collect();
+    let sol = solve(&set);
     let rivals = keep
         .iter()
         .map(|&i| {

@@ -105,24 +105,6 @@ pub fn undetermined(f: &Fit, joint: Option<(JointKind, f64)>) -> Option<String> 
         .find_map(|(name, v, s)| why_not(kind, name, v, s, joint).map(|w| format!("`{name}`: {w}")))
 }
 
-/// The first parameter of fit `f` outside what its kind can physically be
-/// (an effort scale held at its bound, an encoder offset beyond half a
-/// turn), with the reason: a value the data may well determine, but no
-/// robot has.
-pub fn unphysical(f: &Fit) -> Option<String> {
-    let kind = f.candidate.kind();
-    f.parameters().into_iter().find_map(|(name, v, _)| {
-        match kind {
-            EffectKind::EffortScale if name == "scale" => why_not(kind, name, v, 0.0, None),
-            EffectKind::EncoderOffset if name == "offset" && v.abs() > std::f64::consts::PI => {
-                Some(format!("more than half a turn ({v:.1} rad)"))
-            }
-            _ => None,
-        }
-        .map(|w| format!("`{name}`: {w}"))
-    })
-}
-
 #[cfg(test)]
 mod tests {
     use super::*;

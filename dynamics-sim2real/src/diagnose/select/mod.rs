@@ -20,10 +20,10 @@ mod rank;
 
 pub use compound::{against_others, effects, joint_fit, Explanation};
 pub use nesting::{breakaway_data_needed, nested_rival_stands};
-pub(in crate::diagnose) use pool::{is_body, payload_leaves_no_body};
+pub(in crate::diagnose) use pool::is_body;
 #[cfg(test)]
 pub(crate) use pool::{test_pool, test_term};
-pub use pool::{Carrier, Parts, Pool, Solution};
+pub use pool::{Parts, Pool, Solution};
 
 use nalgebra::SVector;
 
@@ -45,8 +45,6 @@ pub struct Selection {
     /// The links' nominal inertial parameters (empty: the robot gives
     /// none).
     pub nominal: Vec<SVector<f64, 10>>,
-    /// The body that carries the tip (`None`: not known).
-    pub carrier: Option<Carrier>,
     /// The candidates limited in time, with their training windows.
     pub windows: Windows,
     /// Whether link inertial corrections were candidates.
@@ -79,15 +77,13 @@ pub fn select<R: Robot<N> + Clone + Sync, const N: usize>(
     // The pool holds the links' combinations: their columns are done.
     drop(plinks);
     pool.limit_to_windows(&fitted.windows, p);
-    let carrier = Carrier::of(robot, &nominal);
-    let explanation = compound::explain::<R, N>(&mut pool, p, &nominal, carrier.as_ref(), options);
+    let explanation = compound::explain::<R, N>(&mut pool, p, &nominal, options);
     let best = rank::rank(fitted.fits, p, h, &fitted.windows, options);
     Selection {
         best,
         pool,
         explanation,
         nominal,
-        carrier,
         windows: fitted.windows,
         with_links,
     }
