@@ -376,7 +376,7 @@ pub fn confirm<R: Robot<N>, const N: usize>(
         let sol = solve(&pos.iter().map(|&i| term(i)).collect::<Vec<_>>());
         let (mut inner, mut theta, mut extra) = (Vec::new(), Vec::new(), Vec::new());
         // Encoder offsets outside the set (the holdout judges the set's as
-        // they act): joint, value and first-order column.
+        // they act): joint and value.
         let mut offsets = Vec::new();
         for (m, &i) in pos.iter().enumerate() {
             let cols = if i < set_len {
