@@ -97,15 +97,23 @@ fn named(report: &Report) -> (Vec<String>, Option<f64>) {
     (others, mass)
 }
 
-/// The model's own hand taken away as a point mass at the tip: the
-/// diagnosis names a negative payload of that mass (within 10 %), in
-/// words that say it is absent, and nothing else besides friction.
+/// The hand and fingers' centre of mass in the tool frame
+/// (panda_hand_tcp, 0.1034 m beyond the hand's frame along z), m.
+fn hand_com_z() -> f64 {
+    (0.73 * 0.03 + 0.03 * 0.0584) / HAND - 0.1034
+}
+
+/// The model's own hand taken away as a point mass at its centre of mass
+/// (what leaves the body carrying the tip a physical body: the arm's last
+/// link and the hand's spread about its centre): the diagnosis names a
+/// negative payload of that mass (within 10 %), in words that say it is
+/// absent, and nothing else besides friction.
 #[test]
 fn a_hand_the_robot_lacks_is_named_as_a_negative_payload() {
     let mut effects = friction();
     effects.push(Effect::PayloadMass {
         mass: -HAND,
-        com: [0.0; 3],
+        com: [0.0, 0.0, hand_com_z()],
     });
     let (train, holdout) = records(&Panda::rigid(), &effects);
     let report = diagnosed(&train, &holdout);
@@ -141,9 +149,8 @@ fn the_arm_without_its_hand_against_the_model_with_it() {
         "payload {mass} kg, the hand {HAND} kg"
     );
     // Where the data place its centre: the hand and fingers' centre in
-    // the tool frame (panda_hand_tcp, 0.1034 m beyond the hand's frame
-    // along z): z = (0.73 x 0.03 + 0.03 x 0.0584) / 0.76 - 0.1034.
-    let com_z = (0.73 * 0.03 + 0.03 * 0.0584) / HAND - 0.1034;
+    // the tool frame.
+    let com_z = hand_com_z();
     let payload = report
         .which
         .effects

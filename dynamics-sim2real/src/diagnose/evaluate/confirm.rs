@@ -70,7 +70,9 @@ use super::determinacy::undetermined;
 use super::holdout::{free_columns, limit_to_windows, offset_joint, Holdout};
 use crate::diagnose::candidates::{model_part, whitened, Candidate, Excitation, Prepared};
 use crate::diagnose::fit::Windows;
-use crate::diagnose::select::{is_body, joint_fit, Explanation, Parts, Pool, Solution};
+use crate::diagnose::select::{
+    is_body, joint_fit, payload_leaves_no_body, Carrier, Explanation, Parts, Pool, Solution,
+};
 use crate::effects::Effect;
 use dynamics_runtime::{JointKind, Robot};
 
@@ -278,6 +280,7 @@ pub fn confirm<R: Robot<N>, const N: usize>(
     windows: &Windows,
     excitation: &Excitation,
     nominal: &[SVector<f64, 10>],
+    carrier: Option<&Carrier>,
     hold_links: bool,
 ) -> Confirmed {
     let mut suggested = Vec::new();
@@ -350,6 +353,9 @@ pub fn confirm<R: Robot<N>, const N: usize>(
                 suggested.push(suggest(i, Unconfirmed::NotPhysical));
                 continue;
             }
+        } else if payload_leaves_no_body(carrier, f.candidate, &e.sol.theta[i], &e.sol.std[i]) {
+            suggested.push(suggest(i, Unconfirmed::NotPhysical));
+            continue;
         } else if let Some(why) = undetermined(&f, joint_of(f.candidate)) {
             suggested.push(suggest(i, Unconfirmed::Undetermined(why)));
             continue;
@@ -486,7 +492,9 @@ pub fn confirm<R: Robot<N>, const N: usize>(
                 _ => continue,
             };
             let f = joint_fit(pool, t, &theta, &std);
-            if undetermined(&f, joint_of(c)).is_some() {
+            if undetermined(&f, joint_of(c)).is_some()
+                || payload_leaves_no_body(carrier, c, &theta, &std)
+            {
                 continue;
             }
             best = Some(StandIn {

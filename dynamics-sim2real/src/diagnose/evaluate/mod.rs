@@ -110,6 +110,7 @@ pub fn evaluate<'a, R: Robot<N> + Clone + Sync, const N: usize>(
         &selection.windows,
         &records.excitation,
         &selection.nominal,
+        selection.carrier.as_ref(),
         hold_links,
     );
     if let Some(calibration) = &options.calibration {

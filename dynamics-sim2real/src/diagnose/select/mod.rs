@@ -20,10 +20,10 @@ mod rank;
 
 pub use compound::{against_others, effects, joint_fit, Explanation};
 pub use nesting::{breakaway_data_needed, nested_rival_stands};
-pub(in crate::diagnose) use pool::is_body;
+pub(in crate::diagnose) use pool::{is_body, payload_leaves_no_body};
 #[cfg(test)]
 pub(crate) use pool::{test_pool, test_term};
-pub use pool::{Parts, Pool, Solution};
+pub use pool::{Carrier, Parts, Pool, Solution};
 
 use nalgebra::SVector;
 
@@ -36,7 +36,8 @@ use dynamics_runtime::Robot;
 /// What the selection chose: the single-effect ranking and the compound
 /// explanation over the pool it was chosen from.
 pub struct Selection {
-    /// The best variant per (kind, place), best first (`rank/`).
+    /// The best variant per (kind, place), best first (`rank/`); no
+    /// payload that leaves the tip's carrier no physical body.
     pub best: Vec<Fit>,
     /// Every fitted term as whitened columns and their Gram matrix.
     pub pool: Pool,
@@ -45,6 +46,8 @@ pub struct Selection {
     /// The links' nominal inertial parameters (empty: the robot gives
     /// none).
     pub nominal: Vec<SVector<f64, 10>>,
+    /// The body that carries the tip (`None`: not known).
+    pub carrier: Option<Carrier>,
     /// The candidates limited in time, with their training windows.
     pub windows: Windows,
     /// Whether link inertial corrections were candidates.
@@ -77,13 +80,21 @@ pub fn select<R: Robot<N> + Clone + Sync, const N: usize>(
     // The pool holds the links' combinations: their columns are done.
     drop(plinks);
     pool.limit_to_windows(&fitted.windows, p);
-    let explanation = compound::explain::<R, N>(&mut pool, p, &nominal, options);
-    let best = rank::rank(fitted.fits, p, h, &fitted.windows, options);
+    let carrier = Carrier::of(robot, &nominal);
+    let explanation = compound::explain::<R, N>(&mut pool, p, &nominal, carrier.as_ref(), options);
+    // A payload that would leave the tip's carrier no body is no single
+    // effect either: the ranking is what the user reads beside the
+    // explanation, which does not name it (`pool/carrier.rs`).
+    let best = rank::rank(fitted.fits, p, h, &fitted.windows, options)
+        .into_iter()
+        .filter(|f| !payload_leaves_no_body(carrier.as_ref(), f.candidate, &f.theta, &f.std))
+        .collect();
     Selection {
         best,
         pool,
         explanation,
         nominal,
+        carrier,
         windows: fitted.windows,
         with_links,
     }

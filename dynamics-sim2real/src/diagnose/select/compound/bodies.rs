@@ -13,12 +13,16 @@
 //! until the set's link corrections are bodies (at most [`BODY_ROUNDS`]
 //! times). The links left out are reported as suggestions with the fit
 //! that asked for them. With `hold_links` they are held to the nearest
-//! body instead (`Pool::solve_physical`) and nothing is left out here.
+//! body instead (`Pool::solve_physical`) and no link is left out here.
+//!
+//! A payload is a change of the body that carries the tip: one that leaves
+//! that body no physical body (`pool/carrier.rs`) leaves the candidates
+//! the same way (with `hold_links` too: a payload is not held).
 
 use nalgebra::SVector;
 
 use super::select::select_except;
-use crate::diagnose::select::pool::{is_body, Pool};
+use crate::diagnose::select::pool::{is_body, payload_leaves_no_body, Carrier, Pool};
 use crate::diagnose::Options;
 
 /// Rounds of leaving links out at most.
@@ -37,28 +41,48 @@ pub struct Bodiless {
 }
 
 /// `set` with every link correction that leaves no physical body (links
-/// of `nominal` parameters) left out and the selection resumed without
-/// the terms of those links; the corrections left out, in the order found.
+/// of `nominal` parameters) and every payload that leaves the tip's
+/// `carrier` none left out, and the selection resumed without the terms
+/// of those links and without those payloads; the terms left out, in the
+/// order found.
 pub fn without_bodiless<const N: usize>(
     pool: &Pool,
     mut set: Vec<usize>,
     nominal: &[SVector<f64, 10>],
+    carrier: Option<&Carrier>,
     options: &Options,
 ) -> (Vec<usize>, Vec<Bodiless>) {
     let mut left_out: Vec<Bodiless> = Vec::new();
-    if options.hold_links || nominal.is_empty() {
+    let links_judged = !options.hold_links && !nominal.is_empty();
+    if !links_judged && carrier.is_none() {
         return (set, left_out);
     }
     let mut banned: Vec<usize> = Vec::new();
     for _ in 0..BODY_ROUNDS {
         let sol = pool.solve(&set);
         let mut links: Vec<usize> = Vec::new();
+        let mut payloads: Vec<usize> = Vec::new();
         for (i, &t) in set.iter().enumerate() {
-            let Some(b) = pool.terms[t].link.as_ref() else {
-                continue;
+            let term = &pool.terms[t];
+            let bodiless = match term.link.as_ref() {
+                Some(b) if links_judged && !is_body(b, &sol.theta[i], nominal.get(b.link)) => {
+                    links.push(b.link);
+                    true
+                }
+                Some(_) => false,
+                None if payload_leaves_no_body(
+                    carrier,
+                    term.fit.candidate,
+                    &sol.theta[i],
+                    &sol.std[i],
+                ) =>
+                {
+                    payloads.push(t);
+                    true
+                }
+                None => false,
             };
-            if !is_body(b, &sol.theta[i], nominal.get(b.link)) {
-                links.push(b.link);
+            if bodiless {
                 left_out.push(Bodiless {
                     term: t,
                     theta: sol.theta[i].clone(),
@@ -66,9 +90,10 @@ pub fn without_bodiless<const N: usize>(
                 });
             }
         }
-        if links.is_empty() {
+        if links.is_empty() && payloads.is_empty() {
             break;
         }
+        banned.extend(payloads);
         banned.extend((0..pool.terms.len()).filter(|&t| {
             pool.terms[t]
                 .link
@@ -137,7 +162,7 @@ mod tests {
         for i in [4, 7, 9] {
             nominal[i] = 0.01;
         }
-        let (set, left_out) = without_bodiless::<2>(&pool, set.clone(), &[nominal], &options);
+        let (set, left_out) = without_bodiless::<2>(&pool, set.clone(), &[nominal], None, &options);
         assert_eq!(set, vec![1]);
         match &left_out[..] {
             [b] => {
@@ -150,7 +175,7 @@ mod tests {
             hold_links: true,
             ..Options::default()
         };
-        let (kept, none) = without_bodiless::<2>(&pool, vec![0], &[nominal], &held);
+        let (kept, none) = without_bodiless::<2>(&pool, vec![0], &[nominal], None, &held);
         assert_eq!(kept, vec![0]);
         assert!(none.is_empty());
     }

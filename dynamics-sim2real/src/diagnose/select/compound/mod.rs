@@ -50,7 +50,7 @@ use rayon::prelude::*;
 use super::criterion::tie_key;
 use super::nesting::{nested_rival_stands, nesting, simpler};
 use super::pool::prior::STRENGTHS;
-use super::pool::{Pool, Solution};
+use super::pool::{Carrier, Pool, Solution};
 use crate::diagnose::candidates::{Candidate, Friction, Prepared};
 use crate::diagnose::fit::{fit_against, fixed_column_against, Against, Fit};
 use crate::diagnose::Options;
@@ -191,6 +191,7 @@ pub fn explain<R: Robot<N>, const N: usize>(
     pool: &mut Pool,
     p: &Prepared<N>,
     nominal: &[SVector<f64, 10>],
+    carrier: Option<&Carrier>,
     options: &Options,
 ) -> Explanation {
     let mut set = select::<N>(pool, vec![], options);
@@ -253,9 +254,9 @@ pub fn explain<R: Robot<N>, const N: usize>(
         }
         set = next;
     }
-    // Link corrections that leave no physical body: out, and the
-    // selection resumes without them (`bodies.rs`).
-    let (mut set, bodiless) = without_bodiless::<N>(pool, set, nominal, options);
+    // Link corrections and payloads that leave no physical body: out, and
+    // the selection resumes without them (`bodies.rs`).
+    let (mut set, bodiless) = without_bodiless::<N>(pool, set, nominal, carrier, options);
     // Parsimony once more: a richer nested term the simpler one at its
     // place now fits within the nesting margin gives way to it, and so
     // does a motor side where the rigid rotor in its stead leaves its joint

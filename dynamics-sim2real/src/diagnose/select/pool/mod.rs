@@ -21,12 +21,15 @@ use cols::Cols;
 use prior::{weight, Prior};
 
 mod build;
+mod carrier;
 mod cols;
 mod physical;
 pub mod prior;
 mod solve;
 mod split;
 mod windows;
+pub(in crate::diagnose) use carrier::payload_leaves_no_body;
+pub use carrier::Carrier;
 pub(in crate::diagnose) use physical::is_body;
 #[cfg(test)]
 use physical::leaves_a_body;
