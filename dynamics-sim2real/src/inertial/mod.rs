@@ -52,6 +52,13 @@ fn origin_inertia(pi: &SVector<f64, 10>) -> Matrix3<f64> {
     )
 }
 
+/// The ten parameters of a point mass `m` at `at` in the frame (`m` may be
+/// negative: a point mass taken away).
+pub(crate) fn point_mass(m: f64, at: &Vector3<f64>) -> SVector<f64, 10> {
+    let i = (Matrix3::identity() * at.norm_squared() - at * at.transpose()) * m;
+    parameters(m, at * m, &i)
+}
+
 /// The ten parameters of mass `m`, first moments `h` (`m c`) and the
 /// inertia `i` about the frame origin: the inverse of [`origin_inertia`]
 /// and the first four entries.

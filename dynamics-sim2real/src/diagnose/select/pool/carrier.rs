@@ -15,7 +15,7 @@ use nalgebra::{Matrix3, SVector, Vector3};
 
 use crate::diagnose::candidates::{payload_com, Candidate};
 use crate::effects::Tip;
-use crate::inertial::pseudo_inertia;
+use crate::inertial::{point_mass, pseudo_inertia};
 use dynamics_runtime::Robot;
 
 /// The body that carries the tip: its nominal parameters (Pinocchio's
@@ -65,21 +65,7 @@ impl Carrier {
     /// The carrier's parameters with a point mass `mass` at `com` in the
     /// tip's frame.
     pub fn with_point_mass(&self, mass: f64, com: &Vector3<f64>) -> SVector<f64, 10> {
-        let p = self.at + self.rot * com;
-        let s = p.norm_squared();
-        let point = SVector::<f64, 10>::from([
-            mass,
-            mass * p.x,
-            mass * p.y,
-            mass * p.z,
-            mass * (s - p.x * p.x),
-            -mass * p.x * p.y,
-            mass * (s - p.y * p.y),
-            -mass * p.x * p.z,
-            -mass * p.y * p.z,
-            mass * (s - p.z * p.z),
-        ]);
-        self.nominal + point
+        self.nominal + point_mass(mass, &(self.at + self.rot * com))
     }
 
     /// Whether payload term `c` fitted `theta` (a mass, and for a payload
