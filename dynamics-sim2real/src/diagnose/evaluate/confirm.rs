@@ -19,7 +19,10 @@
 //!    reason; so is a link correction that leaves no physical body, unless
 //!    [`Options::hold_links`](crate::diagnose::Options::hold_links): it is
 //!    then held to the nearest physical body in the metric of the data
-//!    (`Pool::solve_physical`) in this test and those below;
+//!    (`Pool::solve_physical`) in this test and those below. The
+//!    effects that held, refitted together once the tests below are done,
+//!    are judged so again (an effort scale that stood in for a dropped
+//!    effect can go to its bound there), and the rest tested again;
 //! 4. every other effect must lower the held-out record's residual, the
 //!    others refitted on the training record without it, by more than the
 //!    sensor noise could: `(sse_without - sse_with) / tau` (sums of squares
@@ -538,6 +541,43 @@ pub fn confirm<R: Robot<N>, const N: usize>(
         confidence = c2;
         dropped.extend(d2);
     }
+    // Rule 3 on the set's own fit: with the effects that did not hold gone,
+    // the rest refitted may take a value where no user can act on it (an
+    // effort scale to its bound, where it stood in for what was dropped).
+    // Such an effect is a suggestion with the reason, and the rest are
+    // tested again. Link corrections are judged as held above.
+    let (keep, confidence, set, sol) = loop {
+        let set: Vec<usize> = keep.iter().map(|&i| all[i]).collect();
+        let sol = solve(&set);
+        let undone = set.iter().enumerate().find_map(|(m, &t)| {
+            let term = &pool.terms[t];
+            if term.link.is_some() {
+                return None;
+            }
+            let (theta, std) = (sol.theta.get(m)?, sol.std.get(m)?);
+            let f = joint_fit(pool, t, theta, std);
+            undetermined(&f, joint_of(f.candidate)).map(|why| (m, why))
+        });
+        let Some((m, why)) = undone else {
+            break (keep, confidence, set, sol);
+        };
+        suggested.push(Suggestion {
+            term: set[m],
+            theta: sol.theta[m].clone(),
+            std: sol.std[m].clone(),
+            why: Unconfirmed::Undetermined(why),
+        });
+        keep.remove(m);
+        let (k2, c2, d2) = held_out_test(
+            keep,
+            |i| k_of(&all, i),
+            |pos| sse_of(&all, &outside, None, pos),
+            &scale,
+        );
+        keep = k2;
+        confidence = c2;
+        dropped.extend(d2);
+    };
     for (i, why) in dropped {
         let why = match why {
             Unconfirmed::Simpler {
@@ -561,8 +601,6 @@ pub fn confirm<R: Robot<N>, const N: usize>(
             _ => suggested.push(suggest(i, why)),
         }
     }
-    let set: Vec<usize> = keep.iter().map(|&i| all[i]).collect();
-    let sol = solve(&set);
     let rivals = keep
         .iter()
         .map(|&i| {

@@ -49,13 +49,17 @@ pub fn ranked_entry<R: Robot<N>, const N: usize>(
 }
 
 /// A Stribeck fit's [`breakaway_data_needed`], from its Coulomb level and
-/// breakaway excess.
+/// breakaway excess; none where the data do not determine the Coulomb
+/// level (its spread above its value): a tenth of it is then no yardstick.
 fn data_needed(f: &Fit) -> Option<f64> {
     if !matches!(f.candidate, Candidate::Stribeck(..)) {
         return None;
     }
     let p = f.parameters();
     let get = |name: &str| p.iter().find(|x| x.0 == name).map(|x| (x.1, x.2));
-    let ((fc, _), (x, s)) = (get("fc")?, get("fs_minus_fc")?);
+    let ((fc, fc_std), (x, s)) = (get("fc")?, get("fs_minus_fc")?);
+    if !(fc_std <= fc.abs()) {
+        return None;
+    }
     breakaway_data_needed(fc, x, s)
 }

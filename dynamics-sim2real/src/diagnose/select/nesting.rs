@@ -121,6 +121,12 @@ pub fn extra(richer: EffectKind, parameters: &[(&str, f64, f64)]) -> Extra {
 /// interval rule needs.
 pub const DATA_MARGIN: f64 = 1.5;
 
+/// Beyond this many times the data of the same kind, a longer run is no
+/// way to settle a breakaway excess (a hundred times a 10 s record is
+/// most of a day): the motion must change instead (slow reversals, the
+/// verdict's separating motion), and no figure is given.
+pub const MOST_DATA: f64 = 100.0;
+
 /// How many times as much data of the same kind would settle a
 /// breakaway excess `excess +- std` over a Coulomb level `fc` (the
 /// Stribeck fit's `fs_minus_fc` and `fc`): the interval of
@@ -128,7 +134,8 @@ pub const DATA_MARGIN: f64 = 1.5;
 /// root of the data's length, must leave out zero or every meaningful
 /// value ([`MEANINGFUL_BREAKAWAY`] of `fc`), with [`DATA_MARGIN`] to
 /// spare. One where these data already settle it; `None` where they give
-/// no spread or no Coulomb level to judge by.
+/// no spread or no Coulomb level to judge by, or where more than
+/// [`MOST_DATA`] times the data would be needed.
 ///
 /// ```
 /// use dynamics_sim2real::diagnose::breakaway_data_needed;
@@ -140,6 +147,9 @@ pub const DATA_MARGIN: f64 = 1.5;
 /// // Settled already: absent (+- 0.01) or present (0.5 +- 0.05).
 /// assert_eq!(breakaway_data_needed(1.0, 0.0, 0.01), Some(1.0));
 /// assert_eq!(breakaway_data_needed(1.0, 0.5, 0.05), Some(1.0));
+/// // Held at zero to +- 12 over a level of 1: millions of times the
+/// // data, out of reach of a longer run.
+/// assert_eq!(breakaway_data_needed(1.0, 0.0, 12.0), None);
 /// ```
 pub fn breakaway_data_needed(fc: f64, excess: f64, std: f64) -> Option<f64> {
     let meaningful = MEANINGFUL_BREAKAWAY * fc.abs();
@@ -157,7 +167,7 @@ pub fn breakaway_data_needed(fc: f64, excess: f64, std: f64) -> Option<f64> {
         (None, Some(p)) => p,
         (None, None) => return None,
     };
-    Some(f.max(1.0))
+    (f <= MOST_DATA).then_some(f.max(1.0))
 }
 
 /// A fitted effect: its kind and its parameters (name, value, standard
