@@ -21,8 +21,9 @@
 //!    then held to the nearest physical body in the metric of the data
 //!    (`Pool::solve_physical`) in this test and those below. The
 //!    effects that held, refitted together once the tests below are done,
-//!    are judged so again (an effort scale that stood in for a dropped
-//!    effect can go to its bound there), and the rest tested again;
+//!    must still be physical (an effort scale that stood in for a dropped
+//!    effect can go to its bound there: a suggestion, and the rest tested
+//!    again);
 //! 4. every other effect must lower the held-out record's residual, the
 //!    others refitted on the training record without it, by more than the
 //!    sensor noise could: `(sse_without - sse_with) / tau` (sums of squares
@@ -69,7 +70,7 @@
 
 use nalgebra::{DVector, SVector};
 
-use super::determinacy::undetermined;
+use super::determinacy::{beyond_physical, undetermined};
 use super::holdout::{free_columns, limit_to_windows, offset_joint, Holdout};
 use crate::diagnose::candidates::{model_part, whitened, Candidate, Excitation, Prepared};
 use crate::diagnose::fit::Windows;
@@ -542,10 +543,12 @@ pub fn confirm<R: Robot<N>, const N: usize>(
         dropped.extend(d2);
     }
     // Rule 3 on the set's own fit: with the effects that did not hold gone,
-    // the rest refitted may take a value where no user can act on it (an
+    // the rest refitted may take a value outside what its kind can be (an
     // effort scale to its bound, where it stood in for what was dropped).
     // Such an effect is a suggestion with the reason, and the rest are
-    // tested again. Link corrections are judged as held above.
+    // tested again. A value the refit leaves undetermined is reported with
+    // its note (the effect holds on the held-out record as a whole); link
+    // corrections are judged as held above.
     let (keep, confidence, set, sol) = loop {
         let set: Vec<usize> = keep.iter().map(|&i| all[i]).collect();
         let sol = solve(&set);
@@ -556,7 +559,7 @@ pub fn confirm<R: Robot<N>, const N: usize>(
             }
             let (theta, std) = (sol.theta.get(m)?, sol.std.get(m)?);
             let f = joint_fit(pool, t, theta, std);
-            undetermined(&f, joint_of(f.candidate)).map(|why| (m, why))
+            beyond_physical(&f, joint_of(f.candidate)).map(|why| (m, why))
         });
         let Some((m, why)) = undone else {
             break (keep, confidence, set, sol);

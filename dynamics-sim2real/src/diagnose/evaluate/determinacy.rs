@@ -72,13 +72,30 @@ pub fn why_not(
     if !(grid || std.is_finite() && std <= value.abs()) {
         return Some(on_data("not identifiable"));
     }
+    beyond_its_kind(kind, name, value, joint)
+}
+
+/// Why the value `value` of parameter `name` of an effect of `kind` (at a
+/// joint of `joint`, as for [`why_not`]) is outside what its kind can
+/// physically be, however firmly the data hold it: an encoder offset
+/// beyond half a turn, an effort scale at its bound.
+fn beyond_its_kind(
+    kind: EffectKind,
+    name: &str,
+    value: f64,
+    joint: Option<(JointKind, f64)>,
+) -> Option<String> {
     match kind {
         EffectKind::EncoderOffset => match joint.map(|j| j.0) {
             Some(JointKind::Prismatic) => None,
-            _ if value.abs() > std::f64::consts::PI => Some(on_data(&format!(
-                "more than half a turn ({:.1} rad): not identifiable",
-                value
-            ))),
+            _ if value.abs() > std::f64::consts::PI => {
+                let moves = joint.map_or(String::new(), |(_, range)| {
+                    format!(": the joint moves {range:.3} rad")
+                });
+                Some(format!(
+                    "more than half a turn ({value:.1} rad): not identifiable on these data{moves}"
+                ))
+            }
             _ => None,
         },
         EffectKind::EffortScale
@@ -91,6 +108,19 @@ pub fn why_not(
         }
         _ => None,
     }
+}
+
+/// The first parameter of fit `f` (at a joint of `joint`, as for
+/// [`why_not`]) whose value is outside what its kind can physically be,
+/// with the reason; a value the data merely do not determine is not one.
+pub fn beyond_physical(f: &Fit, joint: Option<(JointKind, f64)>) -> Option<String> {
+    let kind = f.candidate.kind();
+    f.parameters()
+        .into_iter()
+        .filter(|(_, v, _)| v.is_finite())
+        .find_map(|(name, v, _)| {
+            beyond_its_kind(kind, name, v, joint).map(|w| format!("`{name}`: {w}"))
+        })
 }
 
 /// The first parameter of fit `f` (at a joint of `joint`, as for
@@ -158,5 +188,25 @@ mod tests {
         let held = why_not(EffectKind::EffortScale, "scale", 1.5, 0.0, None);
         assert!(held.unwrap().contains("held at its bound"));
         assert!(why_not(EffectKind::EffortScale, "scale", 1.1, 0.01, None).is_none());
+    }
+
+    /// What a kind cannot physically be is judged on the value alone; a
+    /// value the data merely leave undetermined, or hold at zero, is not
+    /// beyond its kind (the final fit's re-check in `confirm.rs`).
+    #[test]
+    fn beyond_its_kind_is_a_value_no_spread_can_mend() {
+        let j = Some((JointKind::Revolute, 0.5));
+        let bound = beyond_its_kind(EffectKind::EffortScale, "scale", 0.5, j).unwrap();
+        assert!(bound.contains("held at its bound (0.50)"), "{bound}");
+        let turn = beyond_its_kind(EffectKind::EncoderOffset, "offset", 4.0, j).unwrap();
+        assert_eq!(
+            turn,
+            why_not(EffectKind::EncoderOffset, "offset", 4.0, 0.1, j).unwrap()
+        );
+        assert!(beyond_its_kind(EffectKind::EffortScale, "scale", 0.6, j).is_none());
+        assert!(beyond_its_kind(EffectKind::JointSpring, "stiffness", 0.0, j).is_none());
+        assert!(why_not(EffectKind::JointSpring, "stiffness", 0.0, 0.1, j).is_some());
+        let prismatic = Some((JointKind::Prismatic, 0.5));
+        assert!(beyond_its_kind(EffectKind::EncoderOffset, "offset", 4.0, prismatic).is_none());
     }
 }

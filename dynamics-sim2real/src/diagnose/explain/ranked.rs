@@ -58,7 +58,7 @@ fn data_needed(f: &Fit) -> Option<f64> {
     let p = f.parameters();
     let get = |name: &str| p.iter().find(|x| x.0 == name).map(|x| (x.1, x.2));
     let ((fc, fc_std), (x, s)) = (get("fc")?, get("fs_minus_fc")?);
-    if !(fc_std <= fc.abs()) {
+    if fc_std.is_nan() || fc_std > fc.abs() {
         return None;
     }
     breakaway_data_needed(fc, x, s)
