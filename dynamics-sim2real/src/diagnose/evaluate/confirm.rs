@@ -13,7 +13,11 @@
 //!    delay by more than two standard deviations ([`helps`]: the common
 //!    delay is then shown to help the model's own part). A lag of what
 //!    the model misses alone (a friction lagging its velocity reversals)
-//!    is not a late stream: a suggestion, with both lags;
+//!    is not a late stream: a suggestion, with both lags. An effort scale
+//!    must likewise be one of the whole effort: its column split into the
+//!    model's effort beside gravity and the gravity effort, the common
+//!    scale must help each part the data determine ([`whole_scale`]); a
+//!    mass the model places wrong scales the gravity effort alone;
 //! 3. an effect whose parameters the data do not determine, or that are
 //!    not physical (`determinacy.rs`), is not named: a suggestion, with the
 //!    reason; so is a link correction that leaves no physical body, unless
@@ -165,6 +169,19 @@ pub enum Unconfirmed {
         /// with its standard deviation, s.
         lags: Parts,
     },
+    /// An effort scale that is not one of the whole effort: its column
+    /// split into the model's effort beside gravity (inertia, Coriolis, the
+    /// drive) and the gravity effort (the rest of the set refitted with
+    /// both), the common scale not shown to act on every part the data
+    /// determine ([`whole_scale`]); a sensor's scale acts on both, a mass
+    /// the model places wrong on gravity's part alone.
+    PartOfTheEffort {
+        /// The common scale minus one, as fitted.
+        common: f64,
+        /// The split's scales minus one: the effort beside gravity and the
+        /// gravity effort, each with its standard deviation.
+        scales: Parts,
+    },
 }
 
 /// An effect left out of the explanation: its pool term, its fit in the
@@ -245,6 +262,21 @@ pub fn correlation_time(w: &[f64], spacing: usize) -> f64 {
 /// the within-a-sample rule asks of the delay itself).
 pub fn helps(lag: f64, std: f64, common: f64) -> bool {
     lag - 2.0 * std > 0.5 * common
+}
+
+/// Whether an effort scale fitted as `common` (the scale minus one) acts
+/// on the whole effort, given its column's two parts (the effort beside
+/// gravity, and gravity's) fitted apart: the common scale must help every
+/// part whose scale the data determine well enough that the test could
+/// pass (a spread below a quarter of the common), as [`helps`] asks of a
+/// delay's part. A part the data do not determine (gravity about a
+/// vertical axis, a joint barely accelerated) tells nothing either way.
+pub fn whole_scale(common: f64, parts: &Parts) -> bool {
+    let sign = common.signum();
+    [parts.part, parts.rest]
+        .into_iter()
+        .filter(|&(_, std)| std < 0.25 * common.abs())
+        .all(|(v, std)| helps(sign * v, std, sign * common))
 }
 
 /// The lags of the two parts of the delay at position `at` of `set`
@@ -349,6 +381,26 @@ pub fn confirm<R: Robot<N>, const N: usize>(
             };
             if let Some(lags) = split.filter(|s| !helps(s.part.0, s.part.1, common)) {
                 suggested.push(suggest(i, Unconfirmed::NotTheWholeEffort { common, lags }));
+                continue;
+            }
+        }
+        if let Candidate::EffortScale(j) = f.candidate {
+            let common = e.sol.theta[i].first().copied().unwrap_or(0.0);
+            let beside_gravity = |k: usize| {
+                let mut v = SVector::<f64, N>::zeros();
+                v[j] = p.sig.model[k][j] - robot.gravity(&p.sig.q(k))[j];
+                v
+            };
+            let split = model_lag(
+                pool,
+                &e.set,
+                i,
+                &whitened(p, beside_gravity),
+                inflate,
+                solve_in,
+            );
+            if let Some(scales) = split.filter(|s| !whole_scale(common, s)) {
+                suggested.push(suggest(i, Unconfirmed::PartOfTheEffort { common, scales }));
                 continue;
             }
         }
@@ -1023,6 +1075,29 @@ mod tests {
         assert!(common > 0.2 * delay, "{common}");
         assert!(lags.part.0.abs() < 1e-3 && (lags.rest.0 - delay).abs() < 1e-3);
         assert!(not_shown, "{common} {lags:?}");
+    }
+
+    /// A sensor's gain scales both parts of the effort; a scale of one
+    /// part alone is not one. A part the data do not determine (a spread
+    /// of a quarter of the common scale or more) does not count.
+    #[test]
+    fn an_effort_scale_must_act_on_each_part_the_data_determine() {
+        let parts = |part: (f64, f64), rest: (f64, f64)| Parts { part, rest };
+        // -5 % on both parts, well determined.
+        assert!(whole_scale(-0.05, &parts((-0.048, 0.004), (-0.051, 0.002))));
+        // The KUKA's lwr_3_joint on record 3: the effort beside gravity
+        // -50 %, gravity's -2.8 %, for a common -6.7 %.
+        assert!(!whole_scale(
+            -0.067,
+            &parts((-0.505, 0.020), (-0.0275, 0.0021))
+        ));
+        // Gravity about a vertical axis: its part undetermined, no verdict.
+        assert!(whole_scale(
+            -0.17,
+            &parts((-0.175, 0.007), (-8.8e13, 5.2e13))
+        ));
+        // The other sign: +8 %, gravity's part alone at +8 %.
+        assert!(!whole_scale(0.08, &parts((0.001, 0.005), (0.08, 0.004))));
     }
 
     #[test]

@@ -216,6 +216,7 @@ pub fn suggested<R: Robot<N>, const N: usize>(
                     "refines the baseline's calibration (its spread on this friction {s:.3e}): no change that the calibration would have seen"
                 ),
                 Unconfirmed::NotTheWholeEffort { common, lags } => not_the_whole(common, lags),
+                Unconfirmed::PartOfTheEffort { common, scales } => part_of_the_effort(common, scales),
                 Unconfirmed::Simpler {
                     rival,
                     extra,
@@ -294,6 +295,20 @@ fn not_the_whole(common: &f64, lags: &Parts) -> String {
         ms(lags.part),
         ms(lags.rest),
         1e3 * *common
+    )
+}
+
+/// Why an effort scale that acts on a part of the effort is not one.
+fn part_of_the_effort(common: &f64, scales: &Parts) -> String {
+    let pc = |(v, s): (f64, f64)| format!("{:+.1} +- {:.1} %", 100.0 * v, 100.0 * s);
+    format!(
+        "not a scale of the whole effort: its column split, the effort beside gravity (inertia, Coriolis, the drive) \
+         is scaled {} and the gravity effort {}; the common {:+.1} % is not shown to act on each part the data determine \
+         (above half of it by two standard deviations), as a sensor's scale would: what scales one part alone is \
+         a model error of that part (a mass the model places wrong scales the gravity effort)",
+        pc(scales.part),
+        pc(scales.rest),
+        100.0 * *common
     )
 }
 
