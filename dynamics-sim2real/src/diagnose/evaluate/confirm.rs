@@ -488,12 +488,16 @@ pub fn confirm<R: Robot<N>, const N: usize>(
         level,
     };
     let k_of = |all: &[usize], i: usize| all.get(i).map_or(0, |&t| pool.terms[t].k);
-    let (mut keep, mut confidence, mut dropped) = held_out_test(
-        keep,
-        |i| k_of(&all, i),
-        |pos| sse_of(&all, &outside, None, pos),
-        &scale,
-    );
+    // The held-out test of the effects at positions `keep` of `all`.
+    let retest = |keep: Vec<usize>, all: &[usize], outside: &[Vec<DVector<f64>>]| {
+        held_out_test(
+            keep,
+            |i| k_of(all, i),
+            |pos| sse_of(all, outside, None, pos),
+            &scale,
+        )
+    };
+    let (mut keep, mut confidence, mut dropped) = retest(keep, &all, &outside);
     // Rule 6: a link correction named must earn its parameters over every
     // simpler term of the pool in its place, not only over those of the set.
     let stand_in = |all: &[usize], outside: &[Vec<DVector<f64>>], keep: &[usize], p: usize| {
@@ -584,12 +588,7 @@ pub fn confirm<R: Robot<N>, const N: usize>(
                 chance: s.rival.chance * tau / gap,
             },
         ));
-        let (k2, c2, d2) = held_out_test(
-            keep,
-            |i| k_of(&all, i),
-            |pos| sse_of(&all, &outside, None, pos),
-            &scale,
-        );
+        let (k2, c2, d2) = retest(keep, &all, &outside);
         keep = k2;
         confidence = c2;
         dropped.extend(d2);
@@ -623,12 +622,7 @@ pub fn confirm<R: Robot<N>, const N: usize>(
             why: Unconfirmed::Undetermined(why),
         });
         keep.remove(m);
-        let (k2, c2, d2) = held_out_test(
-            keep,
-            |i| k_of(&all, i),
-            |pos| sse_of(&all, &outside, None, pos),
-            &scale,
-        );
+        let (k2, c2, d2) = retest(keep, &all, &outside);
         keep = k2;
         confidence = c2;
         dropped.extend(d2);
