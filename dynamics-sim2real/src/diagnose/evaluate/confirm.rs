@@ -279,8 +279,9 @@ pub fn whole_scale(common: f64, parts: &Parts) -> bool {
         .all(|(v, std)| helps(sign * v, std, sign * common))
 }
 
-/// The lags of the two parts of the delay at position `at` of `set`
-/// (column split into `part`, whitened over the pool's rows, and the rest;
+/// The parameters of the two parts of the one-parameter term at position
+/// `at` of `set` (a delay's lags, an effort scale's scales; its column
+/// split into `part`, whitened over the pool's rows, and the rest;
 /// [`Pool::split_off`]), the set refitted by `solve`, their standard
 /// deviations times `inflate` (the rows counted as the noise through the
 /// smoothing leaves them independent).
