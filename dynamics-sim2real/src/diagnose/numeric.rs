@@ -112,6 +112,27 @@ pub fn aicc(sse: f64, n: usize, k: usize) -> f64 {
     n * (sse.max(1e-300) / n).ln() + 2.0 * kf + corr
 }
 
+/// Integrated autocorrelation time, in rows `spacing` samples apart, of
+/// white noise through the smoothing filter of weights `w`: `1 + 2 sum
+/// rho(l spacing)` over the lags where the filtered noise is correlated,
+/// `rho(m) = sum w_i w_(i+m) / sum w^2` (for rows one sample apart,
+/// `(sum w)^2 / sum w^2`; 1 for rows a filter width apart).
+pub fn correlation_time(w: &[f64], spacing: usize) -> f64 {
+    let s2: f64 = w.iter().map(|x| x * x).sum();
+    if s2 <= 0.0 || !s2.is_finite() {
+        return 1.0;
+    }
+    let step = spacing.max(1);
+    let mut tau = 1.0;
+    let mut lag = step;
+    while lag < w.len() {
+        let c: f64 = w.iter().zip(&w[lag..]).map(|(a, b)| a * b).sum();
+        tau += 2.0 * c / s2;
+        lag += step;
+    }
+    tau.max(1.0)
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;
@@ -148,5 +169,19 @@ mod tests {
             "{} vs {expected}",
             held.std[1]
         );
+    }
+
+    #[test]
+    fn a_moving_average_correlates_noise_over_its_length() {
+        assert!((correlation_time(&[1.0 / 9.0; 9], 1) - 9.0).abs() < 1e-12);
+        assert_eq!(correlation_time(&[1.0], 1), 1.0);
+        // Rows 3 apart: rho(3) = 6/9, rho(6) = 3/9; 1 + 2 (6 + 3) / 9 = 3.
+        assert!((correlation_time(&[1.0 / 9.0; 9], 3) - 3.0).abs() < 1e-12);
+        // Rows a filter width apart are independent.
+        assert_eq!(correlation_time(&[1.0 / 9.0; 9], 9), 1.0);
+        // Savitzky-Golay smoothing keeps fewer samples apart than its width.
+        let sg = crate::smoothing::SavitzkyGolay::new(40, 1e-3);
+        let t = correlation_time(sg.weights(0), 1);
+        assert!(t > 10.0 && t < 81.0, "{t}");
     }
 }

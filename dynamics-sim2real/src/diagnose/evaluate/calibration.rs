@@ -186,12 +186,12 @@ pub fn keep_changes(
             .collect();
         let sol = solve(&set);
         confirmed.suggested.extend(moved);
-        let bodiless = std::mem::take(&mut confirmed.explanation.bodiless);
+        let left_out = std::mem::take(&mut confirmed.explanation.left_out);
         confirmed.explanation = Explanation {
             set,
             sol,
             rivals,
-            bodiless,
+            left_out,
         };
         confirmed.confidence = confidence;
     }
@@ -301,7 +301,7 @@ mod tests {
                 set: vec![0, 1],
                 sol,
                 rivals: vec![None, None],
-                bodiless: vec![],
+                left_out: vec![],
             },
             confidence: vec![confidence, confidence],
             suggested: vec![],

@@ -16,8 +16,12 @@
 //!    is not a late stream: a suggestion, with both lags. An effort scale
 //!    must likewise be one of the whole effort: its column split into the
 //!    model's effort beside gravity and the gravity effort, the common
-//!    scale must help each part the data determine ([`whole_scale`]); a
-//!    mass the model places wrong scales the gravity effort alone;
+//!    scale must help each part the data determine (`whole_scale`,
+//!    `select/pool/split.rs`); a mass the model places wrong scales the
+//!    gravity effort alone. The selection already leaves such scales out
+//!    and chooses the rest of its set without them
+//!    (`select/compound/scales.rs`); the test is made again on the set as
+//!    it reaches this stage;
 //! 3. an effect whose parameters the data do not determine, or that are
 //!    not physical (`determinacy.rs`), is not named: a suggestion, with the
 //!    reason; so is a link correction that leaves no physical body, unless
@@ -78,8 +82,10 @@ use super::determinacy::{beyond_physical, undetermined};
 use super::holdout::{free_columns, limit_to_windows, offset_joint, Holdout};
 use crate::diagnose::candidates::{model_part, whitened, Candidate, Excitation, Prepared};
 use crate::diagnose::fit::Windows;
+use crate::diagnose::numeric::correlation_time;
 use crate::diagnose::select::{
-    is_body, joint_fit, payload_leaves_no_body, Carrier, Explanation, Parts, Pool, Solution,
+    helps, is_body, joint_fit, model_lag, partial_scales, payload_leaves_no_body, BesideGravity,
+    Carrier, Explanation, Parts, Pool, Why,
 };
 use crate::effects::Effect;
 use dynamics_runtime::{JointKind, Robot};
@@ -173,8 +179,8 @@ pub enum Unconfirmed {
     /// split into the model's effort beside gravity (inertia, Coriolis, the
     /// drive) and the gravity effort (the rest of the set refitted with
     /// both), the common scale not shown to act on every part the data
-    /// determine ([`whole_scale`]); a sensor's scale acts on both, a mass
-    /// the model places wrong on gravity's part alone.
+    /// determine (`whole_scale`, `select/pool/split.rs`); a sensor's scale
+    /// acts on both, a mass the model places wrong on gravity's part alone.
     PartOfTheEffort {
         /// The common scale minus one, as fitted.
         common: f64,
@@ -232,72 +238,12 @@ pub fn chi2_upper(k: usize, p: f64) -> f64 {
     k * (1.0 - a + normal_upper(p) * a.sqrt()).powi(3)
 }
 
-/// Integrated autocorrelation time, in rows `spacing` samples apart, of
-/// white noise through the smoothing filter of weights `w`: `1 + 2 sum
-/// rho(l spacing)` over the lags where the filtered noise is correlated,
-/// `rho(m) = sum w_i w_(i+m) / sum w^2` (for rows one sample apart,
-/// `(sum w)^2 / sum w^2`; 1 for rows a filter width apart).
-pub fn correlation_time(w: &[f64], spacing: usize) -> f64 {
-    let s2: f64 = w.iter().map(|x| x * x).sum();
-    if s2 <= 0.0 || !s2.is_finite() {
-        return 1.0;
+/// Why a term the selection left out is not named.
+fn why_left_out(why: Why) -> Unconfirmed {
+    match why {
+        Why::NoBody => Unconfirmed::NotPhysical,
+        Why::PartOfTheEffort { common, scales } => Unconfirmed::PartOfTheEffort { common, scales },
     }
-    let step = spacing.max(1);
-    let mut tau = 1.0;
-    let mut lag = step;
-    while lag < w.len() {
-        let c: f64 = w.iter().zip(&w[lag..]).map(|(a, b)| a * b).sum();
-        tau += 2.0 * c / s2;
-        lag += step;
-    }
-    tau.max(1.0)
-}
-
-/// Whether a common delay `common` (> 0) is shown to help a part of the
-/// delay's column whose own lag is `lag` (standard deviation `std`): a
-/// part of weight `w` fitted with lag `d_p` has its sum of squares lowered
-/// by the common delay `d` by `w (d_p^2 - (d_p - d)^2) = w d (2 d_p - d)`,
-/// which is positive only for `d_p > d / 2`. Shown: the part's lag above
-/// half the common one by more than two standard deviations (the width
-/// the within-a-sample rule asks of the delay itself).
-pub fn helps(lag: f64, std: f64, common: f64) -> bool {
-    lag - 2.0 * std > 0.5 * common
-}
-
-/// Whether an effort scale fitted as `common` (the scale minus one) acts
-/// on the whole effort, given its column's two parts (the effort beside
-/// gravity, and gravity's) fitted apart: the common scale must help every
-/// part whose scale the data determine well enough that the test could
-/// pass (a spread below a quarter of the common), as [`helps`] asks of a
-/// delay's part. A part the data do not determine (gravity about a
-/// vertical axis, a joint barely accelerated) tells nothing either way.
-pub fn whole_scale(common: f64, parts: &Parts) -> bool {
-    let sign = common.signum();
-    [parts.part, parts.rest]
-        .into_iter()
-        .filter(|&(_, std)| std < 0.25 * common.abs())
-        .all(|(v, std)| helps(sign * v, std, sign * common))
-}
-
-/// The parameters of the two parts of the one-parameter term at position
-/// `at` of `set` (a delay's lags, an effort scale's scales; its column
-/// split into `part`, whitened over the pool's rows, and the rest;
-/// [`Pool::split_off`]), the set refitted by `solve`, their standard
-/// deviations times `inflate` (the rows counted as the noise through the
-/// smoothing leaves them independent).
-pub fn model_lag(
-    pool: &Pool,
-    set: &[usize],
-    at: usize,
-    part: &[f64],
-    inflate: f64,
-    solve: impl Fn(&Pool, &[usize]) -> Solution,
-) -> Option<Parts> {
-    let parts = pool.split_off(set, at, part, solve)?;
-    Some(Parts {
-        part: (parts.part.0, parts.part.1 * inflate),
-        rest: (parts.rest.0, parts.rest.1 * inflate),
-    })
 }
 
 /// The explanation `e` over `pool` confirmed on the held-out record `h`
@@ -349,13 +295,17 @@ pub fn confirm<R: Robot<N>, const N: usize>(
     let spacing = p.rows.windows(2).map(|w| w[1] - w[0]).min().unwrap_or(1);
     let inflate = correlation_time(p.sig.sg.weights(0), spacing).sqrt();
     let solve = |set: &[usize]| solve_in(pool, set);
-    // The link corrections the selection left out for want of a body.
-    suggested.extend(e.bodiless.iter().map(|b| Suggestion {
-        term: b.term,
-        theta: b.theta.clone(),
-        std: b.std.clone(),
-        why: Unconfirmed::NotPhysical,
+    // What the selection left out: links and payloads for want of a body,
+    // effort scales of part of the effort.
+    suggested.extend(e.left_out.iter().map(|l| Suggestion {
+        term: l.term,
+        theta: l.theta.clone(),
+        std: l.std.clone(),
+        why: why_left_out(l.why),
     }));
+    // The effort scales of the set that act on part of the effort (the
+    // set's final order and fit can differ from the selection's).
+    let partial = partial_scales(pool, &e.set, &e.sol, &BesideGravity::of(robot, p), solve_in);
     // Positions into `e.set` still in the explanation.
     let mut keep: Vec<usize> = Vec::new();
     for (i, &t) in e.set.iter().enumerate() {
@@ -385,25 +335,9 @@ pub fn confirm<R: Robot<N>, const N: usize>(
                 continue;
             }
         }
-        if let Candidate::EffortScale(j) = f.candidate {
-            let common = e.sol.theta[i].first().copied().unwrap_or(0.0);
-            let beside_gravity = |k: usize| {
-                let mut v = SVector::<f64, N>::zeros();
-                v[j] = p.sig.model[k][j] - robot.gravity(&p.sig.q(k))[j];
-                v
-            };
-            let split = model_lag(
-                pool,
-                &e.set,
-                i,
-                &whitened(p, beside_gravity),
-                inflate,
-                solve_in,
-            );
-            if let Some(scales) = split.filter(|s| !whole_scale(common, s)) {
-                suggested.push(suggest(i, Unconfirmed::PartOfTheEffort { common, scales }));
-                continue;
-            }
+        if let Some(l) = partial.iter().find(|l| l.term == t) {
+            suggested.push(suggest(i, why_left_out(l.why)));
+            continue;
         }
         if let Some(b) = &term.link {
             if !is_body(b, &allowed.theta[i], nominal.get(b.link)) {
@@ -666,7 +600,7 @@ pub fn confirm<R: Robot<N>, const N: usize>(
             set,
             sol,
             rivals,
-            bodiless: e.bodiless.clone(),
+            left_out: e.left_out.clone(),
         },
         confidence,
         suggested,
@@ -1070,53 +1004,5 @@ mod tests {
         assert!(common > 0.2 * delay, "{common}");
         assert!(lags.part.0.abs() < 1e-3 && (lags.rest.0 - delay).abs() < 1e-3);
         assert!(not_shown, "{common} {lags:?}");
-    }
-
-    /// A sensor's gain scales both parts of the effort; a scale of one
-    /// part alone is not one. A part the data do not determine (a spread
-    /// of a quarter of the common scale or more) does not count.
-    #[test]
-    fn an_effort_scale_must_act_on_each_part_the_data_determine() {
-        let parts = |part: (f64, f64), rest: (f64, f64)| Parts { part, rest };
-        // -5 % on both parts, well determined.
-        assert!(whole_scale(-0.05, &parts((-0.048, 0.004), (-0.051, 0.002))));
-        // The KUKA's lwr_3_joint on record 3: the effort beside gravity
-        // -50 %, gravity's -2.8 %, for a common -6.7 %.
-        assert!(!whole_scale(
-            -0.067,
-            &parts((-0.505, 0.020), (-0.0275, 0.0021))
-        ));
-        // Gravity about a vertical axis: its part undetermined, no verdict.
-        assert!(whole_scale(
-            -0.17,
-            &parts((-0.175, 0.007), (-8.8e13, 5.2e13))
-        ));
-        // The other sign: +8 %, gravity's part alone at +8 %.
-        assert!(!whole_scale(0.08, &parts((0.001, 0.005), (0.08, 0.004))));
-    }
-
-    #[test]
-    fn a_part_must_lag_more_than_half_the_common_delay() {
-        // Half is where the common delay stops helping.
-        assert!(helps(0.006, 0.0, 0.01));
-        assert!(!helps(0.004, 0.0, 0.01));
-        // Above half, but not by two standard deviations: not shown.
-        assert!(!helps(0.006, 0.0006, 0.01));
-        assert!(helps(0.006, 0.0004, 0.01));
-        assert!(!helps(-0.002, 0.001, 0.01));
-    }
-
-    #[test]
-    fn a_moving_average_correlates_noise_over_its_length() {
-        assert!((correlation_time(&[1.0 / 9.0; 9], 1) - 9.0).abs() < 1e-12);
-        assert_eq!(correlation_time(&[1.0], 1), 1.0);
-        // Rows 3 apart: rho(3) = 6/9, rho(6) = 3/9; 1 + 2 (6 + 3) / 9 = 3.
-        assert!((correlation_time(&[1.0 / 9.0; 9], 3) - 3.0).abs() < 1e-12);
-        // Rows a filter width apart are independent.
-        assert_eq!(correlation_time(&[1.0 / 9.0; 9], 9), 1.0);
-        // Savitzky-Golay smoothing keeps fewer samples apart than its width.
-        let sg = crate::smoothing::SavitzkyGolay::new(40, 1e-3);
-        let t = correlation_time(sg.weights(0), 1);
-        assert!(t > 10.0 && t < 81.0, "{t}");
     }
 }

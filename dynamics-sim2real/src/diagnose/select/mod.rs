@@ -18,12 +18,14 @@ mod nesting;
 mod pool;
 mod rank;
 
-pub use compound::{against_others, effects, joint_fit, Explanation};
+pub use compound::{
+    against_others, effects, joint_fit, partial_scales, BesideGravity, Explanation, Why,
+};
 pub use nesting::{breakaway_data_needed, nested_rival_stands};
+pub use pool::{helps, model_lag, Carrier, Parts, Pool, Solution};
 pub(in crate::diagnose) use pool::{is_body, payload_leaves_no_body};
 #[cfg(test)]
 pub(crate) use pool::{test_pool, test_term};
-pub use pool::{Carrier, Parts, Pool, Solution};
 
 use nalgebra::SVector;
 
@@ -81,7 +83,16 @@ pub fn select<R: Robot<N> + Clone + Sync, const N: usize>(
     drop(plinks);
     pool.limit_to_windows(&fitted.windows, p);
     let carrier = Carrier::of(robot, &nominal);
-    let explanation = compound::explain::<R, N>(&mut pool, p, &nominal, carrier.as_ref(), options);
+    let beside = BesideGravity::of(robot, p);
+    let explanation = compound::explain::<R, N>(
+        &mut pool,
+        p,
+        &nominal,
+        carrier.as_ref(),
+        Some(&beside),
+        options,
+    );
+    drop(beside);
     // A payload that would leave the tip's carrier no body is no single
     // effect either: the ranking is what the user reads beside the
     // explanation, which does not name it (`pool/carrier.rs`).

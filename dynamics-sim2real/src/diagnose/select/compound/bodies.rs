@@ -1,5 +1,5 @@
-//! Link corrections that leave no physical body are not candidates: the
-//! selection resumes without them.
+//! Link corrections that leave no physical body are not candidates
+//! (`left_out.rs`: the selection resumes without them).
 //!
 //! A link correction whose fit leaves no physical body once the
 //! combinations the data do not determine are moved (mass <= 0, or a
@@ -8,12 +8,9 @@
 //! other terms what it explains on the training record: left out only
 //! afterwards, its place stays empty, and a joint whose gap it took (an
 //! effort scale at a shoulder, a payload at the tip) is left unexplained.
-//! So every term of such a link leaves the pool's candidates, and the
-//! selection resumes from the rest of the set under the same criterion,
-//! until the set's link corrections are bodies (at most [`BODY_ROUNDS`]
-//! times). The links left out are reported as suggestions with the fit
-//! that asked for them. With `hold_links` they are held to the nearest
-//! body instead (`Pool::solve_physical`) and no link is left out here.
+//! So every term of such a link leaves the pool's candidates. With
+//! `hold_links` they are held to the nearest body instead
+//! (`Pool::solve_physical`) and no link is left out here.
 //!
 //! A payload is a change of the body that carries the tip: one that leaves
 //! that body no physical body (`pool/carrier.rs`) leaves the candidates
@@ -21,99 +18,73 @@
 
 use nalgebra::SVector;
 
-use super::select::select_except;
-use crate::diagnose::select::pool::{is_body, payload_leaves_no_body, Carrier, Pool};
+use super::left_out::{LeftOut, Why};
+use crate::diagnose::select::pool::{is_body, payload_leaves_no_body, Carrier, Pool, Solution};
 use crate::diagnose::Options;
 
-/// Rounds of leaving links out at most.
-pub const BODY_ROUNDS: usize = 4;
-
-/// A link correction the selection chose that leaves no physical body,
-/// with its fit in the set it was chosen in.
-#[derive(Debug, Clone)]
-pub struct Bodiless {
-    /// Term index into the pool.
-    pub term: usize,
-    /// Its parameters in that set's joint fit.
-    pub theta: Vec<f64>,
-    /// Their standard deviations.
-    pub std: Vec<f64>,
-}
-
-/// `set` with every link correction that leaves no physical body (links
-/// of `nominal` parameters) and every payload that leaves the tip's
-/// `carrier` none left out, and the selection resumed without the terms
-/// of those links and without those payloads; the terms left out, in the
-/// order found.
-pub fn without_bodiless<const N: usize>(
+/// The link corrections of `set` (fitted `sol`) that leave no physical
+/// body (links of `nominal` parameters) and the payloads that leave the
+/// tip's `carrier` none; and the terms to ban for them: every term of
+/// such a link, and such a payload.
+pub fn bodiless(
     pool: &Pool,
-    mut set: Vec<usize>,
+    set: &[usize],
+    sol: &Solution,
     nominal: &[SVector<f64, 10>],
     carrier: Option<&Carrier>,
     options: &Options,
-) -> (Vec<usize>, Vec<Bodiless>) {
-    let mut left_out: Vec<Bodiless> = Vec::new();
+) -> (Vec<LeftOut>, Vec<usize>) {
     let links_judged = !options.hold_links && !nominal.is_empty();
-    if !links_judged && carrier.is_none() {
-        return (set, left_out);
-    }
+    let mut left_out: Vec<LeftOut> = Vec::new();
+    let mut links: Vec<usize> = Vec::new();
     let mut banned: Vec<usize> = Vec::new();
-    for _ in 0..BODY_ROUNDS {
-        let sol = pool.solve(&set);
-        let mut links: Vec<usize> = Vec::new();
-        let mut payloads: Vec<usize> = Vec::new();
-        for (i, &t) in set.iter().enumerate() {
-            let term = &pool.terms[t];
-            let bodiless = match term.link.as_ref() {
-                Some(b) if links_judged && !is_body(b, &sol.theta[i], nominal.get(b.link)) => {
-                    links.push(b.link);
-                    true
-                }
-                Some(_) => false,
-                None if payload_leaves_no_body(
-                    carrier,
-                    term.fit.candidate,
-                    &sol.theta[i],
-                    &sol.std[i],
-                ) =>
-                {
-                    payloads.push(t);
-                    true
-                }
-                None => false,
-            };
-            if bodiless {
-                left_out.push(Bodiless {
-                    term: t,
-                    theta: sol.theta[i].clone(),
-                    std: sol.std[i].clone(),
-                });
+    for (i, &t) in set.iter().enumerate() {
+        let term = &pool.terms[t];
+        let no_body = match term.link.as_ref() {
+            Some(b) if links_judged && !is_body(b, &sol.theta[i], nominal.get(b.link)) => {
+                links.push(b.link);
+                true
             }
+            Some(_) => false,
+            None if payload_leaves_no_body(
+                carrier,
+                term.fit.candidate,
+                &sol.theta[i],
+                &sol.std[i],
+            ) =>
+            {
+                banned.push(t);
+                true
+            }
+            None => false,
+        };
+        if no_body {
+            left_out.push(LeftOut {
+                term: t,
+                theta: sol.theta[i].clone(),
+                std: sol.std[i].clone(),
+                why: Why::NoBody,
+            });
         }
-        if links.is_empty() && payloads.is_empty() {
-            break;
-        }
-        banned.extend(payloads);
-        banned.extend((0..pool.terms.len()).filter(|&t| {
-            pool.terms[t]
-                .link
-                .as_ref()
-                .is_some_and(|b| links.contains(&b.link))
-        }));
-        set.retain(|t| !banned.contains(t));
-        set = select_except::<N>(pool, set, options, &banned);
     }
-    (set, left_out)
+    banned.extend((0..pool.terms.len()).filter(|&t| {
+        pool.terms[t]
+            .link
+            .as_ref()
+            .is_some_and(|b| links.contains(&b.link))
+    }));
+    (left_out, banned)
 }
 
 #[cfg(test)]
 mod tests {
     use nalgebra::{DMatrix, DVector, SVector};
 
-    use super::*;
+    use super::super::left_out::without_left_out;
     use crate::diagnose::candidates::{Candidate, LinkBasis};
     use crate::diagnose::select::compound::select::select;
     use crate::diagnose::select::pool::{test_pool, test_term};
+    use crate::diagnose::Options;
     use crate::rng::Rng;
 
     /// Two joints' rows interleaved; joint 0's gap is mostly its effort
@@ -162,7 +133,8 @@ mod tests {
         for i in [4, 7, 9] {
             nominal[i] = 0.01;
         }
-        let (set, left_out) = without_bodiless::<2>(&pool, set.clone(), &[nominal], None, &options);
+        let (set, left_out) =
+            without_left_out::<2>(&pool, set.clone(), &[nominal], None, None, &options);
         assert_eq!(set, vec![1]);
         match &left_out[..] {
             [b] => {
@@ -175,7 +147,7 @@ mod tests {
             hold_links: true,
             ..Options::default()
         };
-        let (kept, none) = without_bodiless::<2>(&pool, vec![0], &[nominal], None, &held);
+        let (kept, none) = without_left_out::<2>(&pool, vec![0], &[nominal], None, None, &held);
         assert_eq!(kept, vec![0]);
         assert!(none.is_empty());
     }

@@ -36,7 +36,9 @@
 mod bodies;
 mod eliminate;
 mod exchange;
+mod left_out;
 mod order;
+mod scales;
 mod select;
 mod strength;
 #[cfg(test)]
@@ -55,9 +57,10 @@ use crate::diagnose::candidates::{Candidate, Friction, Prepared};
 use crate::diagnose::fit::{fit_against, fixed_column_against, Against, Fit};
 use crate::diagnose::Options;
 use crate::effects::Effect;
-use bodies::without_bodiless;
-pub use bodies::Bodiless;
 use eliminate::{eliminate, full};
+use left_out::without_left_out;
+pub use left_out::{LeftOut, Why};
+pub use scales::{partial_scales, BesideGravity};
 use select::{crit, explicit_crit, reweighted, select};
 use validate::Folds;
 use weights::loud_joints;
@@ -86,9 +89,10 @@ pub struct Explanation {
     /// (swapped in for it, the criterion moves less than the ambiguity
     /// margin).
     pub rivals: Vec<Option<usize>>,
-    /// Link corrections the selection chose that leave no physical body,
-    /// left out of it (`bodies.rs`).
-    pub bodiless: Vec<Bodiless>,
+    /// What the selection chose and left out: link corrections that leave
+    /// no physical body, effort scales of part of the effort
+    /// (`left_out.rs`).
+    pub left_out: Vec<LeftOut>,
 }
 
 /// `p` against the effort of the linear joint and tip terms of `set`
@@ -186,12 +190,15 @@ fn research<R: Robot<N>, const N: usize>(pool: &mut Pool, todo: &[usize], on: &A
 }
 
 /// The compound explanation of the residual of `p` over the terms of
-/// `pool` (whose motor-side columns are searched again as it goes).
+/// `pool` (whose motor-side columns are searched again as it goes);
+/// `beside`: the model's effort beside gravity, what an effort scale's
+/// column is split by (`None`: scales not split).
 pub fn explain<R: Robot<N>, const N: usize>(
     pool: &mut Pool,
     p: &Prepared<N>,
     nominal: &[SVector<f64, 10>],
     carrier: Option<&Carrier>,
+    beside: Option<&BesideGravity>,
     options: &Options,
 ) -> Explanation {
     let mut set = select::<N>(pool, vec![], options);
@@ -254,9 +261,10 @@ pub fn explain<R: Robot<N>, const N: usize>(
         }
         set = next;
     }
-    // Link corrections and payloads that leave no physical body: out, and
-    // the selection resumes without them (`bodies.rs`).
-    let (mut set, bodiless) = without_bodiless::<N>(pool, set, nominal, carrier, options);
+    // Link corrections and payloads that leave no physical body, effort
+    // scales of part of the effort: out, and the selection resumes
+    // without them (`left_out.rs`).
+    let (mut set, left_out) = without_left_out::<N>(pool, set, nominal, carrier, beside, options);
     // Parsimony once more: a richer nested term the simpler one at its
     // place now fits within the nesting margin gives way to it, and so
     // does a motor side where the rigid rotor in its stead leaves its joint
@@ -336,7 +344,7 @@ pub fn explain<R: Robot<N>, const N: usize>(
         set,
         sol,
         rivals,
-        bodiless,
+        left_out,
     }
 }
 

@@ -34,7 +34,7 @@ pub(in crate::diagnose) use physical::is_body;
 #[cfg(test)]
 use physical::leaves_a_body;
 pub(in crate::diagnose) use solve::independent;
-pub use split::Parts;
+pub use split::{helps, model_lag, whole_scale, Parts};
 
 /// One term of the pool: a fitted single candidate and its columns.
 #[derive(Debug, Clone)]

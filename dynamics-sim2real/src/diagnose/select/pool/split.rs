@@ -129,9 +129,57 @@ impl Pool {
     }
 }
 
+/// Whether a common delay `common` (> 0) is shown to help a part of the
+/// delay's column whose own lag is `lag` (standard deviation `std`): a
+/// part of weight `w` fitted with lag `d_p` has its sum of squares lowered
+/// by the common delay `d` by `w (d_p^2 - (d_p - d)^2) = w d (2 d_p - d)`,
+/// which is positive only for `d_p > d / 2`. Shown: the part's lag above
+/// half the common one by more than two standard deviations (the width
+/// the within-a-sample rule asks of the delay itself).
+pub fn helps(lag: f64, std: f64, common: f64) -> bool {
+    lag - 2.0 * std > 0.5 * common
+}
+
+/// Whether an effort scale fitted as `common` (the scale minus one) acts
+/// on the whole effort, given its column's two parts (the effort beside
+/// gravity, and gravity's) fitted apart: the common scale must help every
+/// part whose scale the data determine well enough that the test could
+/// pass (a spread below a quarter of the common), as [`helps`] asks of a
+/// delay's part. A part the data do not determine (gravity about a
+/// vertical axis, a joint barely accelerated) tells nothing either way.
+pub fn whole_scale(common: f64, parts: &Parts) -> bool {
+    let sign = common.signum();
+    [parts.part, parts.rest]
+        .into_iter()
+        .filter(|&(_, std)| std < 0.25 * common.abs())
+        .all(|(v, std)| helps(sign * v, std, sign * common))
+}
+
+/// The parameters of the two parts of the one-parameter term at position
+/// `at` of `set` (a delay's lags, an effort scale's scales; its column
+/// split into `part`, whitened over the pool's rows, and the rest;
+/// [`Pool::split_off`]), the set refitted by `solve`, their standard
+/// deviations times `inflate` (the rows counted as the noise through the
+/// smoothing leaves them independent).
+pub fn model_lag(
+    pool: &Pool,
+    set: &[usize],
+    at: usize,
+    part: &[f64],
+    inflate: f64,
+    solve: impl Fn(&Pool, &[usize]) -> Solution,
+) -> Option<Parts> {
+    let parts = pool.split_off(set, at, part, solve)?;
+    Some(Parts {
+        part: (parts.part.0, parts.part.1 * inflate),
+        rest: (parts.rest.0, parts.rest.1 * inflate),
+    })
+}
+
 #[cfg(test)]
 mod tests {
     use super::super::{test_pool, test_term};
+    use super::{helps, whole_scale, Parts};
     use crate::diagnose::candidates::Candidate;
     use nalgebra::{DMatrix, DVector};
 
@@ -203,5 +251,39 @@ mod tests {
         // A part of the wrong length, a term that is not in the set.
         assert_eq!(pool.split_off(&[0], 0, &c[1..], |p, s| p.solve(s)), None);
         assert_eq!(pool.split_off(&[0], 1, &c, |p, s| p.solve(s)), None);
+    }
+
+    /// A sensor's gain scales both parts of the effort; a scale of one
+    /// part alone is not one. A part the data do not determine (a spread
+    /// of a quarter of the common scale or more) does not count.
+    #[test]
+    fn an_effort_scale_must_act_on_each_part_the_data_determine() {
+        let parts = |part: (f64, f64), rest: (f64, f64)| Parts { part, rest };
+        // -5 % on both parts, well determined.
+        assert!(whole_scale(-0.05, &parts((-0.048, 0.004), (-0.051, 0.002))));
+        // The KUKA's lwr_3_joint on record 3: the effort beside gravity
+        // -50 %, gravity's -2.8 %, for a common -6.7 %.
+        assert!(!whole_scale(
+            -0.067,
+            &parts((-0.505, 0.020), (-0.0275, 0.0021))
+        ));
+        // Gravity about a vertical axis: its part undetermined, no verdict.
+        assert!(whole_scale(
+            -0.17,
+            &parts((-0.175, 0.007), (-8.8e13, 5.2e13))
+        ));
+        // The other sign: +8 %, gravity's part alone at +8 %.
+        assert!(!whole_scale(0.08, &parts((0.001, 0.005), (0.08, 0.004))));
+    }
+
+    #[test]
+    fn a_part_must_lag_more_than_half_the_common_delay() {
+        // Half is where the common delay stops helping.
+        assert!(helps(0.006, 0.0, 0.01));
+        assert!(!helps(0.004, 0.0, 0.01));
+        // Above half, but not by two standard deviations: not shown.
+        assert!(!helps(0.006, 0.0006, 0.01));
+        assert!(helps(0.006, 0.0004, 0.01));
+        assert!(!helps(-0.002, 0.001, 0.01));
     }
 }

@@ -1,0 +1,170 @@
+//! Effort scales that act on part of the effort are not candidates: the
+//! selection resumes without them.
+//!
+//! A torque sensor's gain scales the gravity effort and the effort beside
+//! it (inertia, Coriolis, the drive) alike; a mass the model places wrong
+//! scales the gravity effort alone. An effort scale the selection chose is
+//! split into those two parts ([`Pool::split_off`]) and must help each part
+//! the data determine ([`whole_scale`]). Left out only in the confirmation
+//! (`evaluate/confirm.rs`, rule 2), its place would stay empty: the other
+//! effects of the set were chosen beside it, and a friction fitted beside
+//! a stand-in scale need not hold without it. So such a scale leaves the
+//! candidates here, as a link that leaves no body does (`bodies.rs`), and
+//! the selection resumes without it.
+
+use nalgebra::SVector;
+
+use super::left_out::{LeftOut, Why};
+use crate::diagnose::candidates::{whitened, Candidate, Prepared};
+use crate::diagnose::numeric::correlation_time;
+use crate::diagnose::select::pool::{model_lag, whole_scale, Pool, Solution};
+use dynamics_runtime::Robot;
+
+/// The model's effort beside gravity at the rows of a pool, whitened like
+/// its columns: what an effort scale's column is split by.
+#[derive(Debug, Clone)]
+pub struct BesideGravity {
+    /// Rows `row * joints + joint`, before the pool's weights.
+    efforts: Vec<f64>,
+    /// Joints.
+    joints: usize,
+    /// Factor on the split's standard deviations: the rows counted as the
+    /// noise through the smoothing leaves them independent.
+    inflate: f64,
+}
+
+impl BesideGravity {
+    /// The nominal model's effort minus `robot`'s gravity effort at the
+    /// rows of the training record `p`.
+    pub fn of<R: Robot<N>, const N: usize>(robot: &R, p: &Prepared<N>) -> Self {
+        let efforts = whitened(p, |k| {
+            let e: SVector<f64, N> = p.sig.model[k] - robot.gravity(&p.sig.q(k));
+            e
+        });
+        let spacing = p.rows.windows(2).map(|w| w[1] - w[0]).min().unwrap_or(1);
+        BesideGravity {
+            efforts,
+            joints: N,
+            inflate: correlation_time(p.sig.sg.weights(0), spacing).sqrt(),
+        }
+    }
+
+    /// Whitened efforts given row by row (`row * joints + joint`).
+    #[cfg(test)]
+    pub fn given(efforts: Vec<f64>, joints: usize, inflate: f64) -> Self {
+        BesideGravity {
+            efforts,
+            joints,
+            inflate,
+        }
+    }
+
+    /// Joint `j`'s part alone, the other joints' rows zero.
+    fn at(&self, j: usize) -> Vec<f64> {
+        let n = self.joints.max(1);
+        self.efforts
+            .iter()
+            .enumerate()
+            .map(|(r, &v)| if r % n == j { v } else { 0.0 })
+            .collect()
+    }
+}
+
+/// The effort scales of `set` (fitted `sol`) that do not act on the whole
+/// effort, their columns split by `beside` and the set refitted by
+/// `solve`.
+pub fn partial_scales(
+    pool: &Pool,
+    set: &[usize],
+    sol: &Solution,
+    beside: &BesideGravity,
+    solve: impl Fn(&Pool, &[usize]) -> Solution + Copy,
+) -> Vec<LeftOut> {
+    set.iter()
+        .enumerate()
+        .filter_map(|(i, &t)| {
+            let Candidate::EffortScale(j) = pool.terms[t].fit.candidate else {
+                return None;
+            };
+            let common = *sol.theta.get(i)?.first()?;
+            let scales = model_lag(pool, set, i, &beside.at(j), beside.inflate, solve)?;
+            (!whole_scale(common, &scales)).then(|| LeftOut {
+                term: t,
+                theta: sol.theta[i].clone(),
+                std: sol.std[i].clone(),
+                why: Why::PartOfTheEffort { common, scales },
+            })
+        })
+        .collect()
+}
+
+#[cfg(test)]
+mod tests {
+    use nalgebra::{DMatrix, DVector};
+
+    use super::super::left_out::{without_left_out, Why};
+    use super::*;
+    use crate::diagnose::select::pool::{test_pool, test_term};
+    use crate::diagnose::Options;
+    use crate::rng::Rng;
+
+    /// Two joints' rows interleaved. Joint 0's model effort is its gravity
+    /// effort `g` and the effort beside it `b`; its gap is -30 % of `g`
+    /// alone (a mass the model places wrong), which a mass-like column `g`
+    /// explains. An effort scale chosen for that gap (the set given) does
+    /// not act on the whole effort: it is left out with its split, and the
+    /// selection resumed without it chooses the mass. The same gap as -30 %
+    /// of the whole effort keeps the scale.
+    #[test]
+    fn a_scale_of_the_gravity_effort_alone_gives_its_place_to_what_explains_it() {
+        let (n, joints) = (600, 2);
+        let mut rng = Rng::new(5);
+        let g: Vec<f64> = (0..n).map(|i| (i as f64 * 0.013).sin() * 30.0).collect();
+        let b: Vec<f64> = (0..n).map(|i| (i as f64 * 0.071).cos() * 20.0).collect();
+        let run = |gap: &dyn Fn(usize) -> f64, rng: &mut Rng| {
+            let mut x = DMatrix::<f64>::zeros(n * joints, 2);
+            let mut y = DVector::<f64>::zeros(n * joints);
+            let mut beside = vec![0.0; n * joints];
+            for i in 0..n {
+                x[(i * joints, 0)] = g[i] + b[i];
+                x[(i * joints, 1)] = g[i];
+                beside[i * joints] = b[i];
+                y[i * joints] = gap(i);
+                for j in 0..joints {
+                    y[i * joints + j] += rng.normal();
+                }
+            }
+            let terms = vec![
+                test_term(Candidate::EffortScale(0), vec![0], vec![false], None),
+                test_term(Candidate::Inertial(0), vec![1], vec![false], None),
+            ];
+            let pool = test_pool(x, y, terms, joints);
+            let beside = BesideGravity::given(beside, joints, 1.0);
+            without_left_out::<2>(
+                &pool,
+                vec![0],
+                &[],
+                None,
+                Some(&beside),
+                &Options::default(),
+            )
+        };
+        let (set, left_out) = run(&|i| -0.3 * g[i], &mut rng);
+        assert_eq!(set, vec![1], "{left_out:?}");
+        match &left_out[..] {
+            [l] => match l.why {
+                Why::PartOfTheEffort { common, scales } => {
+                    assert_eq!(l.term, 0);
+                    assert!(common < 0.0, "{common}");
+                    assert!(scales.part.0.abs() < 0.01, "{scales:?}");
+                    assert!((scales.rest.0 + 0.3).abs() < 0.01, "{scales:?}");
+                }
+                other => panic!("{other:?}"),
+            },
+            other => panic!("{other:?}"),
+        }
+        let (set, left_out) = run(&|i| -0.3 * (g[i] + b[i]), &mut rng);
+        assert_eq!(set, vec![0]);
+        assert!(left_out.is_empty(), "{left_out:?}");
+    }
+}
