@@ -68,9 +68,23 @@ pub fn why_not(
     // A backlash's contact damping shapes only the instants of contact:
     // the fit's value is given (a baseline simulates the same motor side
     // with it), and the backlash is judged by its other parameters.
+    // A finite spread above the value: the data hold it near zero without
+    // telling it from zero (however far the joint moves); no finite
+    // spread: they do not determine it at all.
     let grid = matches!(name, "vw" | "vs" | "alpha" | "contact_damping");
-    if !(grid || std.is_finite() && std <= value.abs()) {
+    if !grid && !std.is_finite() {
         return Some(on_data("not identifiable"));
+    }
+    if !grid && std > value.abs() {
+        let spread = if std >= 1e-3 {
+            format!("{std:.3}")
+        } else {
+            format!("{std:.2e}")
+        };
+        return Some(match &moves {
+            Some(m) => format!("not told from zero on these data (spread {spread}; {m})"),
+            None => format!("not told from zero on these data (spread {spread})"),
+        });
     }
     beyond_its_kind(kind, name, value, joint)
 }
@@ -164,8 +178,10 @@ mod tests {
     #[test]
     fn a_spread_larger_than_the_value_means_the_data_do_not_determine_it() {
         let why = why_not(EffectKind::Armature, "inertia", 0.1, 0.3, None).unwrap();
-        assert!(why.starts_with("not identifiable"), "{why}");
-        assert!(why_not(EffectKind::Armature, "inertia", 0.1, f64::INFINITY, None).is_some());
+        assert_eq!(why, "not told from zero on these data (spread 0.300)");
+        let j = Some((JointKind::Revolute, 0.01));
+        let why = why_not(EffectKind::Armature, "inertia", 0.1, f64::INFINITY, j).unwrap();
+        assert_eq!(why, "not identifiable on these data: the joint moves 0.010 rad");
         // A grid value's spread is half its step, by design.
         assert!(why_not(EffectKind::CoulombFriction, "vw", 0.01, 0.005, None).is_none());
     }
