@@ -181,7 +181,10 @@ mod tests {
         assert_eq!(why, "not told from zero on these data (spread 0.300)");
         let j = Some((JointKind::Revolute, 0.01));
         let why = why_not(EffectKind::Armature, "inertia", 0.1, f64::INFINITY, j).unwrap();
-        assert_eq!(why, "not identifiable on these data: the joint moves 0.010 rad");
+        assert_eq!(
+            why,
+            "not identifiable on these data: the joint moves 0.010 rad"
+        );
         // A grid value's spread is half its step, by design.
         assert!(why_not(EffectKind::CoulombFriction, "vw", 0.01, 0.005, None).is_none());
     }

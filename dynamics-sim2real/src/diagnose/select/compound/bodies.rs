@@ -133,8 +133,8 @@ mod tests {
         for i in [4, 7, 9] {
             nominal[i] = 0.01;
         }
-        let (set, left_out) =
-            without_left_out::<2>(&pool, set.clone(), &[nominal], None, None, &options);
+        let (set, left_out, _) =
+            without_left_out::<2>(&pool, set.clone(), &[nominal], None, None, &[], &options);
         assert_eq!(set, vec![1]);
         match &left_out[..] {
             [b] => {
@@ -147,7 +147,8 @@ mod tests {
             hold_links: true,
             ..Options::default()
         };
-        let (kept, none) = without_left_out::<2>(&pool, vec![0], &[nominal], None, None, &held);
+        let (kept, none, _) =
+            without_left_out::<2>(&pool, vec![0], &[nominal], None, None, &[], &held);
         assert_eq!(kept, vec![0]);
         assert!(none.is_empty());
     }

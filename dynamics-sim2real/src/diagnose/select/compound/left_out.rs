@@ -55,18 +55,20 @@ pub struct LeftOut {
 /// `set` with what is not what it seems left out (links of `nominal`
 /// parameters that leave no body, payloads that leave the tip's `carrier`
 /// none, effort scales of part of the effort split by `beside`), and the
-/// selection resumed without those terms; the terms left out, in the
-/// order found.
+/// selection resumed without those terms nor the terms `before` (banned
+/// already); the terms left out, in the order found, and the terms banned
+/// for them (every term of a link left out).
 pub fn without_left_out<const N: usize>(
     pool: &Pool,
     mut set: Vec<usize>,
     nominal: &[SVector<f64, 10>],
     carrier: Option<&Carrier>,
     beside: Option<&BesideGravity>,
+    before: &[usize],
     options: &Options,
-) -> (Vec<usize>, Vec<LeftOut>) {
+) -> (Vec<usize>, Vec<LeftOut>, Vec<usize>) {
     let mut left_out: Vec<LeftOut> = Vec::new();
-    let mut banned: Vec<usize> = Vec::new();
+    let mut banned: Vec<usize> = before.to_vec();
     // The split judged as the confirmation judges it: links as fitted, or
     // held to bodies.
     let solve = |q: &Pool, s: &[usize]| {
@@ -92,5 +94,6 @@ pub fn without_left_out<const N: usize>(
         set.retain(|t| !banned.contains(t));
         set = select_except::<N>(pool, set, options, &banned);
     }
-    (set, left_out)
+    banned.retain(|t| !before.contains(t));
+    (set, left_out, banned)
 }

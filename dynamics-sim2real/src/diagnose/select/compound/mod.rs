@@ -61,7 +61,7 @@ use eliminate::{eliminate, full};
 use left_out::without_left_out;
 pub use left_out::{LeftOut, Why};
 pub use scales::{partial_scales, BesideGravity};
-use select::{crit, explicit_crit, reweighted, select};
+use select::{crit, explicit_crit, reweighted, select, select_except};
 use validate::Folds;
 use weights::loud_joints;
 
@@ -69,6 +69,10 @@ use dynamics_runtime::Robot;
 
 /// Rounds of selection and motor-side search.
 pub const ROUNDS: usize = 2;
+
+/// Rounds of leaving out what is not what it seems, and searching the
+/// motor sides again without it.
+pub const LEFT_OUT_ROUNDS: usize = 2;
 
 /// Residual left on every joint, in units of the floor ratio, above which
 /// the search also starts from the full linear model.
@@ -189,6 +193,47 @@ fn research<R: Robot<N>, const N: usize>(pool: &mut Pool, todo: &[usize], on: &A
     }
 }
 
+/// Motor sides searched again against the rest of `set` (those chosen,
+/// and all at joints still above noise) and the selection resumed without
+/// the terms `banned`, [`ROUNDS`] times at most (until the set stays).
+fn alternate<R: Robot<N>, const N: usize>(
+    pool: &mut Pool,
+    p: &Prepared<N>,
+    mut set: Vec<usize>,
+    options: &Options,
+    banned: &[usize],
+) -> Vec<usize> {
+    for _ in 0..ROUNDS {
+        let sol = pool.solve(&set);
+        let loud = loud_joints(pool, &set, &sol, options.floor_ratio);
+        // Motor sides: those chosen, and all at joints still above noise.
+        let todo: Vec<usize> = (0..pool.terms.len())
+            .filter(|&t| {
+                let term = &pool.terms[t];
+                term.fixed.is_some()
+                    && !banned.contains(&t)
+                    && (set.contains(&t)
+                        || term
+                            .fit
+                            .candidate
+                            .joint()
+                            .is_some_and(|j| loud.contains(&j)))
+            })
+            .collect();
+        if todo.is_empty() {
+            break;
+        }
+        let on = against_others(p, pool, &set, &sol);
+        research::<R, N>(pool, &todo, &on);
+        let next = select_except::<N>(pool, set.clone(), options, banned);
+        if next == set {
+            break;
+        }
+        set = next;
+    }
+    set
+}
+
 /// The compound explanation of the residual of `p` over the terms of
 /// `pool` (whose motor-side columns are searched again as it goes);
 /// `beside`: the model's effort beside gravity, what an effort scale's
@@ -234,37 +279,26 @@ pub fn explain<R: Robot<N>, const N: usize>(
     if strength::choose::<N>(pool, &set) != STRENGTHS[0] {
         set = select::<N>(pool, set, options);
     }
-    for _ in 0..ROUNDS {
-        let sol = pool.solve(&set);
-        let loud = loud_joints(pool, &set, &sol, options.floor_ratio);
-        // Motor sides: those chosen, and all at joints still above noise.
-        let todo: Vec<usize> = (0..pool.terms.len())
-            .filter(|&t| {
-                let term = &pool.terms[t];
-                term.fixed.is_some()
-                    && (set.contains(&t)
-                        || term
-                            .fit
-                            .candidate
-                            .joint()
-                            .is_some_and(|j| loud.contains(&j)))
-            })
-            .collect();
-        if todo.is_empty() {
-            break;
-        }
-        let on = against_others(p, pool, &set, &sol);
-        research::<R, N>(pool, &todo, &on);
-        let next = select::<N>(pool, set.clone(), options);
-        if next == set {
-            break;
-        }
-        set = next;
-    }
+    set = alternate::<R, N>(pool, p, set, options, &[]);
     // Link corrections and payloads that leave no physical body, effort
     // scales of part of the effort: out, and the selection resumes
-    // without them (`left_out.rs`).
-    let (mut set, left_out) = without_left_out::<N>(pool, set, nominal, carrier, beside, options);
+    // without them (`left_out.rs`); the motor sides, searched beside what
+    // was left out, are searched again without it, and the selection
+    // resumes (at most [`LEFT_OUT_ROUNDS`] times).
+    let mut left_out = Vec::new();
+    let mut banned = Vec::new();
+    for round in 0..LEFT_OUT_ROUNDS {
+        let (next, out, ban) =
+            without_left_out::<N>(pool, set, nominal, carrier, beside, &banned, options);
+        set = next;
+        let done = out.is_empty();
+        left_out.extend(out);
+        banned.extend(ban);
+        if done || round + 1 == LEFT_OUT_ROUNDS {
+            break;
+        }
+        set = alternate::<R, N>(pool, p, set, options, &banned);
+    }
     // Parsimony once more: a richer nested term the simpler one at its
     // place now fits within the nesting margin gives way to it, and so
     // does a motor side where the rigid rotor in its stead leaves its joint

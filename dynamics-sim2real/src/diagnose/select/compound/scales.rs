@@ -140,14 +140,16 @@ mod tests {
             ];
             let pool = test_pool(x, y, terms, joints);
             let beside = BesideGravity::given(beside, joints, 1.0);
-            without_left_out::<2>(
+            let (set, left_out, _) = without_left_out::<2>(
                 &pool,
                 vec![0],
                 &[],
                 None,
                 Some(&beside),
+                &[],
                 &Options::default(),
-            )
+            );
+            (set, left_out)
         };
         let (set, left_out) = run(&|i| -0.3 * g[i], &mut rng);
         assert_eq!(set, vec![1], "{left_out:?}");
