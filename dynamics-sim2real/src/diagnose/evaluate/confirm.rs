@@ -65,9 +65,11 @@
 //!    smallest first, the rest tested again;
 //! 6. a link correction named must also earn its parameters over every
 //!    simpler term of the pool in its place, not only over the set's (rule
-//!    4): a term with fewer parameters (not a motor side, a delay or a
-//!    family the set already holds) that holds on the held-out record in
-//!    the link's place, its values determined and physical, and that the
+//!    4): a term with fewer parameters (not a motor side, a delay, a
+//!    family the set already holds or a term the selection left out) that
+//!    holds on the held-out record in the link's place, its values
+//!    determined and physical (an effort scale one of the whole effort,
+//!    rule 2), and that the
 //!    link correction beats there by no more than the chi-square quantile
 //!    of its extra parameters, takes its place (the closest such term;
 //!    `Unconfirmed::Simpler`), and the test runs again. The selection
@@ -84,8 +86,8 @@ use crate::diagnose::candidates::{model_part, whitened, Candidate, Excitation, P
 use crate::diagnose::fit::Windows;
 use crate::diagnose::numeric::correlation_time;
 use crate::diagnose::select::{
-    helps, is_body, joint_fit, model_lag, partial_scales, payload_leaves_no_body, BesideGravity,
-    Carrier, Explanation, Parts, Pool, Why,
+    helps, is_body, joint_fit, model_lag, partial_scale, partial_scales, payload_leaves_no_body,
+    BesideGravity, Carrier, Explanation, Parts, Pool, Why,
 };
 use crate::effects::Effect;
 use dynamics_runtime::{JointKind, Robot};
@@ -305,7 +307,8 @@ pub fn confirm<R: Robot<N>, const N: usize>(
     }));
     // The effort scales of the set that act on part of the effort (the
     // set's final order and fit can differ from the selection's).
-    let partial = partial_scales(pool, &e.set, &e.sol, &BesideGravity::of(robot, p), solve_in);
+    let beside = BesideGravity::of(robot, p);
+    let partial = partial_scales(pool, &e.set, &e.sol, &beside, solve_in);
     // Positions into `e.set` still in the explanation.
     let mut keep: Vec<usize> = Vec::new();
     for (i, &t) in e.set.iter().enumerate() {
@@ -449,11 +452,14 @@ pub fn confirm<R: Robot<N>, const N: usize>(
         let mut best: Option<StandIn> = None;
         for (t, term) in pool.terms.iter().enumerate() {
             let c = term.fit.candidate;
+            // (Nor a term the selection left out: a link without a body,
+            // a scale of part of the effort.)
             if term.link.is_some()
                 || term.fixed.is_some()
                 || term.k == 0
                 || term.k >= big
                 || families.contains(&term.family())
+                || e.left_out.iter().any(|l| l.term == t)
                 || matches!(
                     c,
                     Candidate::TimeDelay | Candidate::LatePositions | Candidate::LateEffort(_)
@@ -489,6 +495,7 @@ pub fn confirm<R: Robot<N>, const N: usize>(
             let f = joint_fit(pool, t, &theta, &std);
             if undetermined(&f, joint_of(c)).is_some()
                 || payload_leaves_no_body(carrier, c, &theta, &std)
+                || partial_scale(pool, &terms, terms.len() - 1, &sol, &beside, solve_in).is_some()
             {
                 continue;
             }

@@ -19,7 +19,8 @@ mod pool;
 mod rank;
 
 pub use compound::{
-    against_others, effects, joint_fit, partial_scales, BesideGravity, Explanation, Why,
+    against_others, effects, joint_fit, partial_scale, partial_scales, BesideGravity, Explanation,
+    Why,
 };
 pub use nesting::{breakaway_data_needed, nested_rival_stands};
 pub use pool::{helps, model_lag, Carrier, Parts, Pool, Solution};

@@ -60,7 +60,7 @@ use crate::effects::Effect;
 use eliminate::{eliminate, full};
 use left_out::without_left_out;
 pub use left_out::{LeftOut, Why};
-pub use scales::{partial_scales, BesideGravity};
+pub use scales::{partial_scale, partial_scales, BesideGravity};
 use select::{crit, explicit_crit, reweighted, select, select_except};
 use validate::Folds;
 use weights::loud_joints;

@@ -80,22 +80,33 @@ pub fn partial_scales(
     beside: &BesideGravity,
     solve: impl Fn(&Pool, &[usize]) -> Solution + Copy,
 ) -> Vec<LeftOut> {
-    set.iter()
-        .enumerate()
-        .filter_map(|(i, &t)| {
-            let Candidate::EffortScale(j) = pool.terms[t].fit.candidate else {
-                return None;
-            };
-            let common = *sol.theta.get(i)?.first()?;
-            let scales = model_lag(pool, set, i, &beside.at(j), beside.inflate, solve)?;
-            (!whole_scale(common, &scales)).then(|| LeftOut {
-                term: t,
-                theta: sol.theta[i].clone(),
-                std: sol.std[i].clone(),
-                why: Why::PartOfTheEffort { common, scales },
-            })
-        })
+    (0..set.len())
+        .filter_map(|i| partial_scale(pool, set, i, sol, beside, solve))
         .collect()
+}
+
+/// [`partial_scales`] of the term at position `at` of `set` alone: `None`
+/// when it is no effort scale, or one of the whole effort.
+pub fn partial_scale(
+    pool: &Pool,
+    set: &[usize],
+    at: usize,
+    sol: &Solution,
+    beside: &BesideGravity,
+    solve: impl Fn(&Pool, &[usize]) -> Solution,
+) -> Option<LeftOut> {
+    let t = *set.get(at)?;
+    let Candidate::EffortScale(j) = pool.terms[t].fit.candidate else {
+        return None;
+    };
+    let common = *sol.theta.get(at)?.first()?;
+    let scales = model_lag(pool, set, at, &beside.at(j), beside.inflate, solve)?;
+    (!whole_scale(common, &scales)).then(|| LeftOut {
+        term: t,
+        theta: sol.theta[at].clone(),
+        std: sol.std[at].clone(),
+        why: Why::PartOfTheEffort { common, scales },
+    })
 }
 
 #[cfg(test)]
