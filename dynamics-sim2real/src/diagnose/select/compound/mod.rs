@@ -30,7 +30,11 @@
 //! search also starts from the full linear model (`eliminate.rs`) and
 //! keeps the better set. Each chosen effect other than joint friction is
 //! then exchanged for what the selection finds without it, where that is
-//! better (`exchange.rs`). The set is read in the order of its gains
+//! better (`exchange.rs`). What the set holds that is not what it seems
+//! (a link correction or payload that leaves no physical body, an effort
+//! scale of part of the effort) then leaves the candidates, the motor
+//! sides are searched again without it and the selection resumes
+//! (`left_out.rs`). The set is read in the order of its gains
 //! (`order.rs`).
 
 mod bodies;
