@@ -34,7 +34,7 @@
 //! (a link correction or payload that leaves no physical body, an effort
 //! scale of part of the effort) then leaves the candidates, the motor
 //! sides are searched again without it and the selection resumes
-//! (`left_out.rs`). The set is read in the order of its gains
+//! (`resume.rs`). The set is read in the order of its gains
 //! (`order.rs`).
 
 mod bodies;
@@ -42,6 +42,7 @@ mod eliminate;
 mod exchange;
 mod left_out;
 mod order;
+mod resume;
 mod scales;
 mod select;
 mod strength;
@@ -62,8 +63,8 @@ use crate::diagnose::fit::{fit_against, fixed_column_against, Against, Fit};
 use crate::diagnose::Options;
 use crate::effects::Effect;
 use eliminate::{eliminate, full};
-use left_out::without_left_out;
 pub use left_out::{LeftOut, Why};
+use resume::without_left_out;
 pub use scales::{partial_scale, partial_scales, BesideGravity};
 use select::{crit, explicit_crit, reweighted, select, select_except};
 use validate::Folds;
@@ -99,7 +100,7 @@ pub struct Explanation {
     pub rivals: Vec<Option<usize>>,
     /// What the selection chose and left out: link corrections that leave
     /// no physical body, effort scales of part of the effort
-    /// (`left_out.rs`).
+    /// (`resume.rs`).
     pub left_out: Vec<LeftOut>,
 }
 
@@ -286,7 +287,7 @@ pub fn explain<R: Robot<N>, const N: usize>(
     set = alternate::<R, N>(pool, p, set, options, &[]);
     // Link corrections and payloads that leave no physical body, effort
     // scales of part of the effort: out, and the selection resumes
-    // without them (`left_out.rs`); the motor sides, searched beside what
+    // without them (`resume.rs`); the motor sides, searched beside what
     // was left out, are searched again without it, and the selection
     // resumes (at most [`LEFT_OUT_ROUNDS`] times).
     let mut left_out = Vec::new();
