@@ -71,7 +71,10 @@
 //!    determined and physical (an effort scale one of the whole effort,
 //!    rule 2), and that the
 //!    link correction beats there by no more than the chi-square quantile
-//!    of its extra parameters, takes its place (the closest such term;
+//!    of its extra parameters, in all and at every joint (each at the
+//!    level shared by the joints: a term that explains another joint's gap
+//!    stands in for nothing the link explains, however the joints' floors
+//!    weigh the two), takes its place (the closest such term;
 //!    `Unconfirmed::Simpler`), and the test runs again. The selection
 //!    compares a link correction with what it nests (a payload at the
 //!    tip) on the training record; a ten-parameter correction can also
@@ -445,7 +448,7 @@ pub fn confirm<R: Robot<N>, const N: usize>(
             .iter()
             .map(|&i| pool.terms[all[i]].family())
             .collect();
-        let with_link = sse_of(all, outside, None, keep).total;
+        let with_link = sse_of(all, outside, None, keep);
         let without = sse_of(all, outside, None, &others).total;
         let mut swapped = others.clone();
         swapped.push(all.len());
@@ -471,12 +474,19 @@ pub fn confirm<R: Robot<N>, const N: usize>(
             if cols.is_empty() {
                 continue;
             }
-            let s = sse_of(all, outside, Some((t, &cols)), &swapped).total;
+            let s = sse_of(all, outside, Some((t, &cols)), &swapped);
             let rival = Rival {
-                extra: (s - with_link) / tau,
+                extra: (s.total - with_link.total) / tau,
                 chance: chi2_upper(big - term.k, level),
-                alone: (without - s) / tau,
+                alone: (without - s.total) / tau,
                 threshold: chi2_upper(term.k, level),
+                worst_joint: s
+                    .joint
+                    .iter()
+                    .zip(&with_link.joint)
+                    .map(|(a, b)| (a - b) / tau)
+                    .fold(f64::NEG_INFINITY, f64::max),
+                joint_chance: chi2_upper(big - term.k, level / N.max(1) as f64),
             };
             if !rival.stands_in()
                 || best
@@ -619,7 +629,9 @@ pub fn confirm<R: Robot<N>, const N: usize>(
 /// held-out record (floor units over the correlation time): `extra`, what
 /// the link correction gains over it, against `chance` for its extra
 /// parameters; `alone`, what the simpler term gains in the link's place,
-/// against `threshold` for its own parameters.
+/// against `threshold` for its own parameters; `worst_joint`, the most the
+/// link correction gains over it at any one joint, against `joint_chance`
+/// (the same quantile at the level shared by the joints).
 #[derive(Debug, Clone, Copy, PartialEq)]
 pub struct Rival {
     /// The link correction's gain over the simpler term.
@@ -630,13 +642,24 @@ pub struct Rival {
     pub alone: f64,
     /// The chi-square quantile of its own parameters.
     pub threshold: f64,
+    /// The link correction's largest gain over the simpler term at one
+    /// joint.
+    pub worst_joint: f64,
+    /// The chi-square quantile of the extra parameters, at the level over
+    /// the joints.
+    pub joint_chance: f64,
 }
 
 impl Rival {
     /// The simpler term holds in the link's place, and the link does not
-    /// gain over it more than chance would with its extra parameters.
+    /// gain over it more than chance would with its extra parameters, in
+    /// all and at any one joint: a term that explains another joint's gap
+    /// (in floor units, a joint with a small floor weighs the most) is no
+    /// stand-in for what the link correction explains.
     pub fn stands_in(&self) -> bool {
-        self.extra <= self.chance && self.alone > self.threshold
+        self.extra <= self.chance
+            && self.worst_joint <= self.joint_chance
+            && self.alone > self.threshold
     }
 
     /// How far below chance the link's gain over it stays (the most
@@ -938,6 +961,40 @@ mod tests {
             }
             other => panic!("the small effect should go as too small: {other:?}"),
         }
+    }
+
+    /// A shoulder link's correction (ten parameters) explains joint 0's
+    /// gap; an effort scale at a wrist joint (one parameter) explains as
+    /// much in all, in floor units, at joint 2 whose floor is small. In
+    /// all the link gains nothing over the scale; at joint 0 it gains far
+    /// beyond chance: the scale is no stand-in. Where the two explain the
+    /// same joint alike, it is.
+    #[test]
+    fn a_term_that_explains_another_joint_stands_in_for_nothing() {
+        let level = FAMILY_LEVEL / 3.0;
+        let rival = |with_link: [f64; 3], swapped: [f64; 3], without: f64| {
+            let tau = 1.0;
+            Rival {
+                extra: (swapped.iter().sum::<f64>() - with_link.iter().sum::<f64>()) / tau,
+                chance: chi2_upper(9, level),
+                alone: (without - swapped.iter().sum::<f64>()) / tau,
+                threshold: chi2_upper(1, level),
+                worst_joint: swapped
+                    .iter()
+                    .zip(&with_link)
+                    .map(|(a, b)| (a - b) / tau)
+                    .fold(f64::NEG_INFINITY, f64::max),
+                joint_chance: chi2_upper(9, level / 3.0),
+            }
+        };
+        // Joint 0 keeps 400 units more without the link, joint 2 sheds 420
+        // with the scale.
+        let elsewhere = rival([1000.0, 1000.0, 1500.0], [1400.0, 1000.0, 1080.0], 3900.0);
+        assert!(elsewhere.extra <= elsewhere.chance && elsewhere.alone > elsewhere.threshold);
+        assert!(!elsewhere.stands_in(), "{elsewhere:?}");
+        // The scale explains joint 0 as the link does, within chance.
+        let alike = rival([1000.0, 1000.0, 1500.0], [1010.0, 1002.0, 1500.0], 3900.0);
+        assert!(alike.stands_in(), "{alike:?}");
     }
 
     #[test]
