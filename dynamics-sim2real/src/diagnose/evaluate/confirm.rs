@@ -31,7 +31,9 @@
 //!    effects that held, refitted together once the tests below are done,
 //!    must still be physical (an effort scale that stood in for a dropped
 //!    effect can go to its bound there: a suggestion, and the rest tested
-//!    again);
+//!    again; a spring whose stiffness that refit cannot tell from zero is
+//!    its preload alone, the effort offset at its joint, named in its
+//!    place);
 //! 4. every other effect must lower the held-out record's residual, the
 //!    others refitted on the training record without it, by more than the
 //!    sensor noise could: `(sse_without - sse_with) / tau` (sums of squares
@@ -564,6 +566,61 @@ pub fn confirm<R: Robot<N>, const N: usize>(
             let f = joint_fit(pool, t, theta, std);
             beyond_physical(&f, joint_of(f.candidate)).map(|why| (m, why))
         });
+        // A spring whose stiffness the refit cannot tell from zero is what
+        // its preload is: an effort offset at its joint, named in its place
+        // (tested again with the rest), or nothing more where the set holds
+        // that offset already.
+        let loose = || {
+            set.iter().enumerate().find_map(|(m, &t)| {
+                let Candidate::Spring(j) = pool.terms[t].fit.candidate else {
+                    return None;
+                };
+                let (theta, std) = (sol.theta.get(m)?, sol.std.get(m)?);
+                let f = joint_fit(pool, t, theta, std);
+                let why = undetermined(&f, joint_of(f.candidate))?;
+                why.starts_with("`stiffness`").then_some((m, j, why))
+            })
+        };
+        if undone.is_none() {
+            if let Some((m, j, why)) = loose() {
+                let offset = pool.terms.iter().position(|u| {
+                    u.fit.candidate == Candidate::EffortOffset(j) && u.fixed.is_none() && u.k > 0
+                });
+                let why = Unconfirmed::Undetermined(format!(
+                    "{why}: what the data show of it is an effort offset at its joint"
+                ));
+                let p = keep[m];
+                match offset {
+                    Some(t) if !set.contains(&t) => {
+                        let cols = free_columns(h, hlinks, pool, t);
+                        let mut terms = set.clone();
+                        terms[m] = t;
+                        let sol = solve(&terms);
+                        match (cols.is_empty(), sol.theta.get(m), sol.std.get(m)) {
+                            (false, Some(theta), Some(std)) => {
+                                let q = all.len();
+                                all.push(t);
+                                outside.push(cols);
+                                outside_fit.push((theta.clone(), std.clone()));
+                                keep[m] = q;
+                            }
+                            _ => {
+                                keep.remove(m);
+                            }
+                        }
+                    }
+                    _ => {
+                        keep.remove(m);
+                    }
+                }
+                dropped.push((p, why));
+                let (k2, c2, d2) = retest(keep, &all, &outside);
+                keep = k2;
+                confidence = c2;
+                dropped.extend(d2);
+                continue;
+            }
+        }
         let Some((m, why)) = undone else {
             break (keep, confidence, set, sol);
         };
