@@ -92,7 +92,7 @@ use crate::diagnose::fit::Windows;
 use crate::diagnose::numeric::correlation_time;
 use crate::diagnose::select::{
     helps, is_body, joint_fit, model_lag, partial_scale, partial_scales, payload_leaves_no_body,
-    BesideGravity, Carrier, Explanation, Parts, Pool, Why,
+    BesideGravity, Carrier, Explanation, Parts, Pool, Solution, Why,
 };
 use crate::effects::Effect;
 use dynamics_runtime::{JointKind, Robot};
@@ -570,19 +570,8 @@ pub fn confirm<R: Robot<N>, const N: usize>(
         // its preload is: an effort offset at its joint, named in its place
         // (tested again with the rest), or nothing more where the set holds
         // that offset already.
-        let loose = || {
-            set.iter().enumerate().find_map(|(m, &t)| {
-                let Candidate::Spring(j) = pool.terms[t].fit.candidate else {
-                    return None;
-                };
-                let (theta, std) = (sol.theta.get(m)?, sol.std.get(m)?);
-                let f = joint_fit(pool, t, theta, std);
-                let why = undetermined(&f, joint_of(f.candidate))?;
-                why.starts_with("`stiffness`").then_some((m, j, why))
-            })
-        };
         if undone.is_none() {
-            if let Some((m, j, why)) = loose() {
+            if let Some((m, j, why)) = loose_spring(pool, &set, &sol, joint_of) {
                 let offset = pool.terms.iter().position(|u| {
                     u.fit.candidate == Candidate::EffortOffset(j) && u.fixed.is_none() && u.k > 0
                 });
@@ -680,6 +669,27 @@ pub fn confirm<R: Robot<N>, const N: usize>(
         suggested,
         within_sample,
     }
+}
+
+/// The first spring of `set` (fitted together as `sol`) whose stiffness
+/// the data do not tell from zero: its position in the set, its joint and
+/// the reason. What is left of it is its preload, an effort offset.
+/// `joint_of`: a candidate's joint kind and the range it moves over.
+fn loose_spring(
+    pool: &Pool,
+    set: &[usize],
+    sol: &Solution,
+    joint_of: impl Fn(Candidate) -> Option<(JointKind, f64)>,
+) -> Option<(usize, usize, String)> {
+    set.iter().enumerate().find_map(|(m, &t)| {
+        let Candidate::Spring(j) = pool.terms[t].fit.candidate else {
+            return None;
+        };
+        let (theta, std) = (sol.theta.get(m)?, sol.std.get(m)?);
+        let f = joint_fit(pool, t, theta, std);
+        let why = undetermined(&f, joint_of(f.candidate))?;
+        why.starts_with("`stiffness`").then_some((m, j, why))
+    })
 }
 
 /// A simpler term of the pool in a link correction's place, judged on the
@@ -1018,6 +1028,44 @@ mod tests {
             }
             other => panic!("the small effect should go as too small: {other:?}"),
         }
+    }
+
+    /// A spring (stiffness and preload columns) fitted to a joint's
+    /// constant effort offset over a small motion: its stiffness is not
+    /// told from zero, and what is left of it is the offset. Fitted to a
+    /// true spring over the same motion it stays a spring.
+    #[test]
+    fn a_spring_without_a_stiffness_is_an_offset() {
+        use crate::diagnose::select::{test_pool, test_term};
+        use nalgebra::DMatrix;
+        let n = 400;
+        let q: Vec<f64> = (0..n).map(|i| 0.02 * (i as f64 * 0.03).sin()).collect();
+        // Unit noise that the slow motion does not see (alternating signs,
+        // orthogonal to it within rounding): the fitted stiffness is zero
+        // but for rounding, its spread what unit noise gives.
+        let spring = |gap: &dyn Fn(usize) -> f64| {
+            let mut x = DMatrix::<f64>::zeros(n, 2);
+            let mut y = DVector::<f64>::zeros(n);
+            for i in 0..n {
+                x[(i, 0)] = q[i];
+                x[(i, 1)] = 1.0;
+                y[i] = gap(i) + if i % 2 == 0 { 1.0 } else { -1.0 };
+            }
+            let terms = vec![test_term(
+                Candidate::Spring(0),
+                vec![0, 1],
+                vec![false, false],
+                None,
+            )];
+            let pool = test_pool(x, y, terms, 1);
+            let sol = pool.solve(&[0]);
+            loose_spring(&pool, &[0], &sol, |_| Some((JointKind::Revolute, 0.04)))
+        };
+        match spring(&|_| 30.0) {
+            Some((0, 0, why)) => assert!(why.contains("not told from zero"), "{why}"),
+            other => panic!("{other:?}"),
+        }
+        assert_eq!(spring(&|i| 30.0 + 4000.0 * q[i]), None);
     }
 
     /// A shoulder link's correction (ten parameters) explains joint 0's
