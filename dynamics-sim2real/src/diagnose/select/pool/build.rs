@@ -134,6 +134,7 @@ impl Pool {
             prior,
             strength,
             blocks: Default::default(),
+            seen: Vec::new(),
         }
     }
 }
