@@ -177,6 +177,7 @@ mod tests {
             prior,
             strength: STRENGTHS[0],
             blocks: Default::default(),
+            seen: Vec::new(),
         }
     }
 
