@@ -85,19 +85,10 @@ pub fn free_columns<const N: usize>(
     if term.fixed.is_some() {
         return Vec::new();
     }
-    let mut cols = linear_columns(term.fit.candidate, h);
-    // An effort scale's column holds the effort at its joint of the
-    // effects acting there from elsewhere (`Pool::scales_see`).
-    if let (Candidate::EffortScale(j), [col]) = (term.fit.candidate, cols.as_mut_slice()) {
-        for (u, theta) in pool.seen_by(t) {
-            for (cu, th) in free_columns(h, links, pool, *u).iter().zip(theta) {
-                for i in (j..col.len().min(cu.len())).step_by(N.max(1)) {
-                    col[i] += th * cu[i];
-                }
-            }
-        }
-    }
-    cols.into_iter().map(DVector::from_vec).collect()
+    linear_columns(term.fit.candidate, h)
+        .into_iter()
+        .map(DVector::from_vec)
+        .collect()
 }
 
 /// Effort scale of the plain measure (noise included): the raw effort

@@ -61,7 +61,7 @@ use super::pool::{Carrier, Pool, Solution};
 use crate::diagnose::candidates::{Candidate, Friction, Prepared};
 use crate::diagnose::fit::{fit_against, fixed_column_against, Against, Fit};
 use crate::diagnose::Options;
-use crate::effects::{Effect, EffectKind};
+use crate::effects::Effect;
 use eliminate::{eliminate, full};
 pub use left_out::{LeftOut, Why};
 use resume::without_left_out;
@@ -78,11 +78,6 @@ pub const ROUNDS: usize = 2;
 /// Rounds of leaving out what is not what it seems, and searching the
 /// motor sides again without it.
 pub const LEFT_OUT_ROUNDS: usize = 2;
-
-/// Rounds of effort scales' columns made again from the set's fit and the
-/// selection resumed (`scales_see`): a payload's share at a scaled joint
-/// moves the set's fit of the payload little, so two or three settle it.
-pub const SEE_ROUNDS: usize = 3;
 
 /// Residual left on every joint, in units of the floor ratio, above which
 /// the search also starts from the full linear model.
@@ -244,62 +239,6 @@ fn alternate<R: Robot<N>, const N: usize>(
     set
 }
 
-/// Every effort scale's column made to hold what the effects of `set`
-/// acting at its joint from elsewhere add to the effort there
-/// ([`Pool::scales_see`]), and the selection resumed without the terms
-/// `banned`, [`SEE_ROUNDS`] times at most (until no column changes).
-fn scales_see<const N: usize>(
-    pool: &mut Pool,
-    mut set: Vec<usize>,
-    options: &Options,
-    banned: &[usize],
-) -> Vec<usize> {
-    for _ in 0..SEE_ROUNDS {
-        let sol = pool.solve(&set);
-        if !pool.scales_see(&set, &sol) {
-            break;
-        }
-        set = select_except::<N>(pool, set, options, banned);
-    }
-    // A scale that now holds the whole effort at its joint may stand in
-    // for several effects the selection put there before (an offset and a
-    // rotor inertia where the scale's share of a payload's effort was):
-    // those out, the scale in, the selection resumed; kept where both the
-    // criterion and the cross-validated deviance are lower (as in
-    // `exchange.rs`).
-    let folds = Folds::new(pool, N);
-    let cv = |s: &[usize]| folds.as_ref().map_or(0.0, |f| f.deviance(pool, s));
-    for t in 0..pool.terms.len() {
-        let Candidate::EffortScale(j) = pool.terms[t].fit.candidate else {
-            continue;
-        };
-        if set.contains(&t) || banned.contains(&t) || pool.seen_by(t).is_empty() {
-            continue;
-        }
-        let at_joint = |u: usize| {
-            let c = pool.terms[u].fit.candidate;
-            c.joint() == Some(j)
-                && !matches!(
-                    c.kind(),
-                    EffectKind::CoulombFriction
-                        | EffectKind::ViscousFriction
-                        | EffectKind::StribeckFriction
-                        | EffectKind::EffortScale
-                )
-        };
-        let mut trial: Vec<usize> = set.iter().copied().filter(|&u| !at_joint(u)).collect();
-        if trial.len() == set.len() {
-            continue;
-        }
-        trial.push(t);
-        let other = select_except::<N>(pool, trial, options, banned);
-        if explicit_crit(pool, &other) < explicit_crit(pool, &set) && cv(&other) < cv(&set) {
-            set = other;
-        }
-    }
-    set
-}
-
 /// The compound explanation of the residual of `p` over the terms of
 /// `pool` (whose motor-side columns are searched again as it goes);
 /// `beside`: the model's effort beside gravity, what an effort scale's
@@ -346,7 +285,6 @@ pub fn explain<R: Robot<N>, const N: usize>(
         set = select::<N>(pool, set, options);
     }
     set = alternate::<R, N>(pool, p, set, options, &[]);
-    set = scales_see::<N>(pool, set, options, &[]);
     // Link corrections and payloads that leave no physical body, effort
     // scales of part of the effort: out, and the selection resumes
     // without them (`resume.rs`); the motor sides, searched beside what
@@ -366,7 +304,6 @@ pub fn explain<R: Robot<N>, const N: usize>(
         }
         set = alternate::<R, N>(pool, p, set, options, &banned);
     }
-    set = scales_see::<N>(pool, set, options, &banned);
     // Parsimony once more: a richer nested term the simpler one at its
     // place now fits within the nesting margin gives way to it, and so
     // does a motor side where the rigid rotor in its stead leaves its joint

@@ -134,7 +134,6 @@ impl Pool {
             prior,
             strength,
             blocks: Default::default(),
-            seen: Vec::new(),
         }
     }
 }

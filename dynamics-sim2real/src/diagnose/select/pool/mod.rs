@@ -114,15 +114,7 @@ pub struct Pool {
     /// The Gram matrices of blocks of rows formed so far
     /// ([`Pool::rows_gram`]) of the columns and residual as they are.
     blocks: Blocks,
-    /// Per effort scale whose column holds more than the nominal model's
-    /// effort ([`Pool::scales_see`]): its term and the terms whose effort
-    /// at its joint it also scales, with their parameters.
-    seen: Vec<(usize, Seen)>,
 }
-
-/// The terms (and their parameters) whose effort at its joint an effort
-/// scale's column holds beside the nominal model's.
-pub type Seen = Vec<(usize, Vec<f64>)>;
 
 /// Most blocks' Gram matrices a pool keeps (the cross-validation's
 /// folds ask for the same four blocks every time).
@@ -227,107 +219,6 @@ impl Pool {
             .collect()
     }
 
-    /// Makes every effort scale's column the effort the model gives at its
-    /// joint with the effects of `set` (fitted `sol`) that act there from
-    /// elsewhere (a payload, a link correction, an encoder offset at
-    /// another joint, a delay): a sensor's scale multiplies the whole
-    /// applied effort, and an effect fitted on every joint cannot take its
-    /// scaled share at one. The joint's own effects are left as fitted, in
-    /// the measured effort's units (`effects/calibrated`). Whether any
-    /// column changed beyond rounding.
-    pub fn scales_see(&mut self, set: &[usize], sol: &Solution) -> bool {
-        let joints = self.weights.len().max(1);
-        let mut changed = false;
-        for t in 0..self.terms.len() {
-            let term = &self.terms[t];
-            let (Candidate::EffortScale(j), None, [c]) =
-                (term.fit.candidate, term.fixed, term.cols.as_slice())
-            else {
-                continue;
-            };
-            let c = *c;
-            let seen: Seen = set
-                .iter()
-                .zip(&sol.theta)
-                .filter(|&(&u, theta)| {
-                    let other = &self.terms[u];
-                    other.fixed.is_none()
-                        && !matches!(other.fit.candidate, Candidate::EffortScale(_))
-                        && other.fit.candidate.joint() != Some(j)
-                        && theta.iter().all(|v| v.is_finite())
-                })
-                .map(|(&u, theta)| (u, theta.clone()))
-                .collect();
-            let before = self.seen.iter().find(|s| s.0 == t).map(|s| s.1.clone());
-            let same = |a: &Seen, b: &Seen| {
-                a.len() == b.len()
-                    && a.iter().zip(b).all(|(x, y)| {
-                        x.0 == y.0
-                            && x.1
-                                .iter()
-                                .zip(&y.1)
-                                .all(|(p, q)| (p - q).abs() <= 1e-9 * (1.0 + p.abs()))
-                    })
-            };
-            if same(before.as_ref().unwrap_or(&Vec::new()), &seen) {
-                continue;
-            }
-            // The column at its joint's rows: what it was, less what it held
-            // of the others before, plus what it holds now.
-            let mut v = vec![0.0; self.x.nrows()];
-            let add = |x: &Cols, v: &mut Vec<f64>, seen: &Seen, sign: f64| {
-                for (u, theta) in seen {
-                    for (&cu, th) in self.terms[*u].cols.iter().zip(theta) {
-                        for i in (j..v.len()).step_by(joints) {
-                            v[i] += sign * th * x.get(cu, i);
-                        }
-                    }
-                }
-            };
-            for i in (j..v.len()).step_by(joints) {
-                v[i] = self.x.get(c, i);
-            }
-            if let Some(before) = &before {
-                add(&self.x, &mut v, before, -1.0);
-            }
-            add(&self.x, &mut v, &seen, 1.0);
-            if !v.iter().all(|x| x.is_finite()) {
-                continue;
-            }
-            self.x.set(c, v);
-            let mut g = self.x.against(c);
-            if self.prior.scales.shape() == self.gram.shape() {
-                g[c] += self.prior.scales[(c, c)]
-                    * weight(self.yy, self.x.nrows(), prior::SCALE_STRENGTH);
-            }
-            if self.prior.links.shape() == self.gram.shape() {
-                g[c] += self.prior.links[(c, c)] * weight(self.yy, self.x.nrows(), self.strength);
-            }
-            self.gram.set_column(c, &g);
-            self.gram.set_row(c, &g.transpose());
-            self.xty[c] = self.x.dot_with(c, self.y.as_slice(), 0, self.y.len());
-            match self.seen.iter_mut().find(|s| s.0 == t) {
-                Some(s) => s.1 = seen,
-                None => self.seen.push((t, seen)),
-            }
-            changed = true;
-        }
-        if changed {
-            self.changed();
-        }
-        changed
-    }
-
-    /// The terms whose effort at its joint effort scale `t`'s column holds
-    /// beside the nominal model's ([`Pool::scales_see`]; none: the model's
-    /// alone).
-    pub fn seen_by(&self, t: usize) -> &[(usize, Vec<f64>)] {
-        self.seen
-            .iter()
-            .find(|s| s.0 == t)
-            .map_or(&[], |s| s.1.as_slice())
-    }
-
     /// Replaces the fixed column of term `t` (a motor side searched again).
     pub fn set_fixed(&mut self, t: usize, fit: Fit, col: Vec<f64>) {
         let Some(c) = self.terms[t].fixed else { return };
@@ -422,7 +313,6 @@ impl Pool {
             prior: self.prior.clone(),
             strength: self.strength,
             blocks: Blocks::default(),
-            seen: self.seen.clone(),
         }
     }
 
@@ -516,7 +406,6 @@ pub(crate) fn test_pool(x: DMatrix<f64>, y: DVector<f64>, terms: Vec<Term>, join
         prior: Prior::none(),
         strength: crate::diagnose::select::pool::prior::STRENGTHS[0],
         blocks: Blocks::default(),
-        seen: Vec::new(),
     }
 }
 

@@ -177,7 +177,6 @@ mod tests {
             prior,
             strength: STRENGTHS[0],
             blocks: Default::default(),
-            seen: Vec::new(),
         }
     }
 

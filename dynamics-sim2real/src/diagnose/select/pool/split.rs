@@ -115,7 +115,6 @@ impl Pool {
             prior,
             strength: self.strength,
             blocks: Blocks::default(),
-            seen: Vec::new(),
         };
         let all: Vec<usize> = (0..count).collect();
         let sol = solve(&pool, &all);
