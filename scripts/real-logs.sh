@@ -6,8 +6,9 @@
 #   - KUKA LWR4+ (200 Hz, joint torque sensors): kjyv/FloBaRoID, the three
 #     records of 2016 (LFS pointers at HEAD, real files in the history).
 #
-# Usage: [HOLD_LINKS=1] [BASELINE_LINKS=moments] bash scripts/real-logs.sh PANDA_REPO FLOBAROID_REPO [WORKDIR]
-#   HOLD_LINKS=1: diagnose as `dynamics diagnose --hold-links` does.
+# Usage: [HOLD_LINKS=1 | JUDGE_LINKS=1] [BASELINE_LINKS=moments] bash scripts/real-logs.sh PANDA_REPO FLOBAROID_REPO [WORKDIR]
+#   HOLD_LINKS=1: diagnose as `dynamics diagnose --hold-links` does;
+#   JUDGE_LINKS=1: as `--judge-links` does.
 #   BASELINE_LINKS=moments: the least-squares baseline with each link's mass
 #   and first moments alone instead of all ten parameters.
 #   PANDA_REPO, FLOBAROID_REPO: git clones (bare or not) of the two

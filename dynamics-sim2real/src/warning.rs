@@ -154,6 +154,17 @@ pub enum Warning {
         /// The sample interval, s.
         interval: f64,
     },
+    /// The data ask for link corrections that leave no physical body on
+    /// most of the links: the nominal model's inertial parameters are
+    /// rough (a CAD model), and link corrections are held to the nearest
+    /// physical body and named where they hold on the held-out record, as
+    /// `--hold-links` asks.
+    RoughInertials {
+        /// Links whose correction leaves no body.
+        links: usize,
+        /// Links the diagnosis may correct.
+        of: usize,
+    },
     /// The short-horizon simulation of a model could not be made (a
     /// plant it cannot build, an integrator that stops): its figures are
     /// left out (`null` in the JSON report).
@@ -224,6 +235,10 @@ impl fmt::Display for Warning {
                 "the effort lags the measured motion by {:.2} +- {:.2} ms (positions and velocities agree): the effort stream is late against position and velocity",
                 delay * 1e3,
                 std * 1e3
+            ),
+            Warning::RoughInertials { links, of } => write!(
+                f,
+                "the data ask for corrections that leave no physical body on {links} of the {of} links: the nominal inertial parameters are rough (a CAD model?), so link corrections are held to the nearest physical body and named where they hold on the held-out record (as --hold-links)"
             ),
             Warning::WithinSample { delay, interval } => write!(
                 f,

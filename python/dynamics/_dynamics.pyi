@@ -217,6 +217,7 @@ class Robot:
         noise_q: Optional[Levels] = None,
         noise_qd: Optional[Levels] = None,
         hold_links: bool = False,
+        judge_links: bool = False,
         progress: Union[None, bool, Callable[[int, int], Any]] = None,
     ) -> Dict[str, Any]:
         """The gap diagnosis: the JSON report of ``dynamics diagnose --json`` as a dict.
@@ -231,7 +232,9 @@ class Robot:
         sample. ``noise_*``: the known sensor noise (one level or one per joint),
         as ``--noise-tau/--noise-q/--noise-qd``. ``hold_links``: as ``--hold-links``
         (a link correction the data take beyond every body held to the nearest
-        one and named if it holds on the held-out record). ``progress``: a callable
+        one and named if it holds on the held-out record; by default they are held
+        only where the data ask for such corrections on most links).
+        ``judge_links``: as ``--judge-links`` (never held). ``progress``: a callable
         ``progress(done, total)`` called as candidates are fitted; ``True`` for a
         ``tqdm.auto`` bar (or, without tqdm, INFO lines on the ``dynamics`` logger
         every tenth of the candidates); never writes to the terminal itself. Warnings go to the ``dynamics`` logger

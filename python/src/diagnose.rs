@@ -34,6 +34,8 @@ pub struct Request<'a, 'py> {
     pub noise: [Option<&'a Bound<'py, PyAny>>; 3],
     /// `hold_links` (`--hold-links`).
     pub hold_links: bool,
+    /// `judge_links` (`--judge-links`).
+    pub judge_links: bool,
     pub progress: Option<Bound<'py, PyAny>>,
 }
 
@@ -360,6 +362,7 @@ pub fn run<'py>(
             tau,
         }),
         hold_links: req.hold_links,
+        judge_links: req.judge_links,
         ..Options::default()
     };
     let reporter = Progress::new(py, req.progress)?;

@@ -574,7 +574,7 @@ impl PyRobot {
     /// The gap diagnosis (see `dynamics.Robot.diagnose` in the stubs).
     #[pyo3(signature = (train, holdout, *, columns=None, topic=None, train_window=None,
         holdout_window=None, noise_tau=None, noise_q=None, noise_qd=None, hold_links=false,
-        progress=None))]
+        judge_links=false, progress=None))]
     #[allow(clippy::too_many_arguments)]
     fn diagnose<'py>(
         &self,
@@ -589,6 +589,7 @@ impl PyRobot {
         noise_q: Option<&Bound<'py, PyAny>>,
         noise_qd: Option<&Bound<'py, PyAny>>,
         hold_links: bool,
+        judge_links: bool,
         progress: Option<Bound<'py, PyAny>>,
     ) -> PyResult<Bound<'py, PyAny>> {
         crate::diagnose::run(
@@ -603,6 +604,7 @@ impl PyRobot {
                 holdout_window,
                 noise: [noise_tau, noise_q, noise_qd],
                 hold_links,
+                judge_links,
                 progress,
             },
         )

@@ -62,9 +62,11 @@ fn run<R: Robot<N> + Clone + Send + Sync + 'static, const N: usize>(robot: R, ar
     }
     let start = std::time::Instant::now();
     // HOLD_LINKS=1: link corrections held to the nearest physical body
-    // (`dynamics diagnose --hold-links`).
+    // (`dynamics diagnose --hold-links`); JUDGE_LINKS=1: never held
+    // (`--judge-links`).
     let options = Options {
         hold_links: std::env::var_os("HOLD_LINKS").is_some_and(|v| v == "1"),
+        judge_links: std::env::var_os("JUDGE_LINKS").is_some_and(|v| v == "1"),
         ..Options::default()
     };
     let quiet = |_: usize, _: usize| {};

@@ -255,6 +255,11 @@ pub struct DiagnoseArgs {
     /// leaving it out: for a nominal model whose inertial parameters are rough (a CAD model).
     #[arg(long)]
     pub hold_links: bool,
+    /// Never hold link corrections to bodies, not even where the data ask for corrections
+    /// without a body on most links (by default the model's inertials are then taken as rough
+    /// and the corrections held): for a nominal model whose inertial parameters are trusted.
+    #[arg(long, conflicts_with = "hold_links")]
+    pub judge_links: bool,
     /// The nominal model.
     #[command(flatten)]
     pub model: ModelArgs,
@@ -294,11 +299,12 @@ impl DiagnoseArgs {
     }
 
     /// The diagnosis's options these arguments set (the stated noise,
-    /// `--hold-links`), the others at their defaults.
+    /// `--hold-links`, `--judge-links`), the others at their defaults.
     pub fn options(&self) -> dynamics_sim2real::diagnose::Options {
         dynamics_sim2real::diagnose::Options {
             noise: self.noise(),
             hold_links: self.hold_links,
+            judge_links: self.judge_links,
             ..Default::default()
         }
     }

@@ -74,7 +74,7 @@ pub(crate) use fit::motor_transmitted_raw;
 pub use fit::Fit;
 pub use numeric::aicc;
 pub use options::{CalibrationSpread, Options};
-pub use select::breakaway_data_needed;
+pub use select::{breakaway_data_needed, HeldLinks};
 pub use signals::SensorNoise;
 pub(crate) use signals::Signals;
 

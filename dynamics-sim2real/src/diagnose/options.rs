@@ -49,7 +49,9 @@ pub struct Options {
     /// Hold a link correction the fit takes beyond every body at the
     /// nearest physical one in the metric of the data, and name it when it
     /// holds on the held-out record (`select/pool/physical.rs`); off, such
-    /// a correction is left out with the reason. For a model whose
+    /// a correction is left out with the reason, unless the data ask for
+    /// such corrections on most links (the model's inertials are rough:
+    /// [`HeldLinks::Rough`](crate::diagnose::HeldLinks::Rough)). For a model whose
     /// inertial parameters are known to be rough (a CAD model of a real
     /// arm): on logs of real arms it names corrections that predict the
     /// held-out record better than a least-squares identification; on
@@ -57,6 +59,10 @@ pub struct Options {
     /// stand in for effects of other kinds the diagnosis models more simply
     /// than the simulator (docs/diagnosis.md).
     pub hold_links: bool,
+    /// Never hold link corrections to bodies, not even where the data ask
+    /// for corrections without a body on most links (a nominal model whose
+    /// inertials are trusted); `hold_links` takes precedence.
+    pub judge_links: bool,
     /// The calibration the nominal model carries (a report used as the
     /// baseline): the spread its data left on each joint's friction. A
     /// friction correction within what that spread and its own allow is
@@ -112,6 +118,7 @@ impl Default for Options {
             chunk: 0,
             noise: None,
             hold_links: false,
+            judge_links: false,
             calibration: None,
         }
     }

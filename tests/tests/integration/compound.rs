@@ -16,7 +16,9 @@
 //! draws others, `COMPOUND_ONLY=3,17` runs only those cases (the targets
 //! are then not asserted). `COMPOUND_HOLD_LINKS=1` diagnoses with
 //! [`Options::hold_links`] (link corrections held to the nearest physical
-//! body) and scores that. `COMPOUND_DUMP=DIR` writes each case's training
+//! body) and scores that, `COMPOUND_JUDGE_LINKS=1` with
+//! [`Options::judge_links`] (never held, not even where most links' corrections
+//! leave no body). `COMPOUND_DUMP=DIR` writes each case's training
 //! and held-out records (CSV), its drawn effects and the report (JSON)
 //! into `DIR`, named by case and robot.
 //!
@@ -225,6 +227,7 @@ fn case_on<R: Robot<N> + Clone + Send + Sync + 'static, const N: usize>(
     }
     let options = Options {
         hold_links: env("COMPOUND_HOLD_LINKS", 0) == 1,
+        judge_links: env("COMPOUND_JUDGE_LINKS", 0) == 1,
         ..Options::default()
     };
     let report: Report =

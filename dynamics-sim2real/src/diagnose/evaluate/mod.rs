@@ -77,7 +77,7 @@ pub fn evaluate<'a, R: Robot<N> + Clone + Sync, const N: usize>(
     selection: &Selection,
     options: &Options,
 ) -> Evaluation<'a, N> {
-    let hold_links = options.hold_links;
+    let hold_links = selection.held_links.held();
     let (p, h) = (&records.p, &records.h);
     let mut training_warnings = Vec::new();
     let prediction = horizon::prediction_error(robot, p, &[])

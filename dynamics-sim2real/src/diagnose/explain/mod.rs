@@ -39,7 +39,7 @@ use crate::diagnose::candidates::Records;
 use crate::diagnose::evaluate::Evaluation;
 use crate::diagnose::fit::corrected_rows;
 use crate::diagnose::numeric::aicc;
-use crate::diagnose::select::Selection;
+use crate::diagnose::select::{HeldLinks, Selection};
 use crate::diagnose::Options;
 use crate::effects::Tip;
 use dynamics_runtime::Robot;
@@ -162,6 +162,9 @@ pub fn report<R: Robot<N>, const N: usize>(
     annotate(&mut effects, pool, e, &selection.windows);
     let mut warnings = records.warnings.clone();
     warnings.extend(evaluation.training_warnings.iter().cloned());
+    if let HeldLinks::Rough { links, of } = selection.held_links {
+        warnings.push(crate::Warning::RoughInertials { links, of });
+    }
     if let Some((delay, interval)) = evaluation.confirmed.within_sample {
         warnings.push(crate::Warning::WithinSample { delay, interval });
     }

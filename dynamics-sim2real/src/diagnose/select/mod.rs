@@ -10,13 +10,16 @@
 //!   nominal model;
 //! - `compound/`: the compound explanation, the set of effects that
 //!   together explain the gap (forward selection, elimination from the
-//!   full linear model, cross-validation, the prior's strength).
+//!   full linear model, cross-validation, the prior's strength);
+//! - `rough.rs`: a nominal model whose inertials are rough, whose link
+//!   corrections are then held to bodies.
 
 mod compound;
 mod criterion;
 mod nesting;
 mod pool;
 mod rank;
+mod rough;
 
 pub use compound::{
     against_others, effects, joint_fit, partial_scale, partial_scales, BesideGravity, Explanation,
@@ -24,6 +27,7 @@ pub use compound::{
 };
 pub use nesting::{breakaway_data_needed, nested_rival_stands};
 pub use pool::{helps, model_lag, Carrier, Parts, Pool, Solution};
+pub use rough::HeldLinks;
 pub(in crate::diagnose) use pool::{is_body, payload_leaves_no_body};
 #[cfg(test)]
 pub(crate) use pool::{test_pool, test_term};
@@ -55,6 +59,8 @@ pub struct Selection {
     pub windows: Windows,
     /// Whether link inertial corrections were candidates.
     pub with_links: bool,
+    /// How link corrections that leave no physical body were treated.
+    pub held_links: HeldLinks,
 }
 
 /// The single-effect ranking of `fitted` on training record `p` (the
@@ -85,7 +91,7 @@ pub fn select<R: Robot<N> + Clone + Sync, const N: usize>(
     pool.limit_to_windows(&fitted.windows, p);
     let carrier = Carrier::of(robot, &nominal);
     let beside = BesideGravity::of(robot, p);
-    let explanation = compound::explain::<R, N>(
+    let mut explanation = compound::explain::<R, N>(
         &mut pool,
         p,
         &nominal,
@@ -93,6 +99,33 @@ pub fn select<R: Robot<N> + Clone + Sync, const N: usize>(
         Some(&beside),
         options,
     );
+    // Corrections without a body on most links: the model's inertials are
+    // rough, and the explanation is chosen again with the links held to
+    // bodies (`rough.rs`).
+    let mut held_links = if options.hold_links {
+        HeldLinks::Asked
+    } else {
+        HeldLinks::Judged
+    };
+    let rough = (!options.judge_links)
+        .then(|| rough::rough(&pool, &explanation.left_out))
+        .flatten();
+    if let (HeldLinks::Judged, Some((links, of))) = (held_links, rough) {
+        pool.restart();
+        let held = Options {
+            hold_links: true,
+            ..options.clone()
+        };
+        explanation = compound::explain::<R, N>(
+            &mut pool,
+            p,
+            &nominal,
+            carrier.as_ref(),
+            Some(&beside),
+            &held,
+        );
+        held_links = HeldLinks::Rough { links, of };
+    }
     drop(beside);
     // A payload that would leave the tip's carrier no body is no single
     // effect either: the ranking is what the user reads beside the
@@ -109,6 +142,7 @@ pub fn select<R: Robot<N> + Clone + Sync, const N: usize>(
         carrier,
         windows: fitted.windows,
         with_links,
+        held_links,
     }
 }
 

@@ -237,6 +237,14 @@ impl Pool {
         self.changed();
     }
 
+    /// The weights and the prior's strength the pool was made with, as
+    /// before a selection (the motor sides' columns stay as last searched).
+    pub fn restart(&mut self) {
+        let joints = self.weights.len();
+        self.reweight(&vec![1.0; joints]);
+        self.set_strength(prior::STRENGTHS[0]);
+    }
+
     /// Sets the prior's strength (the Gram matrix follows).
     pub fn set_strength(&mut self, strength: f64) {
         // Only the links' part changes: `X^T X` is not formed again.
