@@ -27,10 +27,10 @@ pub use compound::{
 };
 pub use nesting::{breakaway_data_needed, nested_rival_stands};
 pub use pool::{helps, model_lag, Carrier, Parts, Pool, Solution};
-pub use rough::HeldLinks;
 pub(in crate::diagnose) use pool::{is_body, payload_leaves_no_body};
 #[cfg(test)]
 pub(crate) use pool::{test_pool, test_term};
+pub use rough::HeldLinks;
 
 use nalgebra::SVector;
 

@@ -101,7 +101,12 @@ mod tests {
             })
             .collect();
         terms.push(test_term(Candidate::Viscous(0), vec![0], vec![false], None));
-        test_pool(DMatrix::from_element(4, 1, 1.0), DVector::zeros(4), terms, 1)
+        test_pool(
+            DMatrix::from_element(4, 1, 1.0),
+            DVector::zeros(4),
+            terms,
+            1,
+        )
     }
 
     fn left(term: usize, why: Why) -> LeftOut {
@@ -130,7 +135,11 @@ mod tests {
 
     #[test]
     fn a_short_arm_is_never_rough_and_other_kinds_do_not_count() {
-        let all = [left(0, Why::NoBody), left(2, Why::NoBody), left(4, Why::NoBody)];
+        let all = [
+            left(0, Why::NoBody),
+            left(2, Why::NoBody),
+            left(4, Why::NoBody),
+        ];
         assert_eq!(rough(&pool(3), &all), None, "three of three");
         let pool = pool(5);
         let four: Vec<LeftOut> = (0..4).map(|l| left(2 * l, Why::NoBody)).collect();
