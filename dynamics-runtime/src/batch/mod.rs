@@ -80,8 +80,8 @@ fn length<T>(quantity: &'static str, x: &[T], expected: usize) -> Result<(), Bat
 /// States `start..start + WIDTH` of `x` in lanes (past the end: the last).
 #[inline(always)]
 fn gather<L: Lanes, const N: usize>(x: &[SVector<f64, N>], start: usize) -> [L; N] {
-    let last = x.len() - 1;
-    core::array::from_fn(|j| L::from_fn(|i| x[(start + i).min(last)][j]))
+    let end = (start + L::WIDTH).min(x.len());
+    L::load_states(&x[start..end], |v| &v.data.0[0])
 }
 
 /// Writes the lanes of `values` into the states of `out` (at most

@@ -108,6 +108,11 @@ pub trait Lanes:
         states: &mut [T],
         field: impl Fn(&mut T) -> &mut [[f64; R]; C],
     );
+    /// The values `field(&states[i])` in lanes: lane `i` of value `j` is
+    /// entry `j` of state `i`, for the first `states.len()` lanes (at
+    /// least one, at most `WIDTH`); lanes past them repeat the last state.
+    #[doc(hidden)]
+    fn load_states<T, const N: usize>(states: &[T], field: impl Fn(&T) -> &[f64; N]) -> [Self; N];
 }
 
 impl Lanes for f64 {
@@ -175,6 +180,10 @@ impl Lanes for f64 {
         if let [state] = states {
             *field(state) = *values;
         }
+    }
+    #[inline(always)]
+    fn load_states<T, const N: usize>(states: &[T], field: impl Fn(&T) -> &[f64; N]) -> [Self; N] {
+        states.first().map_or([0.0; N], |s| *field(s))
     }
 }
 
@@ -421,6 +430,46 @@ mod tests {
             check::<F64x8>();
         }
         check::<f64>();
+        // SAFETY: each runs only where the CPU has its features.
+        #[allow(unsafe_code)]
+        on_this_cpu(|| unsafe { four() }, || unsafe { eight() });
+    }
+    #[test]
+    fn loads_of_whole_and_partial_lanes_take_each_state_and_repeat_the_last() {
+        fn check<L: Lanes, const N: usize>() {
+            // N values a state, for 1..=WIDTH states: lane i of value j is
+            // state min(i, states - 1)'s entry j.
+            for m in 1..=L::WIDTH {
+                let states: Vec<[f64; N]> = (0..m)
+                    .map(|i| core::array::from_fn(|j| (100 * j + i) as f64 + 0.5))
+                    .collect();
+                let values: [L; N] = L::load_states(&states, |s| s);
+                for (j, v) in values.iter().enumerate() {
+                    for i in 0..L::WIDTH {
+                        let expected = (100 * j + i.min(m - 1)) as f64 + 0.5;
+                        assert_eq!(v.lane(i), expected, "{m} states, value {j}, lane {i}");
+                    }
+                }
+            }
+        }
+        // Fewer values than lanes, a whole block, blocks and an overlapping tail.
+        fn all<L: Lanes>() {
+            check::<L, 3>();
+            check::<L, 4>();
+            check::<L, 6>();
+            check::<L, 7>();
+            check::<L, 8>();
+            check::<L, 11>();
+        }
+        #[target_feature(enable = "avx2,fma")]
+        fn four() {
+            all::<F64x4>();
+        }
+        #[target_feature(enable = "avx512f,avx2,fma")]
+        fn eight() {
+            all::<F64x8>();
+        }
+        all::<f64>();
         // SAFETY: each runs only where the CPU has its features.
         #[allow(unsafe_code)]
         on_this_cpu(|| unsafe { four() }, || unsafe { eight() });

@@ -226,9 +226,48 @@ macro_rules! vector_lanes {
                     }
                 }
             }
+            #[inline(always)]
+            fn load_states<T, const N: usize>(
+                states: &[T],
+                field: impl Fn(&T) -> &[f64; N],
+            ) -> [Self; N] {
+                if states.len() == $width && N >= $width {
+                    return Self::load_whole(states, field);
+                }
+                let last = states.len() - 1;
+                core::array::from_fn(|j| Self::from_fn(|i| field(&states[i.min(last)])[j]))
+            }
         }
 
         impl $name {
+            /// [`Lanes::load_states`] of a whole group of at least
+            /// `$width` values: blocks of `$width` entries, one vector
+            /// load per state, turned into lanes by a register transpose
+            /// (not `$width` scalar loads per value); the last block ends
+            /// at the last entry and overlaps the one before.
+            #[inline(always)]
+            fn load_whole<T, const N: usize>(
+                states: &[T],
+                field: impl Fn(&T) -> &[f64; N],
+            ) -> [Self; N] {
+                let mut out = [Self::splat(0.0); N];
+                let mut k = 0;
+                loop {
+                    let k0 = k.min(N - $width);
+                    let rows: [Self; $width] = core::array::from_fn(|i| {
+                        let x = field(&states[i]);
+                        Self::from_array(core::array::from_fn(|m| x[k0 + m]))
+                    });
+                    for (m, v) in Self::transpose(&rows).into_iter().enumerate() {
+                        out[k0 + m] = v;
+                    }
+                    if k0 + $width >= N {
+                        return out;
+                    }
+                    k += $width;
+                }
+            }
+
             /// `sin_cos` when a lane is huge or not finite: each lane by
             /// the scalar kernel (which sends those to `std` or `libm`).
             #[cold]
