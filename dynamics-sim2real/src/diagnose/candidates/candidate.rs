@@ -99,8 +99,10 @@ pub enum Candidate {
     /// Encoder offset at a joint.
     EncoderOffset(usize),
     /// Delay of the measured motion (positions and velocities late
-    /// together against the effort).
-    TimeDelay,
+    /// together against the effort); its column is the secant of the
+    /// measured effort over the delay it holds, s (0: the tangent, its
+    /// rate; `late.rs`).
+    TimeDelay(f64),
     /// The position channel late against velocity and effort: offered only
     /// when the measured positions lag the integral of the independently
     /// measured velocities (`late.rs`).
@@ -174,7 +176,7 @@ impl Candidate {
             EffectKind::EnvironmentResistance => Candidate::Environment(grid("alpha")?),
             EffectKind::EncoderOffset => Candidate::EncoderOffset(j()?),
             EffectKind::TimeDelay => match channel {
-                None | Some(Channel::All) => Candidate::TimeDelay,
+                None | Some(Channel::All) => Candidate::TimeDelay(grid("delay").unwrap_or(0.0)),
                 Some(Channel::Positions) => Candidate::LatePositions,
                 Some(Channel::Effort) => Candidate::LateEffort(grid("delay")?),
             },
@@ -191,7 +193,7 @@ impl Candidate {
     /// `effort`; `None` for every other candidate.
     pub fn channel(self) -> Option<Channel> {
         match self {
-            Candidate::TimeDelay => Some(Channel::All),
+            Candidate::TimeDelay(_) => Some(Channel::All),
             Candidate::LatePositions => Some(Channel::Positions),
             Candidate::LateEffort(_) => Some(Channel::Effort),
             _ => None,
@@ -242,7 +244,7 @@ impl Candidate {
             out.extend(ALPHA_GRID.iter().map(|&a| Candidate::Environment(a)));
         }
         if want(EffectKind::TimeDelay) {
-            out.push(Candidate::TimeDelay);
+            out.push(Candidate::TimeDelay(0.0));
         }
         out
     }
@@ -257,7 +259,7 @@ impl Candidate {
             Candidate::Payload | Candidate::PayloadCom => EffectKind::PayloadMass,
             Candidate::Environment(_) => EffectKind::EnvironmentResistance,
             Candidate::EncoderOffset(_) => EffectKind::EncoderOffset,
-            Candidate::TimeDelay | Candidate::LatePositions | Candidate::LateEffort(_) => {
+            Candidate::TimeDelay(_) | Candidate::LatePositions | Candidate::LateEffort(_) => {
                 EffectKind::TimeDelay
             }
             Candidate::Elasticity(_) => EffectKind::JointElasticity,
@@ -328,7 +330,7 @@ impl Candidate {
             ],
             Candidate::Environment(_) => &[("mu", true)],
             Candidate::EncoderOffset(_) => &[("offset", false)],
-            Candidate::TimeDelay | Candidate::LatePositions | Candidate::LateEffort(_) => {
+            Candidate::TimeDelay(_) | Candidate::LatePositions | Candidate::LateEffort(_) => {
                 &[("delay", true)]
             }
             Candidate::EffortScale(_) => &[("scale_minus_one", false)],
@@ -386,8 +388,9 @@ impl Candidate {
                 }
             }
             Candidate::EncoderOffset(j) => c[0] = -basis.k_column(k, j),
-            // The motion d late: the model misses d times the effort's rate.
-            Candidate::TimeDelay => c[0] = late_motion_column(sig, k),
+            // The motion d late: the model misses d times the effort's rate
+            // (its secant over the delay held).
+            Candidate::TimeDelay(d) => c[0] = late_motion_column(sig, k, d),
             // Positions d late: the model is evaluated at q - d qd, and
             // misses d K qd.
             Candidate::LatePositions => c[0] = basis.k(k) * sig.qd(k),
@@ -439,7 +442,7 @@ impl Candidate {
                 joint,
                 offset: p(0),
             },
-            Candidate::TimeDelay | Candidate::LatePositions => Effect::TimeDelay { delay: p(0) },
+            Candidate::TimeDelay(_) | Candidate::LatePositions => Effect::TimeDelay { delay: p(0) },
             // The motion early against the effort: a negative delay, which
             // only the held-out simulation reads (`horizon.rs`).
             Candidate::LateEffort(_) => Effect::TimeDelay { delay: -p(0) },
@@ -499,7 +502,7 @@ pub fn model_part<const N: usize>(
     c: Candidate,
 ) -> Option<SVector<f64, N>> {
     let sign = match c {
-        Candidate::TimeDelay => 1.0,
+        Candidate::TimeDelay(_) => 1.0,
         Candidate::LateEffort(_) => -1.0,
         _ => return None,
     };

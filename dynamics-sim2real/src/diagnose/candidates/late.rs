@@ -21,16 +21,21 @@
 //! smoothed measured effort over `d` (`shift.rs`), `d` found by least
 //! squares on the secant at the previous estimate until it settles
 //! ([`effort_secant`]); the fit then gives the delay (>= 0) and its
-//! standard deviation. When the velocities are derived from the positions
-//! no kinematic consistency can be checked: positions late alone and
-//! positions and velocities late together are the same data, and a delay
-//! of channel `all` is then warned as such ([`warn`]), not guessed.
+//! standard deviation. The `all` column is likewise the secant of the
+//! measured effort over the motion's delay, found the same way
+//! ([`motion_secant`]), where that delay is two samples or more. When the
+//! velocities are derived from the positions no kinematic consistency can
+//! be checked: positions late alone and positions and velocities late
+//! together are the same data, and a delay of channel `all` is then warned
+//! as such ([`warn`]), not guessed.
 
 use crate::data::Measured;
 use crate::diagnose::candidates::candidate::Candidate;
-use crate::diagnose::candidates::shift::late_effort_column;
+use crate::diagnose::candidates::shift::{late_effort_column, late_motion_column};
 use crate::diagnose::candidates::Prepared;
+use crate::diagnose::signals::Signals;
 use crate::Warning;
+use nalgebra::SVector;
 
 /// How many standard deviations the kinematic delay must stand from zero.
 pub const SIGNIFICANCE: f64 = 10.0;
@@ -104,16 +109,20 @@ pub fn offer_delays<const N: usize>(
     p: &Prepared<N>,
     warnings: &mut Vec<Warning>,
 ) {
-    if !candidates.contains(&Candidate::TimeDelay) {
+    let Some(all) = candidates
+        .iter()
+        .position(|c| matches!(c, Candidate::TimeDelay(_)))
+    else {
         return;
-    }
+    };
+    candidates[all] = Candidate::TimeDelay(motion_secant(p));
     candidates.push(Candidate::LateEffort(effort_secant(p)));
     if let Some(k) = kinematic(m, p).filter(|k| k.late(p.sig.dt)) {
         // Positions and velocities late together stay consistent with each
         // other: the inconsistency found rules that channel out, though
         // its first-order column may fit a long delay better (a position
         // stream 23.8 ms late at 100 Hz: `all` 53 AICc ahead, at 17 ms).
-        candidates.retain(|c| *c != Candidate::TimeDelay);
+        candidates.retain(|c| !matches!(c, Candidate::TimeDelay(_)));
         candidates.push(Candidate::LatePositions);
         warnings.push(Warning::LatePositions {
             delay: k.delay,
@@ -122,7 +131,7 @@ pub fn offer_delays<const N: usize>(
     }
 }
 
-/// Longest effort delay searched, s.
+/// Longest delay searched, s.
 const LONGEST: f64 = 0.25;
 
 /// The delay over which the `effort` candidate takes the secant of the
@@ -132,12 +141,31 @@ const LONGEST: f64 = 0.25;
 /// as `sin(w d) / w`: 8 % short at 10 ms and 11 Hz); 0 when the effort
 /// does not lag the model's.
 pub fn effort_secant<const N: usize>(p: &Prepared<N>) -> f64 {
+    settle(p, late_effort_column, f64::MIN_POSITIVE).unwrap_or_else(|last| last)
+}
+
+/// The delay over which the `all` candidate (the motion late) takes the
+/// secant of the measured effort, found as [`effort_secant`]'s from the
+/// tangent on; 0 (the tangent) when the motion is not late, or by less
+/// than two samples.
+pub fn motion_secant<const N: usize>(p: &Prepared<N>) -> f64 {
+    settle(p, late_motion_column, 2.0 * p.sig.dt).unwrap_or(0.0)
+}
+
+/// The delay `column` (taken over the previous estimate, from 0) fits
+/// to the residual by least squares, again until it settles; the last
+/// estimate as `Err` once one falls below `least` (or is not finite).
+fn settle<const N: usize>(
+    p: &Prepared<N>,
+    column: impl Fn(&Signals<N>, usize, f64) -> SVector<f64, N>,
+    least: f64,
+) -> Result<f64, f64> {
     let sig = &p.sig;
     let mut d0 = 0.0;
     for _ in 0..6 {
         let (mut xy, mut xx) = (0.0, 0.0);
         for &k in &p.rows {
-            let c = late_effort_column(sig, k, d0);
+            let c = column(sig, k, d0);
             for j in 0..N {
                 let (x, y) = (c[j] / sig.floor[j], sig.residual[k][j] / sig.floor[j]);
                 if x.is_finite() && y.is_finite() {
@@ -147,8 +175,8 @@ pub fn effort_secant<const N: usize>(p: &Prepared<N>) -> f64 {
             }
         }
         let d = xy / xx;
-        if !(d.is_finite() && d > 0.0) {
-            return d0;
+        if !(d.is_finite() && d >= least) {
+            return Err(d0);
         }
         let d = d.min(LONGEST);
         let settled = (d - d0).abs() < 1e-3 * sig.dt;
@@ -157,5 +185,5 @@ pub fn effort_secant<const N: usize>(p: &Prepared<N>) -> f64 {
             break;
         }
     }
-    d0
+    Ok(d0)
 }

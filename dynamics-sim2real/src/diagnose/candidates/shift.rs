@@ -7,20 +7,22 @@ use nalgebra::SVector;
 
 use crate::diagnose::signals::Signals;
 
-/// The smoothed measured effort `delay` seconds after sample `k` (linear
-/// between samples), when every sample from `k` to there has a full
-/// filter window and no hole lies between; `None` otherwise.
+/// The smoothed measured effort `shift` seconds after sample `k` (before
+/// it when negative; linear between samples), when every sample from `k`
+/// to there has a full filter window and no hole lies between; `None`
+/// otherwise.
 pub fn effort_after<const N: usize>(
     sig: &Signals<N>,
     k: usize,
-    delay: f64,
+    shift: f64,
 ) -> Option<SVector<f64, N>> {
-    let x = k as f64 + delay / sig.dt;
-    if !(delay >= 0.0 && x.is_finite() && k >= sig.range.0) {
+    let x = k as f64 + shift / sig.dt;
+    if !(x.is_finite() && k >= sig.range.0 && x >= sig.range.0 as f64) {
         return None;
     }
     let i = x.floor() as usize;
-    if i + 1 >= sig.range.1 || !sig.mask.clear(k, i + 2) {
+    let (from, to) = if shift >= 0.0 { (k, i + 2) } else { (i, k + 1) };
+    if i + 1 >= sig.range.1 || !sig.mask.clear(from, to) {
         return None;
     }
     let s = x - i as f64;
@@ -54,7 +56,11 @@ pub fn late_effort_column<const N: usize>(
 }
 
 /// The column of the whole measured motion `d` late against the effort at
-/// sample `k`, per second of `d`: the effort recorded now goes with the
+/// sample `k`, per second of `d`, taken over `delay` (the secant, as for a
+/// late effort: a tangent reads a delay of content at `w` rad/s as
+/// `sin(w d) / w`): the measured effort now less the one `delay` before,
+/// over `delay`, where `delay` is at least two samples and the record
+/// holds it; otherwise the tangent: the effort recorded now goes with the
 /// motion recorded `d` later, so the model along the measured motion
 /// misses `d` times the effort's rate. The rate of the smoothed measured
 /// effort (central difference over one sample either side), not of the
@@ -64,7 +70,16 @@ pub fn late_effort_column<const N: usize>(
 /// odd about `k` and the smoothed effort even, so its noise does not
 /// correlate with the residual's. Where a neighbour lacks a full filter
 /// window or a hole lies between: the model effort's rate.
-pub fn late_motion_column<const N: usize>(sig: &Signals<N>, k: usize) -> SVector<f64, N> {
+pub fn late_motion_column<const N: usize>(
+    sig: &Signals<N>,
+    k: usize,
+    delay: f64,
+) -> SVector<f64, N> {
+    if delay >= 2.0 * sig.dt {
+        if let Some(before) = effort_after(sig, k, -delay) {
+            return (sig.tau(k) - before) / delay;
+        }
+    }
     let (a, z) = sig.range;
     if k > a && k + 1 < z && sig.mask.clear(k - 1, k + 2) {
         let v = (sig.tau(k + 1) - sig.tau(k - 1)) / (sig.t[k + 1] - sig.t[k - 1]);

@@ -467,7 +467,7 @@ pub fn confirm<R: Robot<N>, const N: usize>(
                 || e.left_out.iter().any(|l| l.term == t)
                 || matches!(
                     c,
-                    Candidate::TimeDelay | Candidate::LatePositions | Candidate::LateEffort(_)
+                    Candidate::TimeDelay(_) | Candidate::LatePositions | Candidate::LateEffort(_)
                 )
             {
                 continue;
@@ -1158,7 +1158,7 @@ mod tests {
             let x = DMatrix::from_fn(n, 2, |r, c| if c == 0 { f[r] } else { a[r] + b[r] });
             let terms = vec![
                 test_term(Candidate::Viscous(0), vec![0], vec![true], None),
-                test_term(Candidate::TimeDelay, vec![1], vec![true], None),
+                test_term(Candidate::TimeDelay(0.0), vec![1], vec![true], None),
             ];
             let pool = test_pool(x, y, terms, 2);
             let common = pool.solve(&[0, 1]).theta[1][0];

@@ -191,7 +191,7 @@ fn a_joint_candidates_columns_are_zero_elsewhere() {
     for c in [
         Candidate::EncoderOffset(0),
         Candidate::Payload,
-        Candidate::TimeDelay,
+        Candidate::TimeDelay(0.0),
     ] {
         assert_eq!(c.local_joint(), None);
     }

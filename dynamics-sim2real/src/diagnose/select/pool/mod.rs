@@ -74,7 +74,7 @@ impl Term {
             Candidate::Payload | Candidate::PayloadCom => 3,
             Candidate::Environment(_) => 4,
             Candidate::EncoderOffset(_) => 5,
-            Candidate::TimeDelay | Candidate::LatePositions | Candidate::LateEffort(_) => 6,
+            Candidate::TimeDelay(_) | Candidate::LatePositions | Candidate::LateEffort(_) => 6,
             Candidate::EffortScale(_) => 7,
             // A spring nests the offset (stiffness 0).
             Candidate::EffortOffset(_) | Candidate::Spring(_) => 8,

@@ -217,7 +217,7 @@ mod tests {
         let x = DMatrix::from_fn(n, 2, |r, c| if c == 0 { f[r] } else { a[r] + b[r] });
         let terms = vec![
             test_term(Candidate::Viscous(0), vec![0], vec![true], None),
-            test_term(Candidate::TimeDelay, vec![1], vec![true], None),
+            test_term(Candidate::TimeDelay(0.0), vec![1], vec![true], None),
         ];
         let pool = test_pool(x, DVector::from_vec(y), terms, 2);
         pool.split_off(&[0, 1], 1, &a, |p, s| p.solve(s))
@@ -244,7 +244,12 @@ mod tests {
         let c: Vec<f64> = (0..rows).map(|i| (i as f64 * 0.3).sin()).collect();
         let y = DVector::from_fn(rows, |r, _| 0.5 * c[r]);
         let x = DMatrix::from_fn(rows, 1, |r, _| c[r]);
-        let terms = vec![test_term(Candidate::TimeDelay, vec![0], vec![true], None)];
+        let terms = vec![test_term(
+            Candidate::TimeDelay(0.0),
+            vec![0],
+            vec![true],
+            None,
+        )];
         let pool = test_pool(x, y, terms, 1);
         // The part is the whole column: the rest is zero, undetermined.
         assert_eq!(pool.split_off(&[0], 0, &c, |p, s| p.solve(s)), None);

@@ -289,7 +289,7 @@ fn columns_kept_at_their_joints_rows_change_nothing() {
     let terms = vec![
         term(Candidate::Viscous(0), vec![0], vec![true], None),
         term(Candidate::EffortOffset(1), vec![1], vec![false], None),
-        term(Candidate::TimeDelay, vec![2], vec![false], None),
+        term(Candidate::TimeDelay(0.0), vec![2], vec![false], None),
         term(Candidate::EffortScale(2), vec![3], vec![false], None),
         term(Candidate::Elasticity(1), vec![], vec![], Some(4)),
     ];
