@@ -477,6 +477,29 @@ pub trait Robot<const N: usize> {
         -self.motion_terms(q, qd).bias()
     }
 
+    /// The joints' own friction and damping in Q(0) at `(q, qd)`: each
+    /// joint's share depends on its own speed only. The default takes the
+    /// velocity-dependent part of [`Robot::generalized_forces`],
+    /// `Q(0)(q, qd) - Q(0)(q, 0)`, which is exactly that for a model the
+    /// macro emits (its springs and gravity do not depend on `qd`); a
+    /// wrapper that adds other velocity-dependent forces (a resistance of
+    /// the environment at the tool) gives its joints' share alone.
+    ///
+    /// ```
+    /// use dynamics_runtime::Robot;
+    /// use nalgebra::SVector;
+    /// dynamics_macros::robot! {
+    ///     pub robot Hinge; gravity = [0.0, 0.0, -9.81];
+    ///     link base; link door { mass = 2.0; com = [0.4, 0.0, 0.0]; inertia = [0.1, 0.1, 0.1]; }
+    ///     joint j = revolute(base -> door) { transfer = [rot_y(q)]; damping = 0.3; spring = 5.0; }
+    /// }
+    /// let f = Hinge::default().joint_friction(&SVector::from([0.4]), &SVector::from([2.0]));
+    /// assert!((f[0] + 0.6).abs() < 1e-12);
+    /// ```
+    fn joint_friction(&self, q: &SVector<f64, N>, qd: &SVector<f64, N>) -> SVector<f64, N> {
+        self.generalized_forces(q, qd) - self.generalized_forces(q, &SVector::zeros())
+    }
+
     /// Total mechanical energy T + Pi.
     fn total_energy(&self, q: &SVector<f64, N>, qd: &SVector<f64, N>) -> f64 {
         self.kinetic_energy(q, qd) + self.potential_energy(q)

@@ -8,9 +8,10 @@
 //! accept).
 //!
 //! The levels are read from the model itself, whatever made them: with
-//! one joint moving at speed `v`, the non-conservative part of the
-//! generalised forces, `-(Q(0)(q, v e_j) - Q(0)(q, 0))_j`, is
-//! `fv v + fc` once `v` is far above any smoothing of the Coulomb law;
+//! one joint moving at speed `v`, its friction force
+//! ([`Robot::joint_friction`], the velocity-dependent part of the
+//! generalised forces without a resistance of the environment) is
+//! `-(fv v + fc)` once `v` is far above any smoothing of the Coulomb law;
 //! two speeds give both.
 
 use nalgebra::SVector;
@@ -38,14 +39,13 @@ pub fn nominal_friction<R: Robot<N>, const N: usize>(
     robot: &R,
     q: &SVector<f64, N>,
 ) -> (SVector<f64, N>, SVector<f64, N>) {
-    let rest = robot.generalized_forces(q, &SVector::zeros());
     let mut coulomb = SVector::<f64, N>::zeros();
     let mut viscous = SVector::<f64, N>::zeros();
     for j in 0..N {
         let at = |v: f64| {
             let mut qd = SVector::<f64, N>::zeros();
             qd[j] = v;
-            rest[j] - robot.generalized_forces(q, &qd)[j]
+            -robot.joint_friction(q, &qd)[j]
         };
         let (e1, e2) = (at(SPEED), at(2.0 * SPEED));
         let fv = (e2 - e1) / SPEED;

@@ -6,6 +6,7 @@
 use nalgebra::{Matrix4, SMatrix, SVector, Vector3};
 
 use super::Calibrated;
+use crate::effects::Effect;
 use dynamics_runtime::{DynamicsError, MotionTerms, PerturbationJacobians, Robot};
 
 impl<R: Robot<N>, const N: usize> Robot<N> for Calibrated<R, N> {
@@ -67,6 +68,20 @@ impl<R: Robot<N>, const N: usize> Robot<N> for Calibrated<R, N> {
     }
     fn generalized_forces(&self, q: &SVector<f64, N>, qd: &SVector<f64, N>) -> SVector<f64, N> {
         self.robot.generalized_forces(q, qd) + self.extra(q, qd).q0
+    }
+    /// The wrapped model's and the folded-in friction effects': the
+    /// environment's resistance at the tip is not the joints' friction.
+    fn joint_friction(&self, q: &SVector<f64, N>, qd: &SVector<f64, N>) -> SVector<f64, N> {
+        let mut f = self.robot.joint_friction(q, qd);
+        for e in &self.effects {
+            match *e {
+                Effect::CoulombFriction { joint, .. }
+                | Effect::ViscousFriction { joint, .. }
+                | Effect::StribeckFriction { joint, .. } => f[joint] += e.joint_force(qd[joint]),
+                _ => {}
+            }
+        }
+        f
     }
     fn inverse_dynamics(
         &self,

@@ -109,6 +109,35 @@ fn friction_and_armature_add_what_the_plant_adds() {
     assert!((r.inverse_dynamics(&q, &qd, &fwd) - V3::new(1.0, 2.0, 3.0)).norm() < 1e-10);
 }
 
+/// The joints' friction of a calibrated model is the friction folded in,
+/// not the environment's resistance at the tip, which grows with the
+/// tip's speed like a viscous law of degree alpha: read at a thousand
+/// rad/s it was taken for a viscous coefficient of hundreds.
+#[test]
+fn a_resistance_at_the_tip_is_not_joint_friction() {
+    let resist = Effect::EnvironmentResistance {
+        mu: 0.5,
+        alpha: 1.5,
+    };
+    let viscous = Effect::ViscousFriction { joint: 1, fv: 0.3 };
+    let r = Calibrated::new(
+        Arm::default(),
+        vec![resist, viscous, Effect::coulomb(2, 0.2)],
+    )
+    .expect("nominal");
+    let q = V3::new(0.1, 0.6, -0.4);
+    let (coulomb, fv) = crate::effects::nominal_friction(&r, &q);
+    assert!((fv - V3::new(0.0, 0.3, 0.0)).norm() < 1e-9, "{fv}");
+    assert!(
+        (coulomb - V3::new(0.0, 0.0, 0.2)).norm() < 1e-6,
+        "{coulomb}"
+    );
+    // The resistance is still in the forces: the tip moves at j1.
+    let qd = V3::new(2.0, 0.0, 0.0);
+    let all = r.generalized_forces(&q, &qd) - r.generalized_forces(&q, &V3::zeros());
+    assert!((all - r.joint_friction(&q, &qd)).norm() > 0.1);
+}
+
 #[test]
 fn motor_sides_and_sensor_effects_are_kept_apart() {
     let elastic = Effect::JointElasticity {
