@@ -17,7 +17,6 @@ use nalgebra::{DMatrix, DVector};
 
 use crate::diagnose::candidates::{Candidate, LinkBasis};
 use crate::diagnose::fit::Fit;
-use crate::effects::Window;
 use cols::Cols;
 use prior::{weight, Prior};
 
@@ -28,6 +27,7 @@ mod physical;
 pub mod prior;
 mod solve;
 mod split;
+mod windows;
 pub(in crate::diagnose) use carrier::payload_leaves_no_body;
 pub use carrier::Carrier;
 pub(in crate::diagnose) use physical::is_body;
@@ -57,9 +57,6 @@ pub struct Term {
     pub k: usize,
     /// A link correction's determined combinations.
     pub link: Option<LinkBasis>,
-    /// The training window a term limited in time acts in (its columns
-    /// zero outside it); `None`: on all the time.
-    pub window: Option<Window>,
 }
 
 impl Term {
@@ -399,7 +396,6 @@ pub(crate) fn test_term(
         fixed,
         k,
         link: None,
-        window: None,
     }
 }
 
