@@ -282,3 +282,49 @@ fn a_long_motion_delay_is_read_whole() {
     assert_eq!(channel, "all");
     assert!((d - delay).abs() < 0.1 * delay, "{d} +- {std}");
 }
+
+/// The whole motion late and a resistance of the environment at the tip
+/// on all the time: the delay explains most of the gap, and the
+/// resistance, fitted alone against the residual the delay leaves
+/// unexplained, looks like an effect in a window of the record. Beside the
+/// delay it is on all the time, and named so.
+#[test]
+fn a_resistance_under_a_motion_delay_is_on_all_the_time() {
+    let (delay, mu) = (0.009, 2.0);
+    let arm = Arm2::default();
+    let effects = [
+        Effect::TimeDelay { delay },
+        Effect::EnvironmentResistance { mu, alpha: 1.5 },
+    ];
+    let draw =
+        |s: u64| synthesize(&arm, &effects, &opts(s, Damage::default())).expect("synthesizes");
+    let r =
+        diagnose(&arm, &draw(91), &draw(92), &Options::default(), &|_, _| {}).expect("diagnoses");
+    let named: Vec<_> = r
+        .which
+        .effects
+        .iter()
+        .map(|e| (e.kind, e.window.is_some()))
+        .collect();
+    eprintln!("{named:?}");
+    let (_, d, std) = explained_delay(&r).expect("a delay explained");
+    assert!((d - delay).abs() < 0.1 * delay, "{d} +- {std}");
+    let resist = r
+        .which
+        .effects
+        .iter()
+        .find(|e| e.kind == EffectKind::EnvironmentResistance)
+        .expect("the resistance named");
+    assert!(resist.window.is_none(), "{:?}", resist.window);
+    let m = resist
+        .parameters
+        .iter()
+        .find(|p| p.name == "mu")
+        .expect("mu");
+    assert!(
+        (m.value - mu).abs() < 0.2 * mu,
+        "mu {} +- {}",
+        m.value,
+        m.std
+    );
+}

@@ -88,7 +88,6 @@ use nalgebra::{DVector, SVector};
 use super::determinacy::{beyond_physical, undetermined};
 use super::holdout::{free_columns, limit_to_windows, offset_joint, Holdout};
 use crate::diagnose::candidates::{model_part, whitened, Candidate, Excitation, Prepared};
-use crate::diagnose::fit::Windows;
 use crate::diagnose::numeric::correlation_time;
 use crate::diagnose::select::{
     helps, is_body, joint_fit, model_lag, partial_scale, partial_scales, payload_leaves_no_body,
@@ -254,8 +253,8 @@ fn why_left_out(why: Why) -> Unconfirmed {
 }
 
 /// The explanation `e` over `pool` confirmed on the held-out record `h`
-/// (`hlinks`: its link regressor columns; `windows`: the training windows
-/// of the windowed effects); `p` the training record, `excitation` what it
+/// (`hlinks`: its link regressor columns; the windowed effects' training
+/// windows are their terms'); `p` the training record, `excitation` what it
 /// shows of each joint, `nominal` the links' nominal inertial parameters;
 /// `hold_links`: link corrections held to the nearest physical body
 /// ([`Pool::solve_physical`]) instead of left out when they leave none.
@@ -267,7 +266,6 @@ pub fn confirm<R: Robot<N>, const N: usize>(
     hlinks: &[Vec<Vec<f64>>],
     pool: &Pool,
     e: &Explanation,
-    windows: &Windows,
     excitation: &Excitation,
     nominal: &[SVector<f64, 10>],
     carrier: Option<&Carrier>,
@@ -363,7 +361,7 @@ pub fn confirm<R: Robot<N>, const N: usize>(
     }
     // The held-out test, weakest first.
     let mut hold = Holdout::new(robot, h, hlinks, pool, e);
-    limit_to_windows(&mut hold, h, pool, e, windows);
+    limit_to_windows(&mut hold, h, pool, e);
     // Positions past the set's: terms of the pool swapped in for a link
     // correction (rule 6), with their held-out columns and their fit.
     let set_len = e.set.len();

@@ -13,7 +13,7 @@
 use nalgebra::{DVector, SVector};
 
 use crate::diagnose::candidates::{combined, linear_columns, whitened, Candidate, Prepared};
-use crate::diagnose::fit::{fixed_column_against, holdout_window_in, inside, window_of, Windows};
+use crate::diagnose::fit::{fixed_column_against, holdout_window_in, inside};
 use crate::diagnose::select::{against_others, Explanation, Pool};
 use dynamics_runtime::Robot;
 
@@ -283,9 +283,8 @@ pub fn limit_to_windows<const N: usize>(
     h: &Prepared<N>,
     pool: &Pool,
     e: &Explanation,
-    windows: &Windows,
 ) {
-    let windowed = |i: usize| window_of(windows, pool.terms[e.set[i]].fit.candidate).is_some();
+    let windowed = |i: usize| pool.terms[e.set[i]].window.is_some();
     let always: Vec<usize> = (0..e.set.len()).filter(|&i| !windowed(i)).collect();
     let theta: Vec<Vec<f64>> = always.iter().map(|&i| e.sol.theta[i].clone()).collect();
     let left = hold.residual(&always, &theta);

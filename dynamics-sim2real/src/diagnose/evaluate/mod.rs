@@ -107,7 +107,6 @@ pub fn evaluate<'a, R: Robot<N> + Clone + Sync, const N: usize>(
         &hlinks,
         pool,
         &selection.explanation,
-        &selection.windows,
         &records.excitation,
         &selection.nominal,
         selection.carrier.as_ref(),
@@ -131,7 +130,7 @@ pub fn evaluate<'a, R: Robot<N> + Clone + Sync, const N: usize>(
     let friction_spread = calibration::friction_spread(pool, &confirmed.explanation);
     let e = &confirmed.explanation;
     let mut hold = Holdout::new(robot, h, &hlinks, pool, e);
-    limit_to_windows(&mut hold, h, pool, e, &selection.windows);
+    limit_to_windows(&mut hold, h, pool, e);
     let all: Vec<usize> = (0..e.set.len()).collect();
     let r = hold.residual(&all, &e.sol.theta);
     let rms_fraction = fraction(hold.plain(&hold.residual(&[], &[])), hold.plain(&r));

@@ -13,7 +13,6 @@ use crate::diagnose::candidates::{delta, Candidate, Friction, LinkBasis, MOMENTS
 use crate::diagnose::evaluate::{
     fraction, Confidence, Holdout, Suggestion, Unconfirmed, PRACTICAL_SHARE,
 };
-use crate::diagnose::fit::{window_of, Windows};
 use crate::diagnose::select::{joint_fit, Explanation, Parts, Pool, Solution};
 use crate::inertial::{check, complete, describe};
 use dynamics_runtime::Robot;
@@ -393,9 +392,9 @@ fn link_parameters(
 }
 
 /// The training windows on the report's entries of the explanation.
-pub fn annotate(effects: &mut [Explained], pool: &Pool, e: &Explanation, windows: &Windows) {
+pub fn annotate(effects: &mut [Explained], pool: &Pool, e: &Explanation) {
     for (entry, &t) in effects.iter_mut().zip(&e.set) {
-        if let Some(w) = window_of(windows, pool.terms[t].fit.candidate) {
+        if let Some(w) = pool.terms[t].window {
             entry.window = Some(EffectWindow {
                 start: w.start,
                 end: w.end,

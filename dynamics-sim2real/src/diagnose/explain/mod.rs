@@ -159,7 +159,7 @@ pub fn report<R: Robot<N>, const N: usize>(
     );
     add_payload_words(&mut effects);
     add_placement_words(&mut effects, R::LINK_NAMES);
-    annotate(&mut effects, pool, e, &selection.windows);
+    annotate(&mut effects, pool, e);
     let mut warnings = records.warnings.clone();
     warnings.extend(evaluation.training_warnings.iter().cloned());
     if let HeldLinks::Rough { links, of } = selection.held_links {

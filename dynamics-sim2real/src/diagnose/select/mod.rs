@@ -85,10 +85,9 @@ pub fn select<R: Robot<N> + Clone + Sync, const N: usize>(
     if robot.inertial_parameters(&mut nominal).is_err() {
         nominal.clear();
     }
-    let mut pool = Pool::new(&fitted.fits, &plinks, &nominal, p);
+    let mut pool = Pool::new(&fitted.fits, &fitted.windows, &plinks, &nominal, p);
     // The pool holds the links' combinations: their columns are done.
     drop(plinks);
-    pool.limit_to_windows(&fitted.windows, p);
     let carrier = Carrier::of(robot, &nominal);
     let beside = BesideGravity::of(robot, p);
     let mut explanation = compound::explain::<R, N>(

@@ -2,6 +2,14 @@
 //! fit's rows (free columns for the linear ones, a fixed column for a
 //! motor side), each link correction as the combinations the data
 //! determine, and the Gram matrix with the prior (`prior.rs`).
+//!
+//! A candidate whose single fit is limited in time (`fit/window`) is two
+//! terms of one family: on all the time, and its columns times the
+//! indicator of the training window (two more parameters). The window was
+//! found on the residual the candidate meets alone; beside the other
+//! effects that residual changes, and the explanation chooses between
+//! them (a resistance of the environment on all the time, under a delay
+//! of the whole motion, had looked like one in a window without it).
 
 use nalgebra::{DVector, SVector};
 use rayon::prelude::*;
@@ -12,16 +20,18 @@ use crate::diagnose::candidates::{
     combined, linear_columns, link_basis, lower_bounds, moment_basis, whitened, Candidate,
     Prepared, EFFORT_SCALE_LIMIT,
 };
-use crate::diagnose::fit::{fixed_column, Fit};
+use crate::diagnose::fit::{fixed_column, inside, window_of, Fit, Windows};
 
 impl Pool {
-    /// The pool of `fits` on `p` (every single fit, grid variants too) and
+    /// The pool of `fits` on `p` (every single fit, grid variants too;
+    /// those limited in time by `windows` also on all the time) and
     /// of the link corrections whose whitened regressor columns are `links`
     /// (`[link][parameter]`, see `links.rs`; empty: none), with the prior
     /// toward the links' `nominal` parameters (`prior.rs`; empty: none on
     /// the links).
     pub fn new<const N: usize>(
         fits: &[Fit],
+        windows: &Windows,
         links: &[Vec<Vec<f64>>],
         nominal: &[SVector<f64, 10>],
         p: &Prepared<N>,
@@ -51,16 +61,13 @@ impl Pool {
                             fixed: Some(cols.ncols() - 1),
                             k: f.k,
                             link: None,
+                            window: None,
                         });
                     }
                     Some(Made::Free(new)) => {
-                        let at = cols.ncols();
-                        for c in new {
-                            cols.push(c);
-                        }
-                        terms.push(Term {
-                            fit: f.clone(),
-                            cols: (at..cols.ncols()).collect(),
+                        let window = window_of(windows, c);
+                        let term = |cols: std::ops::Range<usize>, fit: Fit, window| Term {
+                            cols: cols.collect(),
                             lower: lower_bounds(c, p),
                             limit: c
                                 .linear_parameters()
@@ -71,9 +78,41 @@ impl Pool {
                                 })
                                 .collect(),
                             fixed: None,
-                            k: f.k,
+                            k: fit.k,
+                            fit,
                             link: None,
-                        });
+                            window,
+                        };
+                        let at = cols.ncols();
+                        let Some(w) = window else {
+                            for c in new {
+                                cols.push(c);
+                            }
+                            terms.push(term(at..cols.ncols(), f.clone(), None));
+                            continue;
+                        };
+                        // The fit limited in time counts the window's two
+                        // bounds (`fit_windowed`); on all the time, not.
+                        let always = Fit {
+                            k: f.k.saturating_sub(2),
+                            ..f.clone()
+                        };
+                        let m = inside(p, &w);
+                        let limited: Vec<Vec<f64>> = new
+                            .iter()
+                            .map(|c| c.iter().zip(&m).map(|(x, m)| x * m).collect())
+                            .collect();
+                        for c in new {
+                            cols.push(c);
+                        }
+                        terms.push(term(at..cols.ncols(), always, None));
+                        let at = cols.ncols();
+                        for c in limited {
+                            cols.push(c);
+                        }
+                        let mut fit = f.clone();
+                        fit.k += 2;
+                        terms.push(term(at..cols.ncols(), fit, Some(w)));
                     }
                 }
             }
@@ -109,6 +148,7 @@ impl Pool {
                     fixed: None,
                     k: r,
                     link: Some(basis),
+                    window: None,
                 });
             }
         }

@@ -17,6 +17,7 @@ use nalgebra::{DMatrix, DVector};
 
 use crate::diagnose::candidates::{Candidate, LinkBasis};
 use crate::diagnose::fit::Fit;
+use crate::effects::Window;
 use cols::Cols;
 use prior::{weight, Prior};
 
@@ -27,7 +28,6 @@ mod physical;
 pub mod prior;
 mod solve;
 mod split;
-mod windows;
 pub(in crate::diagnose) use carrier::payload_leaves_no_body;
 pub use carrier::Carrier;
 pub(in crate::diagnose) use physical::is_body;
@@ -57,6 +57,9 @@ pub struct Term {
     pub k: usize,
     /// A link correction's determined combinations.
     pub link: Option<LinkBasis>,
+    /// The training window a term limited in time acts in (its columns
+    /// zero outside it); `None`: on all the time.
+    pub window: Option<Window>,
 }
 
 impl Term {
@@ -396,6 +399,7 @@ pub(crate) fn test_term(
         fixed,
         k,
         link: None,
+        window: None,
     }
 }
 
