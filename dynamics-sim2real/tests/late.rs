@@ -284,10 +284,9 @@ fn a_long_motion_delay_is_read_whole() {
 }
 
 /// The whole motion late and a resistance of the environment at the tip
-/// on all the time: the delay explains most of the gap, and the
-/// resistance, fitted alone against the residual the delay leaves
-/// unexplained, looks like an effect in a window of the record. Beside the
-/// delay it is on all the time, and named so.
+/// on all the time: both named, the resistance on all the time, each
+/// within its tolerance (the UR5 case where the resistance alone looked
+/// like an effect in a window: `compound.rs` of the integration tests).
 #[test]
 fn a_resistance_under_a_motion_delay_is_on_all_the_time() {
     let (delay, mu) = (0.009, 2.0);
