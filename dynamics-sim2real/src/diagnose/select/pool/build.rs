@@ -8,8 +8,8 @@
 //! indicator of the training window (two more parameters). The window was
 //! found on the residual the candidate meets alone; beside the other
 //! effects that residual changes, and the explanation chooses between
-//! them (a resistance of the environment on all the time, under a delay
-//! of the whole motion, had looked like one in a window without it).
+//! them (a resistance of the environment on all the time under a delay of
+//! the whole motion, fitted alone, fits best in a window).
 
 use nalgebra::{DVector, SVector};
 use rayon::prelude::*;
@@ -110,6 +110,8 @@ impl Pool {
                         for c in limited {
                             cols.push(c);
                         }
+                        // Limited to its window, the term counts the two
+                        // bounds once more on top of its single fit's count.
                         let mut fit = f.clone();
                         fit.k += 2;
                         terms.push(term(at..cols.ncols(), fit, Some(w)));
