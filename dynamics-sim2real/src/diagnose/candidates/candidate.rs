@@ -4,7 +4,7 @@
 //! effort and link motion whose transmitted effort replaces the rigid
 //! joint's.
 
-use nalgebra::SVector;
+use nalgebra::{SVector, Vector3};
 
 use super::basis::{Basis, Frame};
 use super::grids::{ALPHA_GRID, COULOMB_WIDTHS, STRIBECK_GRID};
@@ -89,11 +89,12 @@ pub enum Candidate {
     Payload,
     /// The same with its centre of mass away from the tip frame's origin:
     /// the mass and its first moments about that origin (mass times the
-    /// offset, in the tip's frame), linear to first order in the offset
-    /// (the second moments of a point mass off the origin, `m |c|^2`, left
-    /// out of the columns; the effect is the exact point mass). Offered
-    /// where the tip is a frame.
-    PayloadCom,
+    /// offset, in the tip's frame), linear in both; the point mass's
+    /// second moments are those of the mass at the centre it carries (in
+    /// the tip's frame, m; the selection moves it to the centre the
+    /// explanation finds, `select/recentre.rs`): the exact point mass
+    /// where the two agree. Offered where the tip is a frame.
+    PayloadCom([f64; 3]),
     /// Resistance at the tip with exponent alpha.
     Environment(f64),
     /// Encoder offset at a joint.
@@ -169,9 +170,11 @@ impl Candidate {
             EffectKind::StribeckFriction => Candidate::Stribeck(j()?, grid("vs")?),
             EffectKind::Armature => Candidate::Armature(j()?),
             // A centre of mass reported as a number: the payload with it.
-            EffectKind::PayloadMass => match value("com_x").filter(|v| v.is_finite()) {
-                Some(_) => Candidate::PayloadCom,
-                None => Candidate::Payload,
+            EffectKind::PayloadMass => match ["com_x", "com_y", "com_z"].map(value) {
+                [Some(x), Some(y), Some(z)] if [x, y, z].iter().all(|v| v.is_finite()) => {
+                    Candidate::PayloadCom([x, y, z])
+                }
+                _ => Candidate::Payload,
             },
             EffectKind::EnvironmentResistance => Candidate::Environment(grid("alpha")?),
             EffectKind::EncoderOffset => Candidate::EncoderOffset(j()?),
@@ -238,7 +241,7 @@ impl Candidate {
         }
         if want(EffectKind::PayloadMass) {
             out.push(Candidate::Payload);
-            out.push(Candidate::PayloadCom);
+            out.push(Candidate::PayloadCom([0.0; 3]));
         }
         if want(EffectKind::EnvironmentResistance) {
             out.extend(ALPHA_GRID.iter().map(|&a| Candidate::Environment(a)));
@@ -256,7 +259,7 @@ impl Candidate {
             Candidate::Viscous(_) => EffectKind::ViscousFriction,
             Candidate::Stribeck(..) => EffectKind::StribeckFriction,
             Candidate::Armature(_) => EffectKind::Armature,
-            Candidate::Payload | Candidate::PayloadCom => EffectKind::PayloadMass,
+            Candidate::Payload | Candidate::PayloadCom(_) => EffectKind::PayloadMass,
             Candidate::Environment(_) => EffectKind::EnvironmentResistance,
             Candidate::EncoderOffset(_) => EffectKind::EncoderOffset,
             Candidate::TimeDelay(_) | Candidate::LatePositions | Candidate::LateEffort(_) => {
@@ -322,7 +325,7 @@ impl Candidate {
             // at the tip that the robot does not (`columns::lower_bounds`).
             Candidate::Payload => &[("mass", false)],
             // The report gives the centre of mass (`Fit::parameters`).
-            Candidate::PayloadCom => &[
+            Candidate::PayloadCom(_) => &[
                 ("mass", false),
                 ("mass_com_x", false),
                 ("mass_com_y", false),
@@ -365,18 +368,22 @@ impl Candidate {
             // a = a_o + alpha x r + w x (w x r), and its Jacobian is
             // J_o - [r]x J_w: the effort m J^T (a - g), to first order in
             // the first moment m c, adds J_o^T (alpha x r + w x (w x r))
-            // + J_w^T (r x (a_o - g)) per unit of it.
-            Candidate::PayloadCom => {
+            // + J_w^T (r x (a_o - g)) per unit of it; the rest,
+            // J_w^T (r x (alpha x r + w x (w x r))) per unit of mass, is
+            // taken at the centre c0 the candidate carries.
+            Candidate::PayloadCom(c0) => {
                 let t = basis.tip_at(k);
                 let f = t.acc - basis.gravity;
                 c[0] = t.jac.transpose() * f;
                 if let Some(Frame { rot, jac_w, alpha }) = t.frame {
                     let w = jac_w * sig.qd(k);
+                    let lin = |u: &Vector3<f64>| alpha.cross(u) + w.cross(&w.cross(u));
                     for i in 0..3 {
                         let u = rot.column(i).into_owned();
-                        let lin = alpha.cross(&u) + w.cross(&w.cross(&u));
-                        c[i + 1] = t.jac.transpose() * lin + jac_w.transpose() * u.cross(&f);
+                        c[i + 1] = t.jac.transpose() * lin(&u) + jac_w.transpose() * u.cross(&f);
                     }
+                    let r = rot * Vector3::from(c0);
+                    c[0] += jac_w.transpose() * r.cross(&lin(&r));
                 }
             }
             Candidate::Environment(alpha) => {
@@ -433,7 +440,7 @@ impl Candidate {
                 mass: p(0),
                 com: [0.0; 3],
             },
-            Candidate::PayloadCom => Effect::PayloadMass {
+            Candidate::PayloadCom(_) => Effect::PayloadMass {
                 mass: p(0),
                 com: payload_com(theta),
             },

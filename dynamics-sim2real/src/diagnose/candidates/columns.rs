@@ -46,7 +46,7 @@ pub fn lower_bounds<const N: usize>(c: Candidate, p: &Prepared<N>) -> Vec<f64> {
         .iter()
         .enumerate()
         .map(|(i, &(_, nonneg))| match (c, i) {
-            (Candidate::Payload | Candidate::PayloadCom, 0) => -p.basis.tip_mass,
+            (Candidate::Payload | Candidate::PayloadCom(_), 0) => -p.basis.tip_mass,
             _ if !nonneg => f64::NEG_INFINITY,
             (Candidate::Coulomb(j, _) | Candidate::Stribeck(j, _), 0) => -coulomb[j],
             (Candidate::Viscous(j), 0) => -viscous[j],

@@ -59,7 +59,7 @@ pub fn offer<const N: usize>(records: &mut Records<N>, options: &Options) -> Vec
     let all = Candidate::all::<N>(&options.kinds)
         .into_iter()
         .filter(|c| match c {
-            Candidate::PayloadCom => frame,
+            Candidate::PayloadCom(_) => frame,
             Candidate::Payload => !frame,
             _ => true,
         })

@@ -205,7 +205,7 @@ pub fn suggested<R: Robot<N>, const N: usize>(
             let (joint, point) = place_of::<R, N>(c, tip);
             let reason = match &s.why {
                 Unconfirmed::Undetermined(why) => why.clone(),
-                Unconfirmed::NotPhysical if matches!(c, Candidate::Payload | Candidate::PayloadCom) => {
+                Unconfirmed::NotPhysical if matches!(c, Candidate::Payload | Candidate::PayloadCom(_)) => {
                     "the payload the data ask for leaves the body that carries the tip no physical body (mass > 0, pseudo-inertia positive semi-definite: no mass taken from where the body has none)".into()
                 }
                 Unconfirmed::NotPhysical => {

@@ -36,7 +36,7 @@ pub fn ranked_entry<R: Robot<N>, const N: usize>(
         joint: c.joint().map(|j| R::JOINT_NAMES[j].to_string()),
         point: matches!(
             c,
-            Candidate::Payload | Candidate::PayloadCom | Candidate::Environment(_)
+            Candidate::Payload | Candidate::PayloadCom(_) | Candidate::Environment(_)
         )
         .then(|| tip.to_string()),
         parameters,

@@ -84,7 +84,7 @@ pub fn fit_against<R: Robot<N>, const N: usize>(c: Candidate, on: &Against<N>) -
     // A payload that takes away more than the tip body's mass is held
     // there (`columns::lower_bounds`), its centre of mass refitted.
     let held = -p.basis.tip_mass;
-    if matches!(c, Candidate::Payload | Candidate::PayloadCom) && f.theta[0] < held {
+    if matches!(c, Candidate::Payload | Candidate::PayloadCom(_)) && f.theta[0] < held {
         let rest = y.clone() - x.column(0) * held;
         let g = constrained_least_squares(&x.columns(1, m - 1).into_owned(), &rest, &nonneg[1..]);
         f.sse = if m > 1 { g.sse } else { rest.norm_squared() };

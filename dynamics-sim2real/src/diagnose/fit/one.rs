@@ -46,7 +46,7 @@ impl Fit {
             .collect();
         // A payload's first moments as its centre of mass, c = (m c) / m,
         // its spread by the first-order propagation of both spreads.
-        if let (Candidate::PayloadCom, [(_, m, sm), moments @ ..]) = (c, out.as_slice()) {
+        if let (Candidate::PayloadCom(_), [(_, m, sm), moments @ ..]) = (c, out.as_slice()) {
             let (m, sm) = (*m, *sm);
             let com = ["com_x", "com_y", "com_z"];
             let centre: Vec<(&'static str, f64, f64)> = com

@@ -12,13 +12,16 @@
 //!   together explain the gap (forward selection, elimination from the
 //!   full linear model, cross-validation, the prior's strength);
 //! - `rough.rs`: a nominal model whose inertials are rough, whose link
-//!   corrections are then held to bodies.
+//!   corrections are then held to bodies;
+//! - `recentre.rs`: a payload's second moments moved to the centre of mass
+//!   the explanation finds, and the explanation chosen again.
 
 mod compound;
 mod criterion;
 mod nesting;
 mod pool;
 mod rank;
+mod recentre;
 mod rough;
 
 pub use compound::{
@@ -35,7 +38,7 @@ pub use rough::HeldLinks;
 use nalgebra::SVector;
 
 use crate::diagnose::candidates::{regressor_columns, Prepared};
-use crate::diagnose::fit::{corrected_rows, Fit, Fitted, Windows};
+use crate::diagnose::fit::{corrected_rows, fit, window_of, Fit, Fitted, Windows};
 use crate::diagnose::Options;
 use crate::effects::EffectKind;
 use dynamics_runtime::Robot;
@@ -76,31 +79,102 @@ pub fn select<R: Robot<N> + Clone + Sync, const N: usize>(
 ) -> Selection {
     let with_links =
         options.kinds.is_empty() || options.kinds.contains(&EffectKind::InertialParameters);
+    let mut nominal = vec![SVector::<f64, 10>::zeros(); R::LINK_NAMES.len()];
+    if robot.inertial_parameters(&mut nominal).is_err() {
+        nominal.clear();
+    }
+    let carrier = Carrier::of(robot, &nominal);
+    let Fitted {
+        mut fits,
+        mut windows,
+    } = fitted;
+    let mut chosen = explained(
+        robot,
+        p,
+        &fits,
+        &windows,
+        &nominal,
+        carrier.as_ref(),
+        with_links,
+        options,
+    );
+    // The payload's second moments at the centre the explanation gives,
+    // and the explanation chosen again (`recentre.rs`): its single fit
+    // refitted there (one limited in time keeps its fit and window).
+    for _ in 0..recentre::PASSES {
+        let Some((was, now)) = recentre::recentred(&chosen.0, &chosen.1) else {
+            break;
+        };
+        for w in windows.iter_mut().filter(|w| w.0 == was) {
+            w.0 = now;
+        }
+        for f in fits.iter_mut().filter(|f| f.candidate == was) {
+            *f = match window_of(&windows, now) {
+                Some(_) => Fit {
+                    candidate: now,
+                    ..f.clone()
+                },
+                None => fit::<R, N>(now, p),
+            };
+        }
+        chosen = explained(
+            robot,
+            p,
+            &fits,
+            &windows,
+            &nominal,
+            carrier.as_ref(),
+            with_links,
+            options,
+        );
+    }
+    let (pool, explanation, held_links) = chosen;
+    // A payload that would leave the tip's carrier no body is no single
+    // effect either: the ranking is what the user reads beside the
+    // explanation, which does not name it (`pool/carrier.rs`).
+    let best = rank::rank(fits, p, h, &windows, options)
+        .into_iter()
+        .filter(|f| !payload_leaves_no_body(carrier.as_ref(), f.candidate, &f.theta, &f.std))
+        .collect();
+    Selection {
+        best,
+        pool,
+        explanation,
+        nominal,
+        carrier,
+        windows,
+        with_links,
+        held_links,
+    }
+}
+
+/// The pool of `fits` (with the links' corrections unless `with_links`
+/// is false), the compound explanation chosen over it, and how link
+/// corrections without a body were treated: a nominal model whose
+/// inertials are rough gets its explanation chosen again with the links
+/// held to bodies (`rough.rs`).
+#[allow(clippy::too_many_arguments)]
+fn explained<R: Robot<N> + Clone + Sync, const N: usize>(
+    robot: &R,
+    p: &Prepared<N>,
+    fits: &[Fit],
+    windows: &Windows,
+    nominal: &[SVector<f64, 10>],
+    carrier: Option<&Carrier>,
+    with_links: bool,
+    options: &Options,
+) -> (Pool, Explanation, HeldLinks) {
     let plinks = if with_links {
         regressor_columns(robot, p).unwrap_or_default()
     } else {
         vec![]
     };
-    let mut nominal = vec![SVector::<f64, 10>::zeros(); R::LINK_NAMES.len()];
-    if robot.inertial_parameters(&mut nominal).is_err() {
-        nominal.clear();
-    }
-    let mut pool = Pool::new(&fitted.fits, &fitted.windows, &plinks, &nominal, p);
+    let mut pool = Pool::new(fits, windows, &plinks, nominal, p);
     // The pool holds the links' combinations: their columns are done.
     drop(plinks);
-    let carrier = Carrier::of(robot, &nominal);
     let beside = BesideGravity::of(robot, p);
-    let mut explanation = compound::explain::<R, N>(
-        &mut pool,
-        p,
-        &nominal,
-        carrier.as_ref(),
-        Some(&beside),
-        options,
-    );
-    // Corrections without a body on most links: the model's inertials are
-    // rough, and the explanation is chosen again with the links held to
-    // bodies (`rough.rs`).
+    let mut explanation =
+        compound::explain::<R, N>(&mut pool, p, nominal, carrier, Some(&beside), options);
     let mut held_links = if options.hold_links {
         HeldLinks::Asked
     } else {
@@ -115,34 +189,11 @@ pub fn select<R: Robot<N> + Clone + Sync, const N: usize>(
             hold_links: true,
             ..options.clone()
         };
-        explanation = compound::explain::<R, N>(
-            &mut pool,
-            p,
-            &nominal,
-            carrier.as_ref(),
-            Some(&beside),
-            &held,
-        );
+        explanation =
+            compound::explain::<R, N>(&mut pool, p, nominal, carrier, Some(&beside), &held);
         held_links = HeldLinks::Rough { links, of };
     }
-    drop(beside);
-    // A payload that would leave the tip's carrier no body is no single
-    // effect either: the ranking is what the user reads beside the
-    // explanation, which does not name it (`pool/carrier.rs`).
-    let best = rank::rank(fitted.fits, p, h, &fitted.windows, options)
-        .into_iter()
-        .filter(|f| !payload_leaves_no_body(carrier.as_ref(), f.candidate, &f.theta, &f.std))
-        .collect();
-    Selection {
-        best,
-        pool,
-        explanation,
-        nominal,
-        carrier,
-        windows: fitted.windows,
-        with_links,
-        held_links,
-    }
+    (pool, explanation, held_links)
 }
 
 /// The held-out deviance of fit `f` on `h` (its parameters fitted on the

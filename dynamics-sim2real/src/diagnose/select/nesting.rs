@@ -23,9 +23,11 @@ pub fn simpler(c: Candidate) -> Option<fn(&Candidate) -> bool> {
         // A point mass at the tip is an inertial change of the tip's link
         // with one parameter (four with its centre of mass) instead of up
         // to ten.
-        Candidate::Inertial(_) => Some(|s| matches!(s, Candidate::Payload | Candidate::PayloadCom)),
+        Candidate::Inertial(_) => {
+            Some(|s| matches!(s, Candidate::Payload | Candidate::PayloadCom(_)))
+        }
         // A centre of mass off the tip's origin is three more parameters.
-        Candidate::PayloadCom => Some(|s| matches!(s, Candidate::Payload)),
+        Candidate::PayloadCom(_) => Some(|s| matches!(s, Candidate::Payload)),
         _ => None,
     }
 }

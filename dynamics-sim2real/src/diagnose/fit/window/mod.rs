@@ -45,7 +45,7 @@ pub fn windowable(c: Candidate) -> bool {
         c,
         Candidate::EncoderOffset(_)
             | Candidate::Payload
-            | Candidate::PayloadCom
+            | Candidate::PayloadCom(_)
             | Candidate::Environment(_)
     )
 }
@@ -58,7 +58,7 @@ pub fn windowable(c: Candidate) -> bool {
 /// their parameter's own constraint.
 fn window_sign(c: Candidate) -> Option<f64> {
     match c {
-        Candidate::Payload | Candidate::PayloadCom => Some(1.0),
+        Candidate::Payload | Candidate::PayloadCom(_) => Some(1.0),
         _ => c
             .linear_parameters()
             .first()

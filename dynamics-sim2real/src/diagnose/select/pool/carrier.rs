@@ -79,7 +79,7 @@ impl Carrier {
     pub fn carries(&self, c: Candidate, theta: &[f64], std: &[f64]) -> bool {
         let mass = theta.first().copied().unwrap_or(0.0);
         let com = match c {
-            Candidate::PayloadCom => Vector3::from(payload_com(theta)),
+            Candidate::PayloadCom(_) => Vector3::from(payload_com(theta)),
             Candidate::Payload => Vector3::zeros(),
             _ => return true,
         };
@@ -96,7 +96,7 @@ impl Carrier {
         // The centre of mass's spread on each axis: its first moment's
         // over the mass.
         let spread = Vector3::from_fn(|i, _| match (c, std.get(i + 1)) {
-            (Candidate::PayloadCom, Some(s)) if s.is_finite() && mass != 0.0 => {
+            (Candidate::PayloadCom(_), Some(s)) if s.is_finite() && mass != 0.0 => {
                 2.0 * s / mass.abs()
             }
             _ => 0.0,
@@ -124,7 +124,7 @@ pub(in crate::diagnose) fn payload_leaves_no_body(
     theta: &[f64],
     std: &[f64],
 ) -> bool {
-    matches!(c, Candidate::Payload | Candidate::PayloadCom)
+    matches!(c, Candidate::Payload | Candidate::PayloadCom(_))
         && carrier.is_some_and(|k| !k.carries(c, theta, std))
 }
 
@@ -146,14 +146,18 @@ mod tests {
             at: Vector3::new(0.0, 0.0, 0.1),
         };
         assert!(k.carries(Candidate::Payload, &[-0.2], &[]));
-        assert!(k.carries(Candidate::PayloadCom, &[2.0, 0.0, 0.0, 0.6], &[]));
+        assert!(k.carries(Candidate::PayloadCom([0.0; 3]), &[2.0, 0.0, 0.0, 0.6], &[]));
         let (m, c) = (-0.296, Vector3::new(0.014, -0.036, 0.18));
         let theta = [m, m * c.x, m * c.y, m * c.z];
-        assert!(!k.carries(Candidate::PayloadCom, &theta, &[]));
-        assert!(!k.carries(Candidate::PayloadCom, &theta, &[0.01, 1e-3, 1e-3, 1e-3]));
+        assert!(!k.carries(Candidate::PayloadCom([0.0; 3]), &theta, &[]));
+        assert!(!k.carries(
+            Candidate::PayloadCom([0.0; 3]),
+            &theta,
+            &[0.01, 1e-3, 1e-3, 1e-3]
+        ));
         assert!(payload_leaves_no_body(
             Some(&k),
-            Candidate::PayloadCom,
+            Candidate::PayloadCom([0.0; 3]),
             &theta,
             &[]
         ));
@@ -162,11 +166,19 @@ mod tests {
         // g m), the mass could come from the tip's frame, 0.1 m from the
         // body's: a body.
         let theta = [-0.25, 0.0, 0.0, -0.025];
-        assert!(!k.carries(Candidate::PayloadCom, &theta, &[0.01, 1e-4, 1e-4, 1e-3]));
-        assert!(k.carries(Candidate::PayloadCom, &theta, &[0.01, 1e-4, 1e-4, 0.0125]));
+        assert!(!k.carries(
+            Candidate::PayloadCom([0.0; 3]),
+            &theta,
+            &[0.01, 1e-4, 1e-4, 1e-3]
+        ));
+        assert!(k.carries(
+            Candidate::PayloadCom([0.0; 3]),
+            &theta,
+            &[0.01, 1e-4, 1e-4, 0.0125]
+        ));
         assert!(!payload_leaves_no_body(
             None,
-            Candidate::PayloadCom,
+            Candidate::PayloadCom([0.0; 3]),
             &theta,
             &[]
         ));

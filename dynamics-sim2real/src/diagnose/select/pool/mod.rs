@@ -74,7 +74,7 @@ impl Term {
             Candidate::Coulomb(..) | Candidate::Stribeck(..) => 0,
             Candidate::Armature(_) | Candidate::Elasticity(_) | Candidate::Backlash(_) => 1,
             Candidate::Viscous(_) => 2,
-            Candidate::Payload | Candidate::PayloadCom => 3,
+            Candidate::Payload | Candidate::PayloadCom(_) => 3,
             Candidate::Environment(_) => 4,
             Candidate::EncoderOffset(_) => 5,
             Candidate::TimeDelay(_) | Candidate::LatePositions | Candidate::LateEffort(_) => 6,
