@@ -102,7 +102,7 @@ pub fn select<R: Robot<N> + Clone + Sync, const N: usize>(
     // and the explanation chosen again (`recentre.rs`): its single fit
     // refitted there (one limited in time keeps its fit and window).
     for _ in 0..recentre::PASSES {
-        let Some((was, now)) = recentre::recentred(&chosen.0, &chosen.1) else {
+        let Some((was, now)) = recentre::recentred(&chosen.0, &chosen.1, carrier.as_ref()) else {
             break;
         };
         for w in windows.iter_mut().filter(|w| w.0 == was) {

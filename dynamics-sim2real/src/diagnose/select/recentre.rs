@@ -15,7 +15,7 @@
 use nalgebra::Vector3;
 
 use super::compound::Explanation;
-use super::pool::Pool;
+use super::pool::{payload_leaves_no_body, Carrier, Pool};
 use crate::diagnose::candidates::{payload_com, Candidate};
 
 /// The farthest from the tip's origin a payload's centre is taken as the
@@ -35,16 +35,27 @@ pub const PASSES: usize = 3;
 
 /// The payload of `explanation` (over `pool`) and the centre its joint fit
 /// gives, when the mass is determined (beyond twice its standard
-/// deviation), the centre within [`REACH`] of the tip, and more than
-/// [`MOVE`] from the one its columns took; `None` otherwise.
-pub fn recentred(pool: &Pool, explanation: &Explanation) -> Option<(Candidate, Candidate)> {
+/// deviation), the centre within [`REACH`] of the tip and more than
+/// [`MOVE`] from the one its columns took, and the payload leaves the
+/// `carrier` of the tip a physical body (`pool/carrier.rs`: a point mass
+/// no body could be is no centre to take second moments at); `None`
+/// otherwise.
+pub fn recentred(
+    pool: &Pool,
+    explanation: &Explanation,
+    carrier: Option<&Carrier>,
+) -> Option<(Candidate, Candidate)> {
     explanation.set.iter().enumerate().find_map(|(i, &t)| {
         let c = pool.terms[t].fit.candidate;
         let Candidate::PayloadCom(was) = c else {
             return None;
         };
         let theta = explanation.sol.theta.get(i)?;
-        let (m, sm) = (*theta.first()?, *explanation.sol.std.get(i)?.first()?);
+        let std = explanation.sol.std.get(i)?;
+        if payload_leaves_no_body(carrier, c, theta, std) {
+            return None;
+        }
+        let (m, sm) = (*theta.first()?, *std.first()?);
         let com = payload_com(theta);
         let at = Vector3::from(com);
         let determined = m.abs() > 2.0 * sm && at.norm() <= REACH;
