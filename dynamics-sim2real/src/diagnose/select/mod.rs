@@ -84,10 +84,7 @@ pub fn select<R: Robot<N> + Clone + Sync, const N: usize>(
         nominal.clear();
     }
     let carrier = Carrier::of(robot, &nominal);
-    let Fitted {
-        mut fits,
-        mut windows,
-    } = fitted;
+    let Fitted { mut fits, windows } = fitted;
     let mut chosen = explained(
         robot,
         p,
@@ -99,23 +96,18 @@ pub fn select<R: Robot<N> + Clone + Sync, const N: usize>(
         options,
     );
     // The payload's second moments at the centre the explanation gives,
-    // and the explanation chosen again (`recentre.rs`): its single fit
-    // refitted there (one limited in time keeps its fit and window).
+    // and the explanation chosen again (`recentre.rs`), its single fit
+    // refitted there. A payload found in a time window keeps its fit: its
+    // window was searched on the columns it has.
     for _ in 0..recentre::PASSES {
         let Some((was, now)) = recentre::recentred(&chosen.0, &chosen.1, carrier.as_ref()) else {
             break;
         };
-        for w in windows.iter_mut().filter(|w| w.0 == was) {
-            w.0 = now;
+        if window_of(&windows, was).is_some() {
+            break;
         }
         for f in fits.iter_mut().filter(|f| f.candidate == was) {
-            *f = match window_of(&windows, now) {
-                Some(_) => Fit {
-                    candidate: now,
-                    ..f.clone()
-                },
-                None => fit::<R, N>(now, p),
-            };
+            *f = fit::<R, N>(now, p);
         }
         chosen = explained(
             robot,
