@@ -21,7 +21,12 @@
 //!    gravity effort alone. The selection already leaves such scales out
 //!    and chooses the rest of its set without them
 //!    (`select/compound/scales.rs`); the test is made again on the set as
-//!    it reaches this stage;
+//!    it reaches this stage. An encoder offset must likewise be one of the
+//!    whole robot: its column split into its own joint's rows and the
+//!    other joints', the other joints' part must be determined and asked
+//!    for by the common offset (`whole_offset`,
+//!    `select/compound/offsets.rs`): at its own joint alone an offset is
+//!    what an effort offset or the links beyond placed wrong make;
 //! 3. an effect whose parameters the data do not determine, or that are
 //!    not physical (`determinacy.rs`), is not named: a suggestion, with the
 //!    reason; so is a link correction that leaves no physical body, unless
@@ -31,7 +36,8 @@
 //!    effects that held, refitted together once the tests below are done,
 //!    must still be physical (an effort scale that stood in for a dropped
 //!    effect can go to its bound there: a suggestion, and the rest tested
-//!    again; a spring whose stiffness that refit cannot tell from zero is
+//!    again; so is an effect that refit holds at zero, which makes no
+//!    effort; a spring whose stiffness that refit cannot tell from zero is
 //!    its preload alone, the effort offset at its joint, named in its
 //!    place);
 //! 4. every other effect must lower the held-out record's residual, the
@@ -71,7 +77,7 @@
 //!    family the set already holds or a term the selection left out) that
 //!    holds on the held-out record in the link's place, its values
 //!    determined and physical (an effort scale one of the whole effort,
-//!    rule 2), and that the
+//!    an encoder offset one the other joints show, rule 2), and that the
 //!    link correction beats there by no more than the chi-square quantile
 //!    of its extra parameters, in all and at every joint (each at the
 //!    level shared by the joints: a term that explains another joint's gap
@@ -85,13 +91,14 @@
 
 use nalgebra::{DVector, SVector};
 
-use super::determinacy::{beyond_physical, undetermined};
+use super::determinacy::{beyond_physical, undetermined, vanished};
 use super::holdout::{free_columns, limit_to_windows, offset_joint, Holdout};
 use crate::diagnose::candidates::{model_part, whitened, Candidate, Excitation, Prepared};
 use crate::diagnose::numeric::correlation_time;
 use crate::diagnose::select::{
-    helps, is_body, joint_fit, model_lag, partial_scale, partial_scales, payload_leaves_no_body,
-    BesideGravity, Carrier, Explanation, Parts, Pool, Solution, Why,
+    helps, is_body, joint_fit, model_lag, partial_offset, partial_offsets, partial_scale,
+    partial_scales, payload_leaves_no_body, BesideGravity, Carrier, Explanation, Parts, Pool,
+    Solution, Why,
 };
 use crate::effects::Effect;
 use dynamics_runtime::{JointKind, Robot};
@@ -194,6 +201,19 @@ pub enum Unconfirmed {
         /// gravity effort, each with its standard deviation.
         scales: Parts,
     },
+    /// An encoder offset that only its own joint shows: its column split
+    /// into its own joint's rows and the other joints' (the rest of the
+    /// set refitted with both), the other joints' part not determined or
+    /// not shown to ask for the common offset (`whole_offset`,
+    /// `select/compound/offsets.rs`); at its own joint alone an effort
+    /// offset, a spring or the links beyond placed wrong make the same.
+    OwnJointOnly {
+        /// The offset as fitted, rad.
+        common: f64,
+        /// The split's offsets: its own joint's part and the other
+        /// joints', each with its standard deviation, rad.
+        offsets: Parts,
+    },
 }
 
 /// An effect left out of the explanation: its pool term, its fit in the
@@ -249,6 +269,7 @@ fn why_left_out(why: Why) -> Unconfirmed {
     match why {
         Why::NoBody => Unconfirmed::NotPhysical,
         Why::PartOfTheEffort { common, scales } => Unconfirmed::PartOfTheEffort { common, scales },
+        Why::OwnJointOnly { common, offsets } => Unconfirmed::OwnJointOnly { common, offsets },
     }
 }
 
@@ -311,7 +332,14 @@ pub fn confirm<R: Robot<N>, const N: usize>(
     // The effort scales of the set that act on part of the effort (the
     // set's final order and fit can differ from the selection's).
     let beside = BesideGravity::of(robot, p);
-    let partial = partial_scales(pool, &e.set, &e.sol, &beside, solve_in);
+    let mut partial = partial_scales(pool, &e.set, &e.sol, &beside, solve_in);
+    partial.extend(partial_offsets(
+        pool,
+        &e.set,
+        &e.sol,
+        beside.inflate(),
+        solve_in,
+    ));
     // Positions into `e.set` still in the explanation.
     let mut keep: Vec<usize> = Vec::new();
     for (i, &t) in e.set.iter().enumerate() {
@@ -506,6 +534,15 @@ pub fn confirm<R: Robot<N>, const N: usize>(
             if undetermined(&f, joint_of(c)).is_some()
                 || payload_leaves_no_body(carrier, c, &theta, &std)
                 || partial_scale(pool, &terms, terms.len() - 1, &sol, &beside, solve_in).is_some()
+                || partial_offset(
+                    pool,
+                    &terms,
+                    terms.len() - 1,
+                    &sol,
+                    beside.inflate(),
+                    solve_in,
+                )
+                .is_some()
             {
                 continue;
             }
@@ -549,7 +586,8 @@ pub fn confirm<R: Robot<N>, const N: usize>(
     // the rest refitted may take a value outside what its kind can be (an
     // effort scale to its bound, where it stood in for what was dropped).
     // Such an effect is a suggestion with the reason, and the rest are
-    // tested again. A value the refit leaves undetermined is reported with
+    // tested again; so is one the refit holds at zero (it makes no effort
+    // there). A value the refit leaves undetermined is reported with
     // its note (the effect holds on the held-out record as a whole); link
     // corrections are judged as held above.
     let (keep, confidence, set, sol) = loop {
@@ -562,7 +600,9 @@ pub fn confirm<R: Robot<N>, const N: usize>(
             }
             let (theta, std) = (sol.theta.get(m)?, sol.std.get(m)?);
             let f = joint_fit(pool, t, theta, std);
-            beyond_physical(&f, joint_of(f.candidate)).map(|why| (m, why))
+            beyond_physical(&f, joint_of(f.candidate))
+                .or_else(|| vanished(&f))
+                .map(|why| (m, why))
         });
         // A spring whose stiffness the refit cannot tell from zero is what
         // its preload is: an effort offset at its joint, named in its place

@@ -137,6 +137,17 @@ pub fn beyond_physical(f: &Fit, joint: Option<(JointKind, f64)>) -> Option<Strin
         })
 }
 
+/// The first parameter of fit `f` that its sign constraint holds at zero
+/// (a grid-searched shape and a payload's centre of mass aside), with the
+/// reason: an effect so fitted makes no effort at all.
+pub fn vanished(f: &Fit) -> Option<String> {
+    f.parameters()
+        .into_iter()
+        .filter(|(name, _, _)| !matches!(*name, "vw" | "vs" | "alpha" | "contact_damping"))
+        .find(|(name, v, _)| held_at_zero(name, *v))
+        .map(|(name, _, _)| format!("`{name}`: zero, held at its bound: the data ask for none"))
+}
+
 /// The first parameter of fit `f` (at a joint of `joint`, as for
 /// [`why_not`]) that cannot be acted on, with the reason. A payload stands
 /// on its mass: a centre of mass the data do not place is a note on its

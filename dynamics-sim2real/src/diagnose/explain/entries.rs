@@ -216,6 +216,7 @@ pub fn suggested<R: Robot<N>, const N: usize>(
                 ),
                 Unconfirmed::NotTheWholeEffort { common, lags } => not_the_whole(common, lags),
                 Unconfirmed::PartOfTheEffort { common, scales } => part_of_the_effort(common, scales),
+                Unconfirmed::OwnJointOnly { common, offsets } => own_joint_only(common, offsets),
                 Unconfirmed::Simpler {
                     rival,
                     extra,
@@ -308,6 +309,25 @@ fn part_of_the_effort(common: &f64, scales: &Parts) -> String {
         pc(scales.part),
         pc(scales.rest),
         100.0 * *common
+    )
+}
+
+/// Why an encoder offset that only its own joint shows is not named.
+fn own_joint_only(common: &f64, offsets: &Parts) -> String {
+    let rad = |(v, s): (f64, f64)| {
+        if s.is_finite() {
+            format!("{v:+.4} +- {s:.4} rad")
+        } else {
+            "nothing the rest of the explanation does not already make".into()
+        }
+    };
+    format!(
+        "not shown to be the encoder: its own joint's effort asks for {} and the other joints' efforts for {}, \
+         where an encoder off by {:+.4} rad would move both (the links beyond it turned); what its own joint \
+         alone shows, an effort offset, a spring or the links beyond placed wrong in the model make as well",
+        rad(offsets.part),
+        rad(offsets.rest),
+        *common
     )
 }
 

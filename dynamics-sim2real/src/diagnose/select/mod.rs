@@ -25,8 +25,8 @@ mod recentre;
 mod rough;
 
 pub use compound::{
-    against_others, effects, joint_fit, partial_scale, partial_scales, BesideGravity, Explanation,
-    Why,
+    against_others, effects, joint_fit, partial_offset, partial_offsets, partial_scale,
+    partial_scales, BesideGravity, Explanation, Why,
 };
 pub use nesting::{breakaway_data_needed, nested_rival_stands};
 pub use pool::{helps, model_lag, Carrier, Parts, Pool, Solution};

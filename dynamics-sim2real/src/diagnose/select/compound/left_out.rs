@@ -17,6 +17,17 @@ pub enum Why {
         /// The parts' scales minus one.
         scales: Parts,
     },
+    /// An encoder offset the data show at its own joint alone: its column
+    /// split into its own joint's rows and the other joints', the common
+    /// offset not shown to act on the other joints' efforts; the offset,
+    /// rad, and the two parts' offsets, each with its standard deviation.
+    OwnJointOnly {
+        /// The offset as fitted, rad.
+        common: f64,
+        /// The split's offsets: its own joint's part and the other
+        /// joints', rad.
+        offsets: Parts,
+    },
 }
 
 /// A term the selection chose and left out, with its fit in the set it was

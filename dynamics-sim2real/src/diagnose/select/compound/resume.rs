@@ -1,7 +1,8 @@
 //! What the selection chose that is not what it seems leaves the
 //! candidates, and the selection resumes without it: a link correction or
 //! a payload that leaves no physical body (`bodies.rs`), an effort scale
-//! that acts on part of the effort only (`scales.rs`).
+//! that acts on part of the effort only (`scales.rs`), an encoder offset
+//! that its own joint alone shows (`offsets.rs`).
 //!
 //! Left out only in the confirmation, such a term's place would stay
 //! empty: it has taken from the other terms what it explains on the
@@ -15,6 +16,7 @@ use nalgebra::SVector;
 
 use super::bodies::bodiless;
 use super::left_out::LeftOut;
+use super::offsets::partial_offsets;
 use super::scales::{partial_scales, BesideGravity};
 use super::select::select_except;
 use crate::diagnose::select::pool::{Carrier, Pool};
@@ -25,7 +27,8 @@ pub const ROUNDS: usize = 4;
 
 /// `set` with what is not what it seems left out (links of `nominal`
 /// parameters that leave no body, payloads that leave the tip's `carrier`
-/// none, effort scales of part of the effort split by `beside`), and the
+/// none, effort scales of part of the effort split by `beside`, encoder
+/// offsets their own joint alone shows, split at the rows `beside` counts), and the
 /// selection resumed without those terms nor the terms `before` (banned
 /// already); the terms left out, in the order found, and the terms banned
 /// for them (every term of a link left out).
@@ -56,6 +59,9 @@ pub fn without_left_out<const N: usize>(
             let scales = partial_scales(pool, &set, &sol, beside, solve);
             ban.extend(scales.iter().map(|l| l.term));
             out.extend(scales);
+            let offsets = partial_offsets(pool, &set, &sol, beside.inflate(), solve);
+            ban.extend(offsets.iter().map(|l| l.term));
+            out.extend(offsets);
         }
         if ban.is_empty() {
             break;

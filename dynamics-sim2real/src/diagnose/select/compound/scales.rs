@@ -59,6 +59,13 @@ impl BesideGravity {
         }
     }
 
+    /// The factor on a split's standard deviations at the pool's rows:
+    /// the rows counted as the noise through the smoothing leaves them
+    /// independent.
+    pub fn inflate(&self) -> f64 {
+        self.inflate
+    }
+
     /// Joint `j`'s part alone, the other joints' rows zero.
     fn at(&self, j: usize) -> Vec<f64> {
         let n = self.joints.max(1);

@@ -38,12 +38,65 @@ impl Pool {
         solve: impl Fn(&Pool, &[usize]) -> Solution,
     ) -> Option<Parts> {
         let joints = self.weights.len();
+        if joints == 0 || part.len() != self.x.nrows() {
+            return None;
+        }
+        let weighted = part
+            .iter()
+            .enumerate()
+            .map(|(r, &p)| {
+                let a = p * self.weights[r % joints];
+                if a.is_finite() {
+                    a
+                } else {
+                    0.0
+                }
+            })
+            .collect();
+        self.split_weighted(set, at, weighted, solve)
+    }
+
+    /// [`Pool::split_off`] with the part the term's own column at joint
+    /// `joint`'s rows (its other joints' rows the rest): what tells an
+    /// effect seen at its own joint alone from one that also moves the
+    /// other joints' efforts. `None` as for [`Pool::split_off`], or when
+    /// `joint` is not one of the pool's.
+    pub fn split_at_joint(
+        &self,
+        set: &[usize],
+        at: usize,
+        joint: usize,
+        solve: impl Fn(&Pool, &[usize]) -> Solution,
+    ) -> Option<Parts> {
+        let joints = self.weights.len();
+        let &[col] = &self.terms[*set.get(at)?].cols[..] else {
+            return None;
+        };
+        if joint >= joints {
+            return None;
+        }
+        let whole = self.x.column(col);
+        let part = (0..self.x.nrows())
+            .map(|r| if r % joints == joint { whole[r] } else { 0.0 })
+            .collect();
+        drop(whole);
+        self.split_weighted(set, at, part, solve)
+    }
+
+    /// [`Pool::split_off`] of a part already in the pool's weights.
+    fn split_weighted(
+        &self,
+        set: &[usize],
+        at: usize,
+        part_col: Vec<f64>,
+        solve: impl Fn(&Pool, &[usize]) -> Solution,
+    ) -> Option<Parts> {
         let n = self.x.nrows();
         let split = &self.terms[*set.get(at)?];
         let [col] = split.cols[..] else {
             return None;
         };
-        if n == 0 || joints == 0 || part.len() != n {
+        if n == 0 || part_col.len() != n {
             return None;
         }
         // The other terms' columns, renumbered in order, then the two parts.
@@ -65,14 +118,7 @@ impl Pool {
         let kept = cols.len();
         let mut x = self.x.subset(&cols);
         let whole = self.x.column(col);
-        let mut part_col = vec![0.0; n];
-        let mut rest_col = vec![0.0; n];
-        for r in 0..n {
-            let a = part[r] * self.weights[r % joints];
-            let a = if a.is_finite() { a } else { 0.0 };
-            part_col[r] = a;
-            rest_col[r] = whole[r] - a;
-        }
+        let rest_col = (0..n).map(|r| whole[r] - part_col[r]).collect();
         drop(whole);
         x.push(part_col);
         x.push(rest_col);
