@@ -137,32 +137,88 @@ pub fn beyond_physical(f: &Fit, joint: Option<(JointKind, f64)>) -> Option<Strin
         })
 }
 
-/// The first parameter of fit `f` that its sign constraint holds at zero
-/// (a grid-searched shape and a payload's centre of mass aside), with the
-/// reason: an effect so fitted makes no effort at all.
+/// Why fit `f` makes no effort at all: every parameter that sizes it (a
+/// grid-searched shape and a payload's centre of mass aside) held at zero
+/// by its sign constraint; `None` when one is not.
 pub fn vanished(f: &Fit) -> Option<String> {
-    f.parameters()
+    let sizes: Vec<(&str, f64, f64)> = f
+        .parameters()
         .into_iter()
-        .filter(|(name, _, _)| !matches!(*name, "vw" | "vs" | "alpha" | "contact_damping"))
-        .find(|(name, v, _)| held_at_zero(name, *v))
-        .map(|(name, _, _)| format!("`{name}`: zero, held at its bound: the data ask for none"))
+        .filter(|(name, _, _)| {
+            !matches!(*name, "vw" | "vs" | "alpha" | "contact_damping") && !name.starts_with("com_")
+        })
+        .collect();
+    let names: Vec<String> = sizes
+        .iter()
+        .map(|(name, _, _)| format!("`{name}`"))
+        .collect();
+    (!sizes.is_empty() && sizes.iter().all(|&(name, v, _)| held_at_zero(name, v))).then(|| {
+        format!(
+            "{}: zero, held at its bound: the data ask for none",
+            names.join(", ")
+        )
+    })
 }
 
 /// The first parameter of fit `f` (at a joint of `joint`, as for
 /// [`why_not`]) that cannot be acted on, with the reason. A payload stands
 /// on its mass: a centre of mass the data do not place is a note on its
 /// coordinates in the report, not a reason to leave the payload out.
+///
+/// A Stribeck friction whose Coulomb level is held at zero under a
+/// breakaway it carries is a friction that falls away with speed: the
+/// breakaway is what it stands on, and the zero level is a note.
 pub fn undetermined(f: &Fit, joint: Option<(JointKind, f64)>) -> Option<String> {
     let kind = f.candidate.kind();
-    f.parameters()
+    let params = f.parameters();
+    let breakaway = params
+        .iter()
+        .any(|&(name, v, _)| name == "fs_minus_fc" && v.is_finite() && !held_at_zero(name, v));
+    let carried = |name: &str, v: f64| {
+        kind == EffectKind::StribeckFriction && name == "fc" && breakaway && held_at_zero(name, v)
+    };
+    params
         .into_iter()
         .filter(|(name, _, _)| !name.starts_with("com_"))
+        .filter(|&(name, v, _)| !carried(name, v))
         .find_map(|(name, v, s)| why_not(kind, name, v, s, joint).map(|w| format!("`{name}`: {w}")))
 }
 
 #[cfg(test)]
 mod tests {
     use super::*;
+    use crate::diagnose::candidates::Candidate;
+
+    fn fit(candidate: Candidate, theta: &[f64], std: &[f64]) -> Fit {
+        Fit {
+            candidate,
+            theta: theta.to_vec(),
+            std: std.to_vec(),
+            motor: None,
+            motor_std: None,
+            sse: 0.0,
+            k: theta.len(),
+        }
+    }
+
+    /// A Stribeck friction with no Coulomb level under a breakaway the
+    /// data determine is a friction; with neither it makes no effort, and
+    /// neither does a resistance of zero.
+    #[test]
+    fn an_effect_vanishes_only_when_nothing_sizes_it() {
+        let stribeck =
+            |fc: f64, fs: f64| fit(Candidate::Stribeck(2, 0.3), &[fc, fs], &[0.05, 0.02]);
+        let breakaway = stribeck(0.0, 0.33);
+        assert!(undetermined(&breakaway, None).is_none());
+        assert!(vanished(&breakaway).is_none());
+        let none = stribeck(0.0, 0.0);
+        assert!(undetermined(&none, None).is_some());
+        assert!(vanished(&none).is_some());
+        let resistance = fit(Candidate::Environment(3.0), &[0.0], &[0.26]);
+        let why = vanished(&resistance).expect("no effort");
+        assert!(why.contains("`mu`"), "{why}");
+        assert!(vanished(&fit(Candidate::Environment(3.0), &[0.3], &[0.06])).is_none());
+    }
 
     #[test]
     fn an_offset_beyond_a_turn_is_not_a_number_a_user_can_use() {
