@@ -403,13 +403,13 @@ mod tests {
 
     #[test]
     fn stores_of_whole_and_partial_lanes_give_each_state_its_values() {
-        fn check<L: Lanes>() {
-            // 11 x 2 values: whole blocks and a tail, for 1..=WIDTH states.
-            let values: [[L; 11]; 2] = core::array::from_fn(|c| {
+        fn check<L: Lanes, const R: usize, const C: usize>() {
+            // R x C values, for 1..=WIDTH states.
+            let values: [[L; R]; C] = core::array::from_fn(|c| {
                 core::array::from_fn(|k| L::from_fn(|i| (1000 * c + 100 * k + i) as f64))
             });
             for m in 1..=L::WIDTH {
-                let mut states = vec![[[0.0; 11]; 2]; m];
+                let mut states = vec![[[0.0; R]; C]; m];
                 L::store_states(&values, &mut states, |s| s);
                 for (i, s) in states.iter().enumerate() {
                     for (c, column) in s.iter().enumerate() {
@@ -421,15 +421,26 @@ mod tests {
                 }
             }
         }
+        // Fewer values than lanes, whole blocks only, and blocks with
+        // tails of one to seven values.
+        fn all<L: Lanes>() {
+            check::<L, 3, 1>();
+            check::<L, 4, 4>();
+            check::<L, 11, 2>();
+            check::<L, 4, 3>();
+            check::<L, 6, 6>();
+            check::<L, 7, 7>();
+            check::<L, 5, 3>();
+        }
         #[target_feature(enable = "avx2,fma")]
         fn four() {
-            check::<F64x4>();
+            all::<F64x4>();
         }
         #[target_feature(enable = "avx512f,avx2,fma")]
         fn eight() {
-            check::<F64x8>();
+            all::<F64x8>();
         }
-        check::<f64>();
+        all::<f64>();
         // SAFETY: each runs only where the CPU has its features.
         #[allow(unsafe_code)]
         on_this_cpu(|| unsafe { four() }, || unsafe { eight() });

@@ -204,26 +204,12 @@ macro_rules! vector_lanes {
                 states: &mut [T],
                 field: impl Fn(&mut T) -> &mut [[f64; R]; C],
             ) {
-                let values = values.as_flattened();
-                let mut k = 0;
-                // Whole lanes: blocks of $width values turned by a register
-                // transpose into $width runs of one state each, one vector
-                // store per state (not $width scalar stores per value).
-                if states.len() == $width {
-                    while k + $width <= values.len() {
-                        let rows = Self::transpose(&values[k..k + $width]);
-                        for (state, row) in states.iter_mut().zip(rows) {
-                            field(state).as_flattened_mut()[k..k + $width]
-                                .copy_from_slice(&row.to_array());
-                        }
-                        k += $width;
-                    }
-                }
-                for (j, v) in values.iter().enumerate().skip(k) {
-                    let lanes = v.to_array();
-                    for (state, x) in states.iter_mut().zip(lanes) {
-                        field(state).as_flattened_mut()[j] = x;
-                    }
+                // A whole group by code whose every index is a constant, so
+                // that the values stay in registers; a last group of fewer
+                // states out of line.
+                match <&mut [T; $width]>::try_from(&mut *states) {
+                    Ok(whole) => Self::store_whole(values, whole, field),
+                    Err(_) => Self::store_part(*values, states, field),
                 }
             }
             #[inline(always)]
@@ -265,6 +251,61 @@ macro_rules! vector_lanes {
                         return out;
                     }
                     k += $width;
+                }
+            }
+
+            /// [`Lanes::store_states`] of a whole group: blocks of `$width`
+            /// values turned by a register transpose into `$width` runs of
+            /// one state each, one vector store per state (not `$width`
+            /// scalar stores per value); the values past the last block by
+            /// `store_tail`.
+            #[inline(always)]
+            fn store_whole<T, const R: usize, const C: usize>(
+                values: &[[Self; R]; C],
+                states: &mut [T; $width],
+                field: impl Fn(&mut T) -> &mut [[f64; R]; C],
+            ) {
+                let values = values.as_flattened();
+                let blocks = values.len() / $width;
+                for b in 0..blocks {
+                    let k = b * $width;
+                    let rows = Self::transpose(&values[k..k + $width]);
+                    for (state, row) in states.iter_mut().zip(rows) {
+                        field(state).as_flattened_mut()[k..k + $width]
+                            .copy_from_slice(&row.to_array());
+                    }
+                }
+                Self::store_tail(values, blocks * $width, states, field);
+            }
+
+            /// [`Lanes::store_states`] of fewer than `$width` states: each
+            /// value lane by lane.
+            #[cold]
+            #[inline(never)]
+            fn store_part<T, const R: usize, const C: usize>(
+                values: [[Self; R]; C],
+                states: &mut [T],
+                field: impl Fn(&mut T) -> &mut [[f64; R]; C],
+            ) {
+                for (j, v) in values.as_flattened().iter().enumerate() {
+                    for (state, x) in states.iter_mut().zip(v.to_array()) {
+                        field(state).as_flattened_mut()[j] = x;
+                    }
+                }
+            }
+
+            /// Values `from..` of a whole group, each lane by lane.
+            #[inline(always)]
+            fn store_lanes<T, const R: usize, const C: usize>(
+                values: &[Self],
+                from: usize,
+                states: &mut [T; $width],
+                field: impl Fn(&mut T) -> &mut [[f64; R]; C],
+            ) {
+                for (j, v) in values.iter().enumerate().skip(from) {
+                    for (state, x) in states.iter_mut().zip(v.to_array()) {
+                        field(state).as_flattened_mut()[j] = x;
+                    }
                 }
             }
 
@@ -370,3 +411,53 @@ vector_lanes!(
         ]
     } }
 );
+
+impl F64x4 {
+    /// The values past the last block of four: lane by lane.
+    #[inline(always)]
+    fn store_tail<T, const R: usize, const C: usize>(
+        values: &[Self],
+        from: usize,
+        states: &mut [T; 4],
+        field: impl Fn(&mut T) -> &mut [[f64; R]; C],
+    ) {
+        Self::store_lanes(values, from, states, field);
+    }
+}
+
+impl F64x8 {
+    /// Lanes 0-3 and 4-7.
+    #[inline(always)]
+    fn halves(self) -> (F64x4, F64x4) {
+        // SAFETY: see the module doc.
+        unsafe {
+            (
+                F64x4(_mm512_castpd512_pd256(self.0)),
+                F64x4(_mm512_extractf64x4_pd::<1>(self.0)),
+            )
+        }
+    }
+
+    /// The values past the last block of eight: four of them (if there
+    /// are) by the 4 x 4 transposes of their halves, one 256-bit store per
+    /// state, the rest lane by lane.
+    #[inline(always)]
+    fn store_tail<T, const R: usize, const C: usize>(
+        values: &[Self],
+        from: usize,
+        states: &mut [T; 8],
+        field: impl Fn(&mut T) -> &mut [[f64; R]; C],
+    ) {
+        let mut k = from;
+        if k + 4 <= values.len() {
+            let halves: [(F64x4, F64x4); 4] = core::array::from_fn(|m| values[k + m].halves());
+            let low = F64x4::transpose(&halves.map(|h| h.0));
+            let high = F64x4::transpose(&halves.map(|h| h.1));
+            for (state, row) in states.iter_mut().zip(low.into_iter().chain(high)) {
+                field(state).as_flattened_mut()[k..k + 4].copy_from_slice(&row.to_array());
+            }
+            k += 4;
+        }
+        Self::store_lanes(values, k, states, field);
+    }
+}
